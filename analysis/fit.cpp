@@ -1,0 +1,31 @@
+#include "fit.hpp"
+
+#include <gsl/gsl_fit.h>
+#include <gsl/gsl_statistics_double.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace contact {
+
+PowerFit fit_power_law(const std::vector<double>& x, const std::vector<double>& y) {
+  if (x.size() != y.size() || x.size() < 2) throw std::invalid_argument("fit_power_law: need two or more (x, y) pairs");
+  std::vector<double> lx, ly;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    if (!(x[i] > 0) || !(y[i] > 0)) throw std::invalid_argument("fit_power_law: x and y must be positive");
+    lx.push_back(std::log(x[i]));
+    ly.push_back(std::log(y[i]));
+  }
+  double c0, c1, cov00, cov01, cov11, sumsq;
+  gsl_fit_linear(lx.data(), 1, ly.data(), 1, lx.size(), &c0, &c1, &cov00, &cov01, &cov11, &sumsq);
+  const double tss = gsl_stats_tss(ly.data(), 1, ly.size());
+  return {c1, std::exp(c0), std::sqrt(cov11), tss > 0 ? 1.0 - sumsq / tss : 1.0};
+}
+
+}  // namespace contact
+
+#include <gsl/gsl_version.h>
+
+namespace contact {
+const char* gsl_version_string() { return gsl_version; }
+}  // namespace contact

@@ -1,0 +1,49 @@
+#include "metrics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace contact {
+
+namespace {
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+}
+
+RunMetrics compute_metrics(const RunResult& run) {
+  RunMetrics m;
+  const double scale = std::abs(run.energy0) > 0 ? std::abs(run.energy0) : 1.0;
+  auto rel = [&](double E) { return (E - run.energy0) / scale; };
+  for (const auto& s : run.samples) m.max_energy_error = std::max(m.max_energy_error, std::abs(rel(s.energy)));
+  for (const auto& a : run.apexes) m.max_energy_error = std::max(m.max_energy_error, std::abs(rel(a.energy)));
+  m.final_energy_error = run.samples.empty() ? kNaN : rel(run.samples.back().energy);
+  m.contacts = run.contacts.size();
+  m.first_penetration = m.first_duration = m.first_restitution = kNaN;
+  if (!run.contacts.empty()) {
+    const auto& c = run.contacts.front();
+    m.first_penetration = c.max_penetration;
+    if (c.closed()) {
+      m.first_duration = c.duration();
+      m.first_restitution = c.restitution();
+    }
+  }
+  for (const auto& c : run.contacts) m.max_penetration = std::max(m.max_penetration, c.max_penetration);
+  m.first_apex = run.apexes.empty() ? kNaN : run.apexes.front().gap;
+  return m;
+}
+
+std::vector<double> apex_energy_errors(const RunResult& run) {
+  std::vector<double> out;
+  const double scale = std::abs(run.energy0) > 0 ? std::abs(run.energy0) : 1.0;
+  for (const auto& a : run.apexes) out.push_back((a.energy - run.energy0) / scale);
+  return out;
+}
+
+std::vector<double> restitutions(const RunResult& run) {
+  std::vector<double> out;
+  for (const auto& c : run.contacts)
+    if (c.closed()) out.push_back(c.restitution());
+  return out;
+}
+
+}  // namespace contact

@@ -1,0 +1,29 @@
+#pragma once
+// Metrics of one run. All relative energies are (E - E0) / |E0|.
+#include "run_result.hpp"
+
+#include <optional>
+#include <vector>
+
+namespace contact {
+
+struct RunMetrics {
+  double max_energy_error = 0;   // max |E - E0| / |E0| over samples and apexes
+  double final_energy_error = 0; // (E(t_end) - E0) / |E0|
+  std::size_t contacts = 0;      // contacts begun
+  // First contact (NaN when there is none or it never closed):
+  double first_penetration = 0;  // [m]
+  double first_duration = 0;     // [s]
+  double first_restitution = 0;  // -v_out / v_in
+  double max_penetration = 0;    // over all contacts [m]
+  double first_apex = 0;         // height of the first apex after a contact [m]
+};
+
+RunMetrics compute_metrics(const RunResult& run);
+
+// Relative energy error at each apex, in order.
+std::vector<double> apex_energy_errors(const RunResult& run);
+// Effective restitution of each closed contact, in order.
+std::vector<double> restitutions(const RunResult& run);
+
+}  // namespace contact

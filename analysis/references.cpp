@@ -1,0 +1,54 @@
+#include "references.hpp"
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace contact {
+
+RigidBounces::RigidBounces(double h0, double v0, double g_, double e_)
+    : g(g_), e(e_), V(std::sqrt(v0 * v0 + 2.0 * g_ * h0)), T1((v0 + V) / g_) {}
+
+double RigidBounces::impact_time(std::size_t n) const {
+  // T(n) = T1 + (2V/g) (e + e^2 + ... + e^{n-1}), summed term by term (exact for e = 1 too).
+  double t = T1, en = 1.0;
+  for (std::size_t j = 1; j < n; ++j) {
+    en *= e;
+    t += 2.0 * en * V / g;
+  }
+  return t;
+}
+
+double RigidBounces::apex_height(std::size_t n) const {
+  const double vn = std::pow(e, static_cast<double>(n)) * V;
+  return vn * vn / (2.0 * g);
+}
+
+double RigidBounces::apex_time(std::size_t n) const {
+  return impact_time(n) + std::pow(e, static_cast<double>(n)) * V / g;
+}
+
+double RigidBounces::zeno_time() const {
+  return e < 1 ? T1 + 2.0 * e * V / (g * (1.0 - e)) : std::numeric_limits<double>::infinity();
+}
+
+SpringContact hooke_contact(double m, double k, double V, double g) {
+  const double w = std::sqrt(k / m), s = g / (w * w);
+  const double R = std::sqrt(s * s + (V / w) * (V / w));
+  return {(std::numbers::pi + 2.0 * std::atan(g / (w * V))) / w, s + R, V};
+}
+
+SpringContact kelvin_voigt_contact(double m, double k, double zeta, double V) {
+  const double w = std::sqrt(k / m), root = std::sqrt(1.0 - zeta * zeta), wd = w * root;
+  const double tm = std::atan2(root, zeta) / wd;
+  return {std::numbers::pi / wd, V / wd * std::exp(-zeta * w * tm) * std::sin(wd * tm),
+          V * std::exp(-zeta * std::numbers::pi / root)};
+}
+
+double hooke_impact_time(double m, double k, double h0, double v0, double g, std::size_t n) {
+  const RigidBounces rigid(h0, v0, g, 1.0);
+  const double cycle = hooke_contact(m, k, rigid.V, g).duration + 2.0 * rigid.V / g;
+  return rigid.T1 + static_cast<double>(n - 1) * cycle;
+}
+
+}  // namespace contact

@@ -1,0 +1,54 @@
+#pragma once
+// Closed-form references for the ball drop.
+//
+// Rigid bounces (Newton's law v+ = -e v-). A ball released at height h0 with vertical velocity
+// v0 under gravity g reaches the floor with speed V = sqrt(v0^2 + 2 g h0) at
+//   T1 = (v0 + V) / g,
+// and after the n-th impact leaves with speed e^n V, so
+//   T(n+1) = T(n) + 2 e^n V / g,     apex n:  h_n = (e^n V)^2 / (2g)  (= e^{2n} h0 when v0 = 0),
+// and the impacts accumulate at the Zeno time  t_inf = T1 + 2 e V / (g (1 - e)).
+// With v0 = 0: T1 = t0 = sqrt(2 h0/g), T(n+1) = T(n) + 2 e^n t0, t_inf = t0 (1+e)/(1-e).
+//
+// Linear spring contact (Hooke, F = k delta) entered at speed V under gravity g. With
+// w = sqrt(k/m) and the static deflection s = g / w^2, the overlap obeys delta'' + w^2 delta = g:
+//   delta(t) = s (1 - cos wt) + (V/w) sin wt = s + R sin(wt - phi),
+//   R = sqrt(s^2 + (V/w)^2),  tan phi = s w / V = g / (w V).
+// It is largest when sin(wt - phi) = 1 and returns to zero at wt - phi = pi + phi:
+//   max penetration  delta_max = s + R = g/w^2 + sqrt(g^2/w^4 + V^2/w^2),
+//   contact duration T_c = (pi + 2 atan(g / (w V))) / w,
+// and by energy conservation the ball leaves at speed V. Without gravity these are v0 sqrt(m/k)
+// and pi sqrt(m/k).
+//
+// Kelvin–Voigt contact (unclamped, F = k delta + c delta_dot), no gravity, zeta = c/(2 sqrt(km)) < 1,
+// w_d = w sqrt(1 - zeta^2):  delta(t) = (V/w_d) exp(-zeta w t) sin(w_d t), so
+//   restitution e = exp(-zeta pi / sqrt(1 - zeta^2)),  duration pi / w_d,
+//   max penetration at t_m = atan2(sqrt(1 - zeta^2), zeta) / w_d:  delta_max = (V/w_d) exp(-zeta w t_m) sin(w_d t_m).
+#include <cstddef>
+
+namespace contact {
+
+struct RigidBounces {
+  double g, e, V, T1;  // gravity, restitution, first impact speed, first impact time
+  RigidBounces(double h0, double v0, double g, double e);
+  double impact_time(std::size_t n) const;  // n = 1, 2, ...
+  double apex_height(std::size_t n) const;  // after the n-th impact, n = 1, 2, ...
+  double apex_time(std::size_t n) const;
+  double zeno_time() const;                 // +inf for e = 1
+};
+
+struct SpringContact {
+  double duration;         // [s]
+  double max_penetration;  // [m]
+  double exit_speed;       // [m/s]
+};
+
+// Hooke spring of stiffness k on mass m, entered at speed V > 0, under gravity g >= 0.
+SpringContact hooke_contact(double m, double k, double V, double g);
+// Unclamped Kelvin–Voigt (damping ratio zeta < 1) without gravity.
+SpringContact kelvin_voigt_contact(double m, double k, double zeta, double V);
+
+// Undamped penalty bounce sequence of the ball drop under Hooke (the exact penalty solution):
+// every contact lasts T_c and returns the impact speed, so T(n) = T1 + (n-1)(T_c + 2V/g).
+double hooke_impact_time(double m, double k, double h0, double v0, double g, std::size_t n);
+
+}  // namespace contact

@@ -1,0 +1,103 @@
+#include "table.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace contact {
+
+namespace {
+
+std::string render(const Table::Cell& c, int digits) {
+  struct Render {
+    int digits;
+    std::string operator()(const std::string& s) const { return s; }
+    std::string operator()(long v) const { return fmt::format("{}", v); }
+    std::string operator()(double v) const {
+      if (std::isnan(v)) return digits > 0 ? "—" : "nan";
+      return digits > 0 ? fmt::format("{:.{}g}", v, digits) : fmt::format("{:.17g}", v);
+    }
+  };
+  return std::visit(Render{digits}, c);
+}
+
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char ch : s) q += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+  return q + "\"";
+}
+
+std::string latex_escape(const std::string& s) {
+  std::string out;
+  for (char ch : s) {
+    if (ch == '_' || ch == '%' || ch == '&' || ch == '#') out += '\\';
+    out += ch;
+  }
+  return out;
+}
+
+}  // namespace
+
+void Table::add_row(std::vector<Cell> row) {
+  if (row.size() != columns_.size())
+    throw std::invalid_argument(fmt::format("table row has {} cells, header has {}", row.size(), columns_.size()));
+  rows_.push_back(std::move(row));
+}
+
+std::string Table::to_csv() const {
+  std::string out;
+  auto field = [&](std::size_t j, const std::string& s) {
+    if (j > 0) out += ',';
+    out += csv_field(s);
+  };
+  for (std::size_t j = 0; j < columns_.size(); ++j) field(j, columns_[j]);
+  out += '\n';
+  for (const auto& row : rows_) {
+    for (std::size_t j = 0; j < row.size(); ++j) field(j, render(row[j], 0));
+    out += '\n';
+  }
+  return out;
+}
+
+std::string Table::to_markdown(int digits) const {
+  std::vector<std::vector<std::string>> cells;
+  std::vector<std::size_t> width(columns_.size(), 3);
+  for (std::size_t j = 0; j < columns_.size(); ++j) width[j] = std::max(width[j], columns_[j].size());
+  for (const auto& row : rows_) {
+    auto& r = cells.emplace_back();
+    for (std::size_t j = 0; j < row.size(); ++j) {
+      r.push_back(render(row[j], digits));
+      width[j] = std::max(width[j], r.back().size());
+    }
+  }
+  auto line = [&](const std::vector<std::string>& r) {
+    std::string s = "|";
+    for (std::size_t j = 0; j < r.size(); ++j) s += fmt::format(" {:<{}} |", r[j], width[j]);
+    return s + "\n";
+  };
+  std::string out = line(columns_) + "|";
+  for (auto w : width) out += std::string(w + 2, '-') + "|";
+  out += "\n";
+  for (const auto& r : cells) out += line(r);
+  return out;
+}
+
+std::string Table::to_latex(int digits) const {
+  std::string out = "\\begin{tabular}{" + std::string(columns_.size(), 'r') + "}\n\\toprule\n";
+  auto cell = [&](std::size_t j, const std::string& s) {
+    if (j > 0) out += " & ";
+    out += s == "—" ? std::string("--") : latex_escape(s);
+  };
+  for (std::size_t j = 0; j < columns_.size(); ++j) cell(j, columns_[j]);
+  out += " \\\\\n\\midrule\n";
+  for (const auto& row : rows_) {
+    for (std::size_t j = 0; j < row.size(); ++j) cell(j, render(row[j], digits));
+    out += " \\\\\n";
+  }
+  return out + "\\bottomrule\n\\end{tabular}\n";
+}
+
+}  // namespace contact

@@ -1,0 +1,30 @@
+#pragma once
+// A small table of results rendered as CSV (full precision, for machines), Markdown (for the
+// terminal and results/index.md) and LaTeX booktabs (for the paper).
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace contact {
+
+class Table {
+ public:
+  using Cell = std::variant<std::string, double, long>;
+
+  explicit Table(std::vector<std::string> columns) : columns_(std::move(columns)) {}
+  // Appends a row; throws std::invalid_argument if its width differs from the header's.
+  void add_row(std::vector<Cell> row);
+
+  const std::vector<std::string>& columns() const { return columns_; }
+  const std::vector<std::vector<Cell>>& rows() const { return rows_; }
+
+  std::string to_csv() const;
+  std::string to_markdown(int significant_digits = 4) const;
+  std::string to_latex(int significant_digits = 4) const;
+
+ private:
+  std::vector<std::string> columns_;
+  std::vector<std::vector<Cell>> rows_;
+};
+
+}  // namespace contact

@@ -1,0 +1,250 @@
+// ball_drop — a ball dropped on a rigid floor, its contact resolved three ways:
+//   penalty   the contact is a spring (Hooke or Kelvin–Voigt) and the whole motion one stiff ODE
+//             under CVODE (BDF, Newton, dense, analytic or difference-quotient Jacobian), contact
+//             begin/end located by root finding;
+//   game      fixed-step explicit or semi-implicit Euler with the seed's projection + impulse,
+//             or with the penalty spring force added to the acceleration;
+//   event     free flight (CVODE with root finding, or the exact parabola), Newton's law
+//             v+ = -e v- at each impact, Zeno cascade stopped by a rest guard.
+// Model (models/ball_drop.hpp): x' = v, v' = -g (+ F(delta, delta_dot)/m in contact), delta = -x.
+// Defaults: m = 1 kg, g = 9.81 m/s^2, h0 = 1 m, e = 0.8, k = 1e5 N/m, Kelvin–Voigt law tuned to e,
+// t in [0, 3] s, dt = 1 ms, rtol = 1e-8, atol = 1e-10.
+// Outputs in --out (default results/ball_drop): comparison.{csv,md,tex}, contacts.csv,
+// apexes.csv, samples.csv, stats.csv, meta.json; with --sweep, sweep.{csv,md,tex} and meta.json.
+// Exit codes: 0 success, 1 solver failure (status, time reached and message on stderr), 2 bad input.
+#include "ball_drop_methods.hpp"
+#include "cli.hpp"
+#include "metrics.hpp"
+#include "output.hpp"
+#include "progress.hpp"
+#include "references.hpp"
+#include "table.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <iostream>
+
+using namespace contact;
+
+namespace {
+
+struct Options {
+  std::string methods = "all";
+  std::string law = "kelvin-voigt";
+  double k = 1e5, e = 0.8, m = 1.0, g = 9.81, h0 = 1.0, v0 = 0.0;
+  double dt = 1e-3, rtol = 1e-8, atol = 1e-10, t_end = 3.0, sample_dt = 0.01;
+  std::string jacobian = "analytic";
+  long max_steps = 100000;
+  double rest_speed = 1e-7;
+  bool sweep = false;
+  double k_min = 1e2, k_max = 1e8;
+  long per_decade = 1;
+  std::string out = "results/ball_drop";
+};
+
+BallDropSettings settings_for(const Options& o, double k) {
+  BallDropSettings s;
+  s.model = {o.m, o.g, o.h0, o.v0, o.e, make_law(o.law, k, o.m, o.e)};
+  s.t_end = o.t_end;
+  s.sample_dt = o.sample_dt;
+  s.dt = o.dt;
+  s.cvode.rtol = o.rtol;
+  s.cvode.atol = o.atol;
+  s.cvode.max_steps = o.max_steps;
+  s.rest_speed = o.rest_speed;
+  return s;
+}
+
+std::vector<std::string> chosen_methods(const Options& o) {
+  return o.methods == "all" ? ball_drop_method_names() : cli::split_list(o.methods);
+}
+
+// Metric and cost columns shared by the comparison and sweep tables.
+const std::vector<std::string> kMetricColumns = {
+    "status", "contacts", "first_penetration_m", "first_duration_s", "first_restitution",
+    "first_apex_m", "max_energy_change_rel", "steps", "rhs_evals", "jac_evals", "wall_time_s"};
+
+std::vector<Table::Cell> metric_cells(const RunResult& r) {
+  const RunMetrics m = compute_metrics(r);
+  return {std::string(to_string(r.status)), static_cast<long>(m.contacts), m.first_penetration,
+          m.first_duration, m.first_restitution, m.first_apex, m.max_energy_error, r.stats.steps,
+          r.stats.rhs_evals, r.stats.jac_evals, r.stats.wall_time_s};
+}
+
+void add_run_files(const RunResult& r, Table& contacts, Table& apexes, Table& samples, Table& stats) {
+  for (const auto& c : r.contacts)
+    contacts.add_row({r.method, c.t_begin, c.t_end, c.max_penetration, c.v_in, c.v_out});
+  for (const auto& a : r.apexes) apexes.add_row({r.method, a.t, a.gap, a.energy});
+  for (const auto& s : r.samples) samples.add_row({r.method, s.t, s.y[0], s.y[1], s.energy});
+  const auto& st = r.stats;
+  stats.add_row({r.method, std::string(to_string(r.status)), r.t_reached, st.steps, st.failed_steps,
+                 st.rhs_evals, st.jac_evals, st.newton_iters, st.linear_setups, st.root_evals,
+                 st.events, st.restarts, st.wall_time_s, r.message});
+}
+
+// The closed forms a reader compares the table with.
+std::string references(const Options& o) {
+  std::string s;
+  if (o.g > 0) {
+    const RigidBounces rigid(o.h0, o.v0, o.g, o.e);
+    s += fmt::format("rigid (Newton, e = {:g}): first impact {:.6g} s, first apex e^2 h0 = {:.6g} m, Zeno time {:.6g} s\n",
+                     o.e, rigid.T1, rigid.apex_height(1), rigid.zeno_time());
+    if (o.law == "hooke") {
+      const auto c = hooke_contact(o.m, o.k, rigid.V, o.g);
+      s += fmt::format("Hooke spring with gravity: contact duration {:.6g} s, max penetration {:.6g} m, restitution 1\n",
+                       c.duration, c.max_penetration);
+    }
+  }
+  if (o.law == "kelvin-voigt" && std::abs(o.v0) + o.h0 > 0) {
+    const double V = std::sqrt(o.v0 * o.v0 + 2 * o.g * o.h0);
+    if (V > 0 && o.e > 0) {
+      const auto c = kelvin_voigt_contact(o.m, o.k, damping_ratio_for_restitution(o.e), V);
+      s += fmt::format("Kelvin–Voigt without gravity: contact duration {:.6g} s, max penetration {:.6g} m, restitution {:g}\n",
+                       c.duration, c.max_penetration, o.e);
+    }
+  }
+  return s;
+}
+
+int run_single(const Options& o, OutputSet& out) {
+  Table comparison([] {
+    std::vector<std::string> c{"method"};
+    c.insert(c.end(), kMetricColumns.begin(), kMetricColumns.end());
+    return c;
+  }());
+  Table contacts({"method", "t_begin_s", "t_end_s", "max_penetration_m", "v_in_mps", "v_out_mps"});
+  Table apexes({"method", "t_s", "height_m", "energy_J"});
+  Table samples({"method", "t_s", "y_m", "v_mps", "energy_J"});
+  Table stats({"method", "status", "t_reached_s", "steps", "failed_steps", "rhs_evals", "jac_evals",
+               "newton_iters", "linear_setups", "root_evals", "events", "restarts", "wall_time_s",
+               "message"});
+  const auto methods = chosen_methods(o);
+  Progress progress("ball_drop", methods.size());
+  int failures = 0;
+  for (const auto& name : methods) {
+    progress.step(name);
+    const RunResult r = run_ball_drop(name, settings_for(o, o.k));
+    if (!r.ok()) {
+      ++failures;
+      std::cerr << fmt::format("ball_drop: {} failed: {} at t = {:.9g} s: {}\n", name,
+                               to_string(r.status), r.t_reached, r.message);
+    }
+    std::vector<Table::Cell> row{name};
+    for (auto& c : metric_cells(r)) row.push_back(std::move(c));
+    comparison.add_row(std::move(row));
+    add_run_files(r, contacts, apexes, samples, stats);
+  }
+  fmt::print("Ball drop: m = {:g} kg, g = {:g} m/s^2, h0 = {:g} m, v0 = {:g} m/s, e = {:g}, law {}, dt = {:g} s, rtol = {:g}, atol = {:g}, t_end = {:g} s\n\n",
+             o.m, o.g, o.h0, o.v0, o.e, describe(make_law(o.law, o.k, o.m, o.e)), o.dt, o.rtol, o.atol, o.t_end);
+  fmt::print("{}\n{}", comparison.to_markdown(), references(o));
+  if (failures > 0) return cli::kExitFailure;
+  out.add_table("comparison", comparison);
+  out.add("contacts.csv", contacts.to_csv());
+  out.add("apexes.csv", apexes.to_csv());
+  out.add("samples.csv", samples.to_csv());
+  out.add("stats.csv", stats.to_csv());
+  return 0;
+}
+
+int run_sweep(const Options& o, OutputSet& out) {
+  std::vector<double> ks;
+  const double decades = std::log10(o.k_max / o.k_min);
+  const long n = std::max(1L, std::lround(decades * static_cast<double>(o.per_decade)));
+  for (long j = 0; j <= n; ++j) ks.push_back(o.k_min * std::pow(o.k_max / o.k_min, static_cast<double>(j) / static_cast<double>(n)));
+
+  std::vector<std::string> columns{"k_N_per_m", "method", "omega_dt"};
+  columns.insert(columns.end(), kMetricColumns.begin(), kMetricColumns.end());
+  Table sweep(columns);
+  std::vector<std::pair<double, MethodInfo>> runs;
+  for (double k : ks)
+    for (const auto& m : ball_drop_methods())
+      if (m.uses_stiffness) runs.emplace_back(k, m);
+  for (const auto& m : ball_drop_methods())
+    if (!m.uses_stiffness) runs.emplace_back(std::nan(""), m);
+
+  Progress progress("ball_drop sweep", runs.size());
+  for (const auto& [k, m] : runs) {
+    progress.step(fmt::format("k = {:g}, {}", k, m.name));
+    const RunResult r = run_ball_drop(m.name, settings_for(o, std::isnan(k) ? o.k : k));
+    const bool game = m.name.rfind("game", 0) == 0;
+    std::vector<Table::Cell> row{std::isnan(k) ? Table::Cell(std::string("any")) : Table::Cell(k), m.name,
+                                 game && !std::isnan(k) ? std::sqrt(k / o.m) * o.dt : std::nan("")};
+    for (auto& c : metric_cells(r)) row.push_back(std::move(c));
+    sweep.add_row(std::move(row));
+  }
+  fmt::print("Ball drop, k sweep: law {}, e = {:g}, dt = {:g} s, rtol = {:g}, atol = {:g}, t_end = {:g} s\n\n",
+             o.law, o.e, o.dt, o.rtol, o.atol, o.t_end);
+  fmt::print("{}\n{}", sweep.to_markdown(), references(o));
+  out.add_table("sweep", sweep);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  CLI::App app{"The ball drop resolved three ways: penalty springs under CVODE, game-style "
+               "fixed-step integration, event-driven impulses.", "ball_drop"};
+  app.option_defaults()->always_capture_default();
+  std::vector<std::string> method_names = ball_drop_method_names();
+  method_names.insert(method_names.begin(), "all");
+  std::string method_help = "methods to run, comma-separated or 'all':";
+  for (const auto& m : ball_drop_methods()) method_help += fmt::format("\n  {:<24}{}", m.name, m.description);
+  app.add_option("--method", o.methods, method_help)->check(cli::one_of(method_names, true));
+  app.add_option("--law", o.law, "penalty contact law (Kelvin–Voigt damping tuned to --e; Hooke is undamped)")
+      ->check(cli::one_of(law_names()));
+  app.add_option("--k", o.k, "contact stiffness [N/m]")->check(cli::positive());
+  app.add_option("--e", o.e, "coefficient of restitution")->check(cli::real_in(0, 1, false, false));
+  app.add_option("--m", o.m, "ball mass [kg]")->check(cli::positive());
+  app.add_option("--g", o.g, "gravity [m/s^2]")->check(cli::non_negative());
+  app.add_option("--h0", o.h0, "initial height [m]")->check(cli::positive());
+  app.add_option("--v0", o.v0, "initial vertical velocity [m/s], negative downwards")->check(cli::finite());
+  app.add_option("--dt", o.dt, "fixed step of the game methods [s]")->check(cli::positive());
+  app.add_option("--rtol", o.rtol, "CVODE relative tolerance")->check(cli::real_in(0, 1, true, true));
+  app.add_option("--atol", o.atol, "CVODE absolute tolerance [m, m/s]")->check(cli::positive());
+  app.add_option("--t-end", o.t_end, "final time [s]")->check(cli::positive());
+  app.add_option("--sample-dt", o.sample_dt, "spacing of samples.csv [s]")->check(cli::positive());
+  app.add_option("--jacobian", o.jacobian, "Jacobian of the 'penalty' method (penalty-dq always uses dq)")
+      ->check(cli::one_of({"analytic", "dq"}));
+  app.add_option("--max-steps", o.max_steps, "CVODE steps allowed between outputs")->check(cli::integer_at_least(1));
+  app.add_option("--rest-speed", o.rest_speed, "event-driven: outgoing speed below which the ball rests [m/s]")
+      ->check(cli::positive());
+  app.add_flag("--sweep", o.sweep, "run every method for k from --k-min to --k-max and print one table");
+  app.add_option("--k-min", o.k_min, "sweep: smallest k [N/m]")->check(cli::positive());
+  app.add_option("--k-max", o.k_max, "sweep: largest k [N/m]")->check(cli::positive());
+  app.add_option("--per-decade", o.per_decade, "sweep: points per decade of k")->check(cli::integer_at_least(1));
+  app.add_option("--out", o.out, "output directory");
+
+  if (const int code = cli::parse(app, argc, argv); code >= 0) return code;
+  if (o.sweep && !(o.k_max >= o.k_min)) {
+    std::cerr << fmt::format("ball_drop: --k-max: value '{:g}' is below --k-min = {:g}; accepted range [k-min, inf)\n", o.k_max, o.k_min);
+    return cli::kExitBadInput;
+  }
+  if (const auto err = check_output_dir(o.out); !err.empty()) {
+    std::cerr << "ball_drop: " << err << "\n";
+    return cli::kExitBadInput;
+  }
+  if (o.jacobian == "dq") {
+    // --jacobian dq turns 'penalty' into 'penalty-dq'.
+    auto names = chosen_methods(o);
+    for (auto& n : names) if (n == "penalty") n = "penalty-dq";
+    o.methods = fmt::format("{}", fmt::join(names, ","));
+  }
+
+  const auto start = std::chrono::steady_clock::now();
+  OutputSet out;
+  const int code = o.sweep ? run_sweep(o, out) : run_single(o, out);
+  if (code != 0) return code;
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out.add("meta.json", run_metadata(app, argc, argv, wall).dump(2) + "\n");
+  try {
+    out.write(o.out);
+  } catch (const std::exception& ex) {
+    std::cerr << "ball_drop: " << ex.what() << "\n";
+    return cli::kExitFailure;
+  }
+  fmt::print("\nwrote {} files to {} ({:.2f} s)\n", out.files().size(), o.out, wall);
+  return 0;
+}

@@ -1,0 +1,72 @@
+#include "ball_drop_methods.hpp"
+
+#include "event_driven.hpp"
+#include "game_step.hpp"
+#include "penalty.hpp"
+
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+namespace contact {
+
+const std::vector<MethodInfo>& ball_drop_methods() {
+  static const std::vector<MethodInfo> methods = {
+      {"penalty", "penalty spring under CVODE BDF, analytic Jacobian, switches root-located", true},
+      {"penalty-dq", "as penalty, with CVODE's difference-quotient Jacobian", true},
+      {"game-euler", "explicit Euler at fixed dt, projection + impulse", false},
+      {"game-symplectic", "semi-implicit Euler at fixed dt, projection + impulse", false},
+      {"game-euler-spring", "explicit Euler at fixed dt, penalty spring force", true},
+      {"game-symplectic-spring", "semi-implicit Euler at fixed dt, penalty spring force", true},
+      {"event-cvode", "event-driven impulses, flight by CVODE with root finding", false},
+      {"event-exact", "event-driven impulses, exact parabolic flight (reference)", false},
+  };
+  return methods;
+}
+
+std::vector<std::string> ball_drop_method_names() {
+  std::vector<std::string> names;
+  for (const auto& m : ball_drop_methods()) names.push_back(m.name);
+  return names;
+}
+
+std::vector<std::string> law_names() { return {"hooke", "kelvin-voigt", "kelvin-voigt-clamped"}; }
+
+ContactLaw make_law(const std::string& name, double k, double m, double e) {
+  if (name == "hooke") return Hooke{k};
+  if (name == "kelvin-voigt") return kelvin_voigt_for_restitution(k, m, e, false);
+  if (name == "kelvin-voigt-clamped") return kelvin_voigt_for_restitution(k, m, e, true);
+  throw std::invalid_argument(fmt::format("unknown contact law '{}'", name));
+}
+
+RunResult run_ball_drop(const std::string& method, const BallDropSettings& s) {
+  const BallDrop model(s.model);
+  auto game = [&](FixedStepScheme scheme, GameResolution resolution) {
+    return run_game(model, GameOptions{s.dt, s.t_end, s.sample_dt, scheme, resolution});
+  };
+  auto events = [&] { return EventOptions{s.t_end, s.sample_dt, s.cvode, s.rest_speed, 0.0, s.max_events}; };
+  RunResult r;
+  if (method == "penalty" || method == "penalty-dq") {
+    PenaltyOptions o{s.t_end, s.sample_dt, s.cvode, true};
+    o.cvode.jacobian = method == "penalty" ? JacobianMode::Analytic : JacobianMode::DifferenceQuotient;
+    r = run_penalty(model, o);
+  } else if (method == "game-euler") {
+    r = game(FixedStepScheme::ExplicitEuler, GameResolution::ProjectionImpulse);
+  } else if (method == "game-symplectic") {
+    r = game(FixedStepScheme::SemiImplicitEuler, GameResolution::ProjectionImpulse);
+  } else if (method == "game-euler-spring") {
+    r = game(FixedStepScheme::ExplicitEuler, GameResolution::Spring);
+  } else if (method == "game-symplectic-spring") {
+    r = game(FixedStepScheme::SemiImplicitEuler, GameResolution::Spring);
+  } else if (method == "event-cvode") {
+    r = run_event_driven(model, events());
+  } else if (method == "event-exact") {
+    r = run_event_driven(model, model, events());
+  } else {
+    throw std::invalid_argument(fmt::format("unknown method '{}'", method));
+  }
+  r.method = method;
+  return r;
+}
+
+}  // namespace contact

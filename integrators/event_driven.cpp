@@ -1,0 +1,170 @@
+#include "event_driven.hpp"
+
+#include "run_recorder.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+
+namespace contact {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// What happens at an impact, whichever flight located it.
+class Impacts {
+ public:
+  Impacts(const MechanicalSystem& model, const EventOptions& opt, RunRecorder& rec)
+      : model_(model), opt_(opt), rec_(rec), modes_(model.all_modes(ContactMode::Free)),
+        last_(model.contact_count(), -kInf) {}
+
+  const ContactModes& modes() const { return modes_; }
+  bool resting(std::size_t i) const { return modes_[i] == ContactMode::Resting; }
+  long count() const { return count_; }
+
+  // Contact i's gap closed at t: log it, project onto the surface, apply the impulse, and put
+  // the contact at rest when the guards say the bounces have accumulated.
+  void resolve(std::size_t i, double t, VectorRef y) {
+    if (++count_ > opt_.max_events)
+      throw SolverFailure(Status::ZenoLimit, t,
+                          fmt::format("more than {} impacts; raise --max-events or the rest speed",
+                                      opt_.max_events));
+    rec_.contact_begin(i, t, model_.gap_rate(i, y));
+    rec_.observe_penetration(i, -model_.gap(i, y));
+    model_.project(i, y);
+    model_.apply_impulse(i, model_.restitution(i), y);
+    const bool slow = model_.gap_rate(i, y) < opt_.rest_speed;
+    const bool crowded = t - last_[i] < opt_.min_event_spacing;
+    rec_.contact_end(i, t, model_.gap_rate(i, y));
+    if (slow || crowded) {
+      model_.settle(i, y);
+      modes_[i] = ContactMode::Resting;
+    }
+    last_[i] = t;
+  }
+
+ private:
+  const MechanicalSystem& model_;
+  const EventOptions& opt_;
+  RunRecorder& rec_;
+  ContactModes modes_;
+  std::vector<double> last_;
+  long count_ = 0;
+};
+
+}  // namespace
+
+RunResult run_event_driven(const MechanicalSystem& model, const EventOptions& opt) {
+  const std::size_t nc = model.contact_count();
+  RunRecorder rec(model, "event-driven cvode", opt.sample_dt, opt.t_end);
+  Impacts impacts(model, opt, rec);
+
+  OdeSystem sys;
+  sys.size = model.state_size();
+  sys.position_size = model.position_size();
+  sys.rhs = [&](double t, ConstVectorRef y, VectorRef yd) { model.rhs(t, y, impacts.modes(), yd); };
+  sys.jacobian = [&](double t, ConstVectorRef y, MatrixRef J) {
+    model.jacobian(t, y, impacts.modes(), J);
+  };
+  // Per contact: the gap (impact) and the gap rate (apex), both on falling zeros only. A
+  // resting contact's functions are held at 1 so they never fire.
+  sys.root_count = 2 * nc;
+  sys.roots = [&](double, ConstVectorRef y, VectorRef g) {
+    for (std::size_t i = 0; i < nc; ++i) {
+      const bool rest = impacts.resting(i);
+      g[static_cast<Eigen::Index>(2 * i)] = rest ? 1.0 : model.gap(i, y);
+      g[static_cast<Eigen::Index>(2 * i + 1)] = rest ? 1.0 : model.gap_rate(i, y);
+    }
+  };
+  const Vector y0 = model.initial_state();
+  CvodeSolver solver(sys, 0.0, y0, opt.cvode);
+  solver.set_root_directions(std::vector<int>(2 * nc, -1));
+
+  SolverStats own;
+  double t = 0.0;
+  try {
+    for (double t_out = rec.next_sample_time(); std::isfinite(t_out); t_out = rec.next_sample_time()) {
+      if (t_out > t) {
+        const auto out = solver.advance(t_out);
+        t = out.t;
+        if (out.root) {
+          Vector y = solver.y();
+          bool impact = false;
+          for (std::size_t i = 0; i < nc; ++i) {
+            if (out.roots_found[2 * i + 1] != 0) rec.apex(i, t, model.gap(i, y), model.energy(y));
+            if (out.roots_found[2 * i] != 0) {
+              impacts.resolve(i, t, y);
+              impact = true;
+            }
+          }
+          own.events += std::count_if(out.roots_found.begin(), out.roots_found.end(),
+                                      [](int r) { return r != 0; });
+          if (impact) solver.reinit(t, y);
+          continue;
+        }
+      }
+      rec.sample(t, solver.y());
+    }
+  } catch (const SolverFailure& f) {
+    own += solver.stats();
+    return rec.fail(f, own);
+  }
+  own += solver.stats();
+  return rec.finish(own, t);
+}
+
+RunResult run_event_driven(const MechanicalSystem& model, const AnalyticFlight& flight,
+                           const EventOptions& opt) {
+  const std::size_t nc = model.contact_count();
+  RunRecorder rec(model, "event-driven exact", opt.sample_dt, opt.t_end);
+  Impacts impacts(model, opt, rec);
+
+  // Every state on a flight leg is computed from the leg's start, so samples and apexes do not
+  // perturb the trajectory.
+  double t_leg = 0.0;
+  Vector y_leg = model.initial_state(), y = y_leg;
+  bool any_rest = false;
+  auto state_at = [&](double t) {
+    if (any_rest) y = y_leg;
+    else flight.propagate(y_leg, t - t_leg, y);
+  };
+
+  SolverStats own;
+  double t = 0.0;
+  try {
+    for (double t_out = rec.next_sample_time(); std::isfinite(t_out); t_out = rec.next_sample_time()) {
+      // The earliest of: the next output, an impact, an apex.
+      double t_next = t_out;
+      std::size_t which = nc;
+      bool impact = false;
+      for (std::size_t i = 0; i < nc && !any_rest; ++i) {
+        const double ti = t_leg + flight.time_to_impact(i, y_leg);
+        const double ta = t_leg + flight.time_to_apex(i, y_leg);
+        if (ta > t && ta < t_next) { t_next = ta; which = i; impact = false; }
+        if (ti > t && ti <= t_next) { t_next = ti; which = i; impact = true; }
+      }
+      t = t_next;
+      state_at(t);
+      if (which == nc) {
+        rec.sample(t, y);
+      } else if (impact) {
+        impacts.resolve(which, t, y);
+        any_rest = impacts.resting(which);
+        t_leg = t;
+        y_leg = y;
+        own.steps += 1;
+        own.events += 1;
+      } else {
+        rec.apex(which, t, model.gap(which, y), model.energy(y));
+        own.events += 1;
+      }
+    }
+  } catch (const SolverFailure& f) {
+    return rec.fail(f, own);
+  }
+  return rec.finish(own, t);
+}
+
+}  // namespace contact

@@ -1,0 +1,105 @@
+#include "game_step.hpp"
+
+#include "run_recorder.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace contact {
+
+std::string_view to_string(GameResolution r) {
+  switch (r) {
+    case GameResolution::ProjectionImpulse: return "projection+impulse";
+    case GameResolution::Projection: return "projection";
+    case GameResolution::Impulse: return "impulse";
+    case GameResolution::Spring: return "spring";
+  }
+  return "?";
+}
+
+namespace {
+
+// Fraction of the step at which a linear function going from a to b crosses zero.
+double crossing(double a, double b) { return a == b ? 1.0 : a / (a - b); }
+
+}  // namespace
+
+RunResult run_game(const MechanicalSystem& model, const GameOptions& opt) {
+  const std::size_t nc = model.contact_count();
+  const bool spring = opt.resolution == GameResolution::Spring;
+  const bool project = opt.resolution == GameResolution::ProjectionImpulse ||
+                       opt.resolution == GameResolution::Projection;
+  const bool impulse = opt.resolution == GameResolution::ProjectionImpulse ||
+                       opt.resolution == GameResolution::Impulse;
+  RunRecorder rec(model, fmt::format("game {} {}", to_string(opt.scheme), to_string(opt.resolution)),
+                  opt.sample_dt, opt.t_end);
+
+  // Detection: the spring acts while its switching function is positive, impulses while the
+  // bodies overlap. Both are "positive while in contact".
+  auto detect = [&](std::size_t i, ConstVectorRef y) {
+    return spring ? model.switching(i, y) : -model.gap(i, y);
+  };
+  ContactModes modes = model.all_modes(ContactMode::Free);
+  const OdeSystem::Rhs f = [&](double t, ConstVectorRef y, VectorRef yd) { model.rhs(t, y, modes, yd); };
+
+  Vector y = model.initial_state(), y_prev = y, work(y.size());
+  std::vector<double> d_prev(nc);
+  for (std::size_t i = 0; i < nc; ++i) {
+    d_prev[i] = detect(i, y);
+    if (d_prev[i] > 0) rec.contact_begin(i, 0.0, model.gap_rate(i, y));
+  }
+  rec.sample(0.0, y);
+
+  SolverStats stats;
+  const auto n_steps = static_cast<long>(std::ceil(opt.t_end / opt.dt - 1e-9));
+  double t = 0.0;
+  for (long n = 1; n <= n_steps; ++n) {
+    const double t0 = t;
+    const double h = std::min(opt.dt, opt.t_end - t0);  // the last step lands on t_end
+    t = n == n_steps ? opt.t_end : static_cast<double>(n) * opt.dt;
+    y_prev = y;
+    // 1. integrate
+    if (spring) model.modes_from_state(y).swap(modes);
+    stats.rhs_evals += fixed_step(opt.scheme, f, model.position_size(), t0, h, y, work);
+    stats.steps += 1;
+    if (!y.allFinite()) {
+      return rec.fail(SolverFailure(Status::NonFiniteState, t,
+                                    fmt::format("state is not finite after step {} (dt = {:g} s)", n, h)),
+                      stats);
+    }
+    for (std::size_t i = 0; i < nc; ++i) {
+      // Apex: gap rate falls through zero during free flight.
+      const double r0 = model.gap_rate(i, y_prev), r1 = model.gap_rate(i, y);
+      if (r0 > 0 && r1 <= 0 && !rec.contact_open(i)) {
+        const double s = crossing(r0, r1);
+        const Vector ya = y_prev + s * (y - y_prev);
+        rec.apex(i, t0 + s * h, model.gap(i, y_prev) + 0.5 * r0 * s * h, model.energy(ya));
+      }
+      // 2. detect, 3. resolve
+      const double d = detect(i, y);
+      if (d > 0) {
+        if (!rec.contact_open(i)) rec.contact_begin(i, t0 + crossing(d_prev[i], d) * h, model.gap_rate(i, y));
+        rec.observe_penetration(i, -model.gap(i, y));
+        if (project) model.project(i, y);
+        if (impulse && model.gap_rate(i, y) < 0) {
+          model.apply_impulse(i, model.restitution(i), y);
+          stats.events += 1;
+        }
+      }
+      // 4. notify, decided on the resolved state: a contact ends once the bodies no longer
+      // overlap (touching after a projection counts as not overlapping) and do not approach.
+      // Projection alone leaves them approaching, so its contact stays open while it pushes.
+      const double d_after = detect(i, y);
+      if (rec.contact_open(i) && d_after <= 0 && model.gap_rate(i, y) >= 0) {
+        const double end = d > 0 ? t : t0 + crossing(d_prev[i], d_after) * h;
+        rec.contact_end(i, end, model.gap_rate(i, y));
+      }
+      d_prev[i] = d_after;
+    }
+    if (t >= rec.next_sample_time() * (1 - 1e-12)) rec.sample(t, y);
+  }
+  return rec.finish(stats, t);
+}
+
+}  // namespace contact

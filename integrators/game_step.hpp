@@ -1,0 +1,41 @@
+#pragma once
+// Game-style integration: a fixed step dt made of named stages, as the seed's physics loop does.
+//   1. integrate   one explicit or semi-implicit Euler step (free flight, or with the penalty
+//                  spring force while a contact's switching function is positive);
+//   2. detect      every contact with gap < 0 (or, for the spring, a positive switching value);
+//   3. resolve     projection by inverse-mass share, then the impulse if still approaching
+//                  (the seed's ImpulseResolveCollision), or nothing for the spring;
+//   4. notify      contact begin/end are decided after the step, in one batch.
+//
+// The impulse is applied only when the contact approaches (gap rate < 0). The seed applies it
+// unconditionally; on a separating contact that would pull the bodies back together.
+//
+// Contact times are the linear interpolation of the detection function's zero between two step
+// ends, so they carry an O(dt) error by construction; apexes are located where the gap rate,
+// interpolated linearly between step ends, falls through zero.
+#include "fixed_step.hpp"
+#include "mechanical_system.hpp"
+#include "run_result.hpp"
+
+namespace contact {
+
+enum class GameResolution {
+  ProjectionImpulse,  // the seed's combination
+  Projection,         // position correction only
+  Impulse,            // velocity change only
+  Spring,             // penalty force from the contact law ("ResolveSpringCollision")
+};
+
+std::string_view to_string(GameResolution r);
+
+struct GameOptions {
+  double dt = 1e-3;        // fixed step [s]
+  double t_end = 3.0;      // [s]
+  double sample_dt = 0.01; // output spacing [s]; rounded to whole steps
+  FixedStepScheme scheme = FixedStepScheme::SemiImplicitEuler;
+  GameResolution resolution = GameResolution::ProjectionImpulse;
+};
+
+RunResult run_game(const MechanicalSystem& model, const GameOptions& options);
+
+}  // namespace contact

@@ -1,0 +1,26 @@
+#pragma once
+// An ODE y' = f(t, y) as integrators see it: callables only, no model. Optional parts are left
+// empty: a Jacobian df/dy, and root (switching) functions g(t, y) whose sign changes the
+// integrator locates.
+#include "linear_algebra.hpp"
+
+#include <cstddef>
+#include <functional>
+
+namespace contact {
+
+struct OdeSystem {
+  using Rhs = std::function<void(double t, ConstVectorRef y, VectorRef ydot)>;
+  using Jacobian = std::function<void(double t, ConstVectorRef y, MatrixRef J)>;
+  using Roots = std::function<void(double t, ConstVectorRef y, VectorRef g)>;
+
+  std::size_t size = 0;
+  // y = [q; v] with q' depending on v only (needed by semi-implicit schemes); 0 = no split.
+  std::size_t position_size = 0;
+  Rhs rhs;
+  Jacobian jacobian;  // empty: none (CVODE then uses difference quotients)
+  std::size_t root_count = 0;
+  Roots roots;        // empty when root_count == 0
+};
+
+}  // namespace contact

@@ -1,0 +1,57 @@
+#pragma once
+// What every method returns: samples at requested times, a contact log, apexes, statistics and
+// how the run ended. Plain values; analysis/ turns them into metrics.
+#include "linear_algebra.hpp"
+#include "solver_stats.hpp"
+#include "status.hpp"
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace contact {
+
+struct Sample {
+  double t;       // [s]
+  Vector y;       // state, labelled by the model's state_labels()
+  double energy;  // [J]
+};
+
+// One contact, from the moment the bodies start to interact to the moment they stop.
+// Velocities are the signed gap rate along the normal (< 0 approaching), so the effective
+// restitution is -v_out / v_in.
+struct ContactRecord {
+  std::size_t contact = 0;      // which potential contact of the model
+  double t_begin = 0.0;         // [s]
+  double t_end = 0.0;           // [s]; NaN while still open at the end of the run
+  double max_penetration = 0.0; // largest overlap seen [m]
+  double v_in = 0.0;            // gap rate when the contact began [m/s]
+  double v_out = 0.0;           // gap rate when it ended [m/s]; NaN while open
+  bool closed() const { return t_end == t_end; }
+  double duration() const { return t_end - t_begin; }
+  double restitution() const { return -v_out / v_in; }
+};
+
+// A local maximum of a contact's gap during free flight (the top of a bounce).
+struct Apex {
+  std::size_t contact = 0;
+  double t = 0.0;       // [s]
+  double gap = 0.0;     // [m]
+  double energy = 0.0;  // [J]
+};
+
+struct RunResult {
+  std::string method;
+  std::vector<std::string> state_labels;
+  double energy0 = 0.0;
+  std::vector<Sample> samples;
+  std::vector<ContactRecord> contacts;
+  std::vector<Apex> apexes;
+  SolverStats stats;
+  Status status = Status::Success;
+  double t_reached = 0.0;
+  std::string message;  // the solver's own message when status != Success
+  bool ok() const { return status == Status::Success; }
+};
+
+}  // namespace contact

@@ -1,0 +1,37 @@
+#pragma once
+// Work counters every method reports, so that methods can be compared on the same footing.
+// Fields a method does not have stay 0. `+=` adds runs or restarted segments together
+// (CVodeReInit resets CVODE's own counters, so a restarted run sums them here).
+#include <string>
+
+namespace contact {
+
+struct SolverStats {
+  long steps = 0;             // accepted steps (fixed-step: steps taken; closed form: flight legs)
+  long failed_steps = 0;      // rejected steps: error-test plus nonlinear-convergence failures
+  long rhs_evals = 0;         // right-hand-side evaluations, including those of a
+                              // difference-quotient Jacobian
+  long jac_evals = 0;         // Jacobian evaluations (analytic or difference quotient)
+  long newton_iters = 0;      // nonlinear (Newton) iterations
+  long linear_setups = 0;     // linear-solver setups (factorisations)
+  long root_evals = 0;        // root (switching-function) evaluations
+  long events = 0;            // roots located and acted on: contact switches, impacts, apexes
+  long restarts = 0;          // re-initialisations after an event
+  double wall_time_s = 0.0;   // wall-clock time of the run [s]
+
+  SolverStats& operator+=(const SolverStats& o) {
+    steps += o.steps;
+    failed_steps += o.failed_steps;
+    rhs_evals += o.rhs_evals;
+    jac_evals += o.jac_evals;
+    newton_iters += o.newton_iters;
+    linear_setups += o.linear_setups;
+    root_evals += o.root_evals;
+    events += o.events;
+    restarts += o.restarts;
+    wall_time_s += o.wall_time_s;
+    return *this;
+  }
+};
+
+}  // namespace contact

@@ -1,0 +1,26 @@
+#include "status.hpp"
+
+#include <fmt/format.h>
+
+namespace contact {
+
+const char* to_string(Status s) {
+  switch (s) {
+    case Status::Success: return "success";
+    case Status::MaxSteps: return "max-steps";
+    case Status::ConvergenceFailure: return "convergence-failure";
+    case Status::ErrorTestFailure: return "error-test-failure";
+    case Status::NonFiniteState: return "non-finite-state";
+    case Status::ZenoLimit: return "zeno-limit";
+    case Status::SolverError: return "solver-error";
+  }
+  return "unknown";
+}
+
+SolverFailure::SolverFailure(Status status, double t_reached, std::string message)
+    : std::runtime_error(fmt::format("{} at t = {:.17g} s: {}", to_string(status), t_reached, message)),
+      status_(status),
+      t_reached_(t_reached),
+      message_(std::move(message)) {}
+
+}  // namespace contact

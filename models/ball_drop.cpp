@@ -1,0 +1,74 @@
+#include "ball_drop.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace contact {
+
+namespace {
+constexpr double kFloorInverseMass = 0.0;  // the floor is static: infinite mass
+}
+
+void BallDrop::rhs(double, ConstVectorRef y, const ContactModes& modes, VectorRef ydot) const {
+  switch (modes[0]) {
+    case ContactMode::Free:
+      ydot << y[1], -p_.g;
+      break;
+    case ContactMode::Penalty:
+      ydot << y[1], -p_.g + force(p_.law, -y[0], -y[1]) / p_.m;
+      break;
+    case ContactMode::Resting:
+      ydot << 0.0, 0.0;
+      break;
+  }
+}
+
+void BallDrop::jacobian(double, ConstVectorRef y, const ContactModes& modes, MatrixRef J) const {
+  J.setZero();
+  if (modes[0] == ContactMode::Resting) return;
+  J(0, 1) = 1.0;
+  if (modes[0] == ContactMode::Penalty) {
+    // v' = -g + F(-x, -v)/m, so dv'/dx = -F_delta/m and dv'/dv = -F_rate/m.
+    J(1, 0) = -dforce_ddelta(p_.law, -y[0], -y[1]) / p_.m;
+    J(1, 1) = -dforce_drate(p_.law, -y[0], -y[1]) / p_.m;
+  }
+}
+
+double BallDrop::energy(ConstVectorRef y) const {
+  return 0.5 * p_.m * y[1] * y[1] + p_.m * p_.g * y[0] + stored_energy(p_.law, -y[0]);
+}
+
+void BallDrop::project(std::size_t, VectorRef y) const {
+  const double penetration = -y[0];
+  if (penetration <= 0) return;
+  const double inv_m = 1.0 / p_.m;
+  y[0] += penetration * inv_m / (inv_m + kFloorInverseMass);
+}
+
+void BallDrop::apply_impulse(std::size_t, double e, VectorRef y) const {
+  // Normal n = +1 from floor to ball; relative normal velocity v_r.n = v - 0.
+  const double inv_m = 1.0 / p_.m;
+  const double J = -(1.0 + e) * y[1] / (inv_m + kFloorInverseMass);
+  y[1] += J * inv_m;
+}
+
+void BallDrop::propagate(ConstVectorRef y0, double dt, VectorRef y) const {
+  y << y0[0] + dt * (y0[1] - 0.5 * p_.g * dt), y0[1] - p_.g * dt;
+}
+
+double BallDrop::time_to_impact(std::size_t, ConstVectorRef y0) const {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  const double x = y0[0], v = y0[1], g = p_.g;
+  if (g == 0.0) return v < 0 && x >= 0 ? -x / v : inf;
+  // Larger root of x + v t - g t^2/2 = 0, written without cancellation for either sign of v.
+  const double disc = v * v + 2.0 * g * x;
+  if (disc < 0) return inf;
+  const double s = std::sqrt(disc);
+  return v >= 0 ? (v + s) / g : 2.0 * x / (s - v);
+}
+
+double BallDrop::time_to_apex(std::size_t, ConstVectorRef y0) const {
+  return (y0[1] > 0 && p_.g > 0) ? y0[1] / p_.g : std::numeric_limits<double>::infinity();
+}
+
+}  // namespace contact

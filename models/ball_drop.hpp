@@ -1,0 +1,63 @@
+#pragma once
+// Ball drop: a point mass m [kg] falls under gravity g [m/s^2] from height h0 [m] with initial
+// vertical velocity v0 [m/s] onto the rigid floor y = 0.
+//
+//   state  y = [x, v]          height [m] and vertical velocity [m/s]
+//   gap    x,  gap rate v      overlap delta = -x, its rate delta_dot = -v
+//   free       x' = v, v' = -g
+//   penalty    x' = v, v' = -g + F(delta, delta_dot)/m     (F from the contact law)
+//   resting    x' = 0, v' = 0
+//   energy     m v^2/2 + m g x + stored spring energy
+//
+// Impulses: the floor has inverse mass 0, so projection moves the ball by the full overlap and
+// the seed's impulse J = -(1+e) v / m^-1 gives v+ = -e v.
+#include "contact_law.hpp"
+#include "mechanical_system.hpp"
+
+namespace contact {
+
+struct BallDropParams {
+  double m = 1.0;      // mass [kg]
+  double g = 9.81;     // gravity [m/s^2]
+  double h0 = 1.0;     // initial height [m]
+  double v0 = 0.0;     // initial vertical velocity [m/s] (negative: downwards)
+  double e = 0.8;      // Newton restitution for impulses
+  ContactLaw law = Hooke{1e5};
+};
+
+class BallDrop final : public MechanicalSystem, public AnalyticFlight {
+ public:
+  explicit BallDrop(BallDropParams p) : p_(std::move(p)) {}
+  const BallDropParams& params() const { return p_; }
+
+  std::string name() const override { return "ball_drop"; }
+  std::size_t position_size() const override { return 1; }
+  std::size_t state_size() const override { return 2; }
+  Vector initial_state() const override { return Vector{{p_.h0, p_.v0}}; }
+  std::vector<std::string> state_labels() const override { return {"y_m", "v_mps"}; }
+
+  void rhs(double t, ConstVectorRef y, const ContactModes& modes, VectorRef ydot) const override;
+  void jacobian(double t, ConstVectorRef y, const ContactModes& modes, MatrixRef J) const override;
+  double energy(ConstVectorRef y) const override;
+
+  std::size_t contact_count() const override { return 1; }
+  double gap(std::size_t, ConstVectorRef y) const override { return y[0]; }
+  double gap_rate(std::size_t, ConstVectorRef y) const override { return y[1]; }
+  double switching(std::size_t, ConstVectorRef y) const override {
+    return contact::switching(p_.law, -y[0], -y[1]);
+  }
+
+  double restitution(std::size_t) const override { return p_.e; }
+  void project(std::size_t i, VectorRef y) const override;
+  void apply_impulse(std::size_t i, double e, VectorRef y) const override;
+  void settle(std::size_t, VectorRef y) const override { y << 0.0, 0.0; }
+
+  void propagate(ConstVectorRef y0, double dt, VectorRef y) const override;
+  double time_to_impact(std::size_t i, ConstVectorRef y0) const override;
+  double time_to_apex(std::size_t i, ConstVectorRef y0) const override;
+
+ private:
+  BallDropParams p_;
+};
+
+}  // namespace contact

@@ -1,0 +1,83 @@
+#pragma once
+// What every scene offers to the three contact paradigms. A scene is a mechanical system with
+// unilateral contacts; it knows its physics and nothing of the integrator that runs it.
+//
+// State layout: y = [positions; velocities]. The first position_size() entries change only
+// through the velocities (q' = Q(q) v), which is what semi-implicit Euler relies on.
+//
+// Contact modes: how each potential contact takes part in the dynamics right now.
+//   Free     no contact force (free flight);
+//   Penalty  the contact law's force, as a smooth extension (see contact_law.hpp);
+//   Resting  held on the surface: the normal motion is frozen (event-driven rest after Zeno).
+// Integrators that locate the switching roots pass the modes they hold; others use
+// modes_from_state(), which reads them off the sign of each switching function.
+#include "linear_algebra.hpp"
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace contact {
+
+enum class ContactMode : std::uint8_t { Free, Penalty, Resting };
+using ContactModes = std::vector<ContactMode>;
+
+class MechanicalSystem {
+ public:
+  virtual ~MechanicalSystem() = default;
+
+  virtual std::string name() const = 0;
+  virtual std::size_t position_size() const = 0;
+  virtual std::size_t state_size() const = 0;
+  virtual Vector initial_state() const = 0;
+  // Column names with units, one per state entry, e.g. "y_m", "v_mps".
+  virtual std::vector<std::string> state_labels() const = 0;
+
+  // y' = f(t, y) with every contact in the given mode.
+  virtual void rhs(double t, ConstVectorRef y, const ContactModes& modes, VectorRef ydot) const = 0;
+  // Analytic df/dy for the same modes.
+  virtual void jacobian(double t, ConstVectorRef y, const ContactModes& modes, MatrixRef J) const = 0;
+  // Kinetic + potential + energy stored in penalty springs [J].
+  virtual double energy(ConstVectorRef y) const = 0;
+
+  virtual std::size_t contact_count() const = 0;
+  // Signed gap along the contact normal [m]: > 0 apart, < 0 overlapping.
+  virtual double gap(std::size_t i, ConstVectorRef y) const = 0;
+  // Its time derivative [m/s]: < 0 approaching.
+  virtual double gap_rate(std::size_t i, ConstVectorRef y) const = 0;
+  // > 0 exactly while the penalty law of contact i pushes [m].
+  virtual double switching(std::size_t i, ConstVectorRef y) const = 0;
+
+  // Impulsive resolution, the seed's way. e is Newton's restitution for contact i.
+  virtual double restitution(std::size_t i) const = 0;
+  // Projection: move the bodies apart along the normal, by inverse-mass share, until gap = 0.
+  virtual void project(std::size_t i, VectorRef y) const = 0;
+  // Impulse J = -(1+e) v_r.n / (sum of inverse masses [+ angular terms]) along the normal.
+  virtual void apply_impulse(std::size_t i, double e, VectorRef y) const = 0;
+  // Put contact i at rest on its surface (gap 0, no normal velocity).
+  virtual void settle(std::size_t i, VectorRef y) const = 0;
+
+  ContactModes modes_from_state(ConstVectorRef y) const {
+    ContactModes modes(contact_count());
+    for (std::size_t i = 0; i < modes.size(); ++i)
+      modes[i] = switching(i, y) > 0 ? ContactMode::Penalty : ContactMode::Free;
+    return modes;
+  }
+  ContactModes all_modes(ContactMode m) const { return ContactModes(contact_count(), m); }
+};
+
+// Optional capability: free flight known in closed form (e.g. a point mass under uniform
+// gravity). Event-driven resolution uses it as the exact reference flight.
+class AnalyticFlight {
+ public:
+  virtual ~AnalyticFlight() = default;
+  // State after flying freely for dt from y0.
+  virtual void propagate(ConstVectorRef y0, double dt, VectorRef y) const = 0;
+  // Time until contact i's gap next reaches zero while approaching; +inf if never.
+  virtual double time_to_impact(std::size_t i, ConstVectorRef y0) const = 0;
+  // Time until contact i's gap rate next falls through zero (an apex); +inf if never.
+  virtual double time_to_apex(std::size_t i, ConstVectorRef y0) const = 0;
+};
+
+}  // namespace contact

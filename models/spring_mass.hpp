@@ -1,0 +1,46 @@
+#pragma once
+// The free spring: a mass m [kg] on a bilateral Hooke spring k [N/m], no gravity, no contact.
+//   y = [x, v],  x' = v,  v' = -(k/m) x,  energy (m v^2 + k x^2)/2,  omega = sqrt(k/m).
+// The harmonic oscillator on which the fixed-step schemes' energy behaviour has closed forms.
+#include "mechanical_system.hpp"
+
+#include <cmath>
+
+namespace contact {
+
+class SpringMass final : public MechanicalSystem {
+ public:
+  SpringMass(double m, double k, double x0, double v0) : m_(m), k_(k), x0_(x0), v0_(v0) {}
+  double omega() const { return std::sqrt(k_ / m_); }
+
+  std::string name() const override { return "spring_mass"; }
+  std::size_t position_size() const override { return 1; }
+  std::size_t state_size() const override { return 2; }
+  Vector initial_state() const override { return Vector{{x0_, v0_}}; }
+  std::vector<std::string> state_labels() const override { return {"x_m", "v_mps"}; }
+
+  void rhs(double, ConstVectorRef y, const ContactModes&, VectorRef ydot) const override {
+    ydot << y[1], -(k_ / m_) * y[0];
+  }
+  void jacobian(double, ConstVectorRef, const ContactModes&, MatrixRef J) const override {
+    J << 0.0, 1.0, -(k_ / m_), 0.0;
+  }
+  double energy(ConstVectorRef y) const override {
+    return 0.5 * (m_ * y[1] * y[1] + k_ * y[0] * y[0]);
+  }
+
+  // No unilateral contacts.
+  std::size_t contact_count() const override { return 0; }
+  double gap(std::size_t, ConstVectorRef) const override { return 0.0; }
+  double gap_rate(std::size_t, ConstVectorRef) const override { return 0.0; }
+  double switching(std::size_t, ConstVectorRef) const override { return 0.0; }
+  double restitution(std::size_t) const override { return 1.0; }
+  void project(std::size_t, VectorRef) const override {}
+  void apply_impulse(std::size_t, double, VectorRef) const override {}
+  void settle(std::size_t, VectorRef) const override {}
+
+ private:
+  double m_, k_, x0_, v0_;
+};
+
+}  // namespace contact
