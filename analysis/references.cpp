@@ -45,6 +45,10 @@ SpringContact kelvin_voigt_contact(double m, double k, double zeta, double V) {
           V * std::exp(-zeta * std::numbers::pi / root)};
 }
 
+double clamped_kelvin_voigt_restitution(double zeta) {
+  return std::exp(-zeta * (std::numbers::pi - 2.0 * std::asin(zeta)) / std::sqrt(1.0 - zeta * zeta));
+}
+
 double hooke_impact_time(double m, double k, double h0, double v0, double g, std::size_t n) {
   const RigidBounces rigid(h0, v0, g, 1.0);
   const double cycle = hooke_contact(m, k, rigid.V, g).duration + 2.0 * rigid.V / g;

@@ -23,6 +23,14 @@
 // w_d = w sqrt(1 - zeta^2):  delta(t) = (V/w_d) exp(-zeta w t) sin(w_d t), so
 //   restitution e = exp(-zeta pi / sqrt(1 - zeta^2)),  duration pi / w_d,
 //   max penetration at t_m = atan2(sqrt(1 - zeta^2), zeta) / w_d:  delta_max = (V/w_d) exp(-zeta w t_m) sin(w_d t_m).
+//
+// Clamped Kelvin–Voigt (F = max(0, k delta + c delta_dot)), no gravity: the same motion until the
+// force reaches zero, k delta + c delta_dot = 0, i.e. with theta = w_d t and zeta = sin(a),
+//   tan(theta) = -2 zeta sqrt(1-zeta^2) / (1 - 2 zeta^2) = -tan(2a)  =>  theta* = pi - 2 asin(zeta).
+// There delta_dot = V exp(-zeta theta*/sqrt(1-zeta^2)) (cos theta* - zeta/sqrt(1-zeta^2) sin theta*)
+// and the bracket is -(cos 2a + 2 sin^2 a) = -1, so the ball leaves force-free at
+//   e_clamped = exp(-zeta (pi - 2 asin zeta) / sqrt(1 - zeta^2)) = e_target exp(2 zeta asin(zeta) / sqrt(1 - zeta^2)),
+// always above the target the damping was tuned for (e.g. 0.8 -> 0.808, 0.5 -> 0.550, 0.1 -> 0.253).
 #include <cstddef>
 
 namespace contact {
@@ -46,6 +54,8 @@ struct SpringContact {
 SpringContact hooke_contact(double m, double k, double V, double g);
 // Unclamped Kelvin–Voigt (damping ratio zeta < 1) without gravity.
 SpringContact kelvin_voigt_contact(double m, double k, double zeta, double V);
+// Restitution achieved by the clamped law with damping ratio zeta < 1, no gravity.
+double clamped_kelvin_voigt_restitution(double zeta);
 
 // Undamped penalty bounce sequence of the ball drop under Hooke (the exact penalty solution):
 // every contact lasts T_c and returns the impact speed, so T(n) = T1 + (n-1)(T_c + 2V/g).

@@ -50,9 +50,11 @@ int rhs_callback(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
     return -1;
   }
   if (!out.allFinite()) {
+    // Recoverable: a trial state of an over-long step may leave the region where the model is
+    // defined; CVODE then retries with a smaller step and fails only if the NaN persists.
     impl.non_finite = true;
     impl.callback_error = fmt::format("right-hand side is not finite at t = {:.17g}", t);
-    return -1;
+    return 1;
   }
   return 0;
 }
@@ -79,6 +81,7 @@ void error_handler(int code, const char* module, const char* function, char* msg
 }
 
 Status status_for(int flag, bool non_finite) {
+  if (non_finite) return Status::NonFiniteState;  // whatever CVODE made of the refusals
   switch (flag) {
     case CV_TOO_MUCH_WORK: return Status::MaxSteps;
     case CV_CONV_FAILURE:
@@ -86,7 +89,7 @@ Status status_for(int flag, bool non_finite) {
     case CV_LSOLVE_FAIL: return Status::ConvergenceFailure;
     case CV_ERR_FAILURE:
     case CV_TOO_MUCH_ACC: return Status::ErrorTestFailure;
-    default: return non_finite ? Status::NonFiniteState : Status::SolverError;
+    default: return Status::SolverError;
   }
 }
 
@@ -146,6 +149,8 @@ CvodeSolver& CvodeSolver::operator=(CvodeSolver&&) noexcept = default;
 CvodeSolver::Outcome CvodeSolver::advance(double t_out) {
   auto& im = *impl_;
   Outcome out;
+  im.non_finite = false;  // only refusals during this call count towards its status
+  im.callback_error.clear();
   const int flag = CVode(im.mem.get(), t_out, im.y.get(), &out.t, CV_NORMAL);
   if (flag < 0) {
     double t_reached = out.t;

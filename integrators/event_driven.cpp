@@ -31,11 +31,16 @@ class Impacts {
       throw SolverFailure(Status::ZenoLimit, t,
                           fmt::format("more than {} impacts; raise --max-events or the rest speed",
                                       opt_.max_events));
-    rec_.contact_begin(i, t, model_.gap_rate(i, y));
+    const double v_in = model_.gap_rate(i, y);
+    rec_.contact_begin(i, t, v_in);
     rec_.observe_penetration(i, -model_.gap(i, y));
     model_.project(i, y);
-    model_.apply_impulse(i, model_.restitution(i), y);
-    const bool slow = model_.gap_rate(i, y) < opt_.rest_speed;
+    // A located gap root whose rate is not approaching is noise at the flight's resolution (a
+    // bounce lower than the absolute tolerance): the cascade has ended there. The impulse would
+    // turn that separating rate into an approaching one, so the contact rests instead.
+    const bool unresolved = v_in >= 0;
+    if (!unresolved) model_.apply_impulse(i, model_.restitution(i), y);
+    const bool slow = unresolved || model_.gap_rate(i, y) < opt_.rest_speed;
     const bool crowded = t - last_[i] < opt_.min_event_spacing;
     rec_.contact_end(i, t, model_.gap_rate(i, y));
     if (slow || crowded) {
@@ -121,38 +126,37 @@ RunResult run_event_driven(const MechanicalSystem& model, const AnalyticFlight& 
   RunRecorder rec(model, "event-driven exact", opt.sample_dt, opt.t_end);
   Impacts impacts(model, opt, rec);
 
-  // Every state on a flight leg is computed from the leg's start, so samples and apexes do not
-  // perturb the trajectory.
-  double t_leg = 0.0;
+  // Every state on a flight leg is computed from the leg's start with a time measured from it
+  // (never t - t_leg, which would lose the leg time's low bits to the absolute time), so samples
+  // and apexes do not perturb the trajectory and impacts land on the surface to rounding.
+  double t_leg = 0.0, tau_now = 0.0;  // leg start, and the current time measured from it
   Vector y_leg = model.initial_state(), y = y_leg;
   bool any_rest = false;
-  auto state_at = [&](double t) {
-    if (any_rest) y = y_leg;
-    else flight.propagate(y_leg, t - t_leg, y);
-  };
 
   SolverStats own;
   double t = 0.0;
   try {
     for (double t_out = rec.next_sample_time(); std::isfinite(t_out); t_out = rec.next_sample_time()) {
-      // The earliest of: the next output, an impact, an apex.
-      double t_next = t_out;
+      // The earliest of: the next output, an impact, an apex (times from the leg's start).
+      double tau = t_out - t_leg;
       std::size_t which = nc;
       bool impact = false;
       for (std::size_t i = 0; i < nc && !any_rest; ++i) {
-        const double ti = t_leg + flight.time_to_impact(i, y_leg);
-        const double ta = t_leg + flight.time_to_apex(i, y_leg);
-        if (ta > t && ta < t_next) { t_next = ta; which = i; impact = false; }
-        if (ti > t && ti <= t_next) { t_next = ti; which = i; impact = true; }
+        const double ti = flight.time_to_impact(i, y_leg), ta = flight.time_to_apex(i, y_leg);
+        if (ta > tau_now && ta < tau) { tau = ta; which = i; impact = false; }
+        if (ti > tau_now && ti <= tau) { tau = ti; which = i; impact = true; }
       }
-      t = t_next;
-      state_at(t);
+      t = which == nc ? t_out : t_leg + tau;
+      tau_now = tau;
+      if (any_rest) y = y_leg;
+      else flight.propagate(y_leg, tau, y);
       if (which == nc) {
         rec.sample(t, y);
       } else if (impact) {
         impacts.resolve(which, t, y);
         any_rest = impacts.resting(which);
         t_leg = t;
+        tau_now = 0.0;
         y_leg = y;
         own.steps += 1;
         own.events += 1;

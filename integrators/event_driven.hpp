@@ -10,6 +10,8 @@
 //   min_event_spacing  two impacts of one contact closer in time than this also mean rest;
 //   max_events         a hard cap: exceeding it ends the run with Status::ZenoLimit.
 // The rest guard costs at most 2 rest_speed / (g (1 - e)) of Zeno time for a ball under gravity.
+// A numerical flight also rests a contact at a located impact that is not approaching: bounces
+// lower than its absolute tolerance are below what it resolves.
 //
 // Two flights: CVODE with root finding (any model), or the model's closed form (AnalyticFlight),
 // the exact reference. With the closed form a resting contact holds the whole state, which is

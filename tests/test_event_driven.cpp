@@ -1,0 +1,142 @@
+// Event-driven impulses on the ball drop against the closed-form bounce sequence
+// (analysis/references.hpp): T1 = t0, T(n+1) = T(n) + 2 e^n t0, h_n = e^{2n} h0,
+// t_inf = t0 (1+e)/(1-e).
+#include "ball_drop.hpp"
+#include "event_driven.hpp"
+#include "references.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace contact;
+
+namespace {
+
+constexpr double kEps = 2.220446049250313e-16;
+
+BallDrop ball(double e, double h0 = 1.0) { return BallDrop({1.0, 9.81, h0, 0.0, e, Hooke{1e5}}); }
+
+EventOptions options(double t_end) {
+  EventOptions o;
+  o.t_end = t_end;
+  o.sample_dt = 0.05;
+  o.cvode.rtol = 1e-10;
+  o.cvode.atol = 1e-12;
+  return o;
+}
+
+}  // namespace
+
+class EventDrivenExact : public ::testing::TestWithParam<double> {};
+
+TEST_P(EventDrivenExact, ImpactTimesAndApexHeightsMatchTheClosedForm) {
+  const double e = GetParam();
+  const BallDrop model = ball(e);
+  const RigidBounces ref(1.0, 0.0, 9.81, e);
+  const RunResult r = run_event_driven(model, model, options(6.0));
+  ASSERT_TRUE(r.ok()) << r.message;
+  ASSERT_GE(r.contacts.size(), 5u);
+  ASSERT_GE(r.apexes.size(), 5u);
+  // Each impact time is a sum of n closed-form flight times, each computed to a few ulps, so the
+  // n-th time carries at most ~n*4 ulps of rounding: 64 ulps of the time covers n <= 16.
+  for (std::size_t n = 1; n <= std::min<std::size_t>(r.contacts.size(), 16); ++n) {
+    const double Tn = ref.impact_time(n);
+    EXPECT_NEAR(r.contacts[n - 1].t_begin, Tn, 64 * kEps * Tn) << "impact " << n;
+    EXPECT_NEAR(r.contacts[n - 1].restitution(), e, 8 * kEps) << "impact " << n;
+  }
+  // Apex heights e^{2n} h0: each is v^2/(2g) of a velocity that went through n impulses
+  // (4 ulps each), so a relative error of 16 ulps per impact.
+  for (std::size_t n = 1; n <= std::min<std::size_t>(r.apexes.size(), 16); ++n) {
+    const double hn = ref.apex_height(n);
+    EXPECT_NEAR(r.apexes[n - 1].gap, hn, 16.0 * static_cast<double>(n) * kEps * hn) << "apex " << n;
+    EXPECT_NEAR(hn, std::pow(e, 2.0 * static_cast<double>(n)), 1e-14);  // the textbook form
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Restitutions, EventDrivenExact, ::testing::Values(0.5, 0.8, 0.95));
+
+TEST(EventDriven, ZenoCascadeStopsAtTheZenoTimeAndTheBallRests) {
+  const double e = 0.8;
+  const BallDrop model = ball(e);
+  const RigidBounces ref(1.0, 0.0, 9.81, e);
+  EventOptions o = options(6.0);
+  o.rest_speed = 1e-7;
+  for (bool exact : {true, false}) {
+    const RunResult r = exact ? run_event_driven(model, model, o) : run_event_driven(model, o);
+    ASSERT_TRUE(r.ok()) << r.message;
+    // The rest guard stops the cascade at the first bounce slower than rest_speed; the bounces it
+    // skips would have lasted 2 v / (g (1-e)) < 2 rest_speed / (g (1-e)) ~ 1e-7 s. The CVODE
+    // flight adds the error of ~80 root locations, each within its tolerance (rtol 1e-10 of t).
+    // The CVODE flight also stops resolving bounces lower than its absolute tolerance; taking
+    // heights below 100 atol as unresolved, the speed at which it may stop is sqrt(2 g 100 atol).
+    const double v_stop = exact ? o.rest_speed : std::sqrt(2 * 9.81 * 100 * o.cvode.atol);
+    const double skipped = 2 * v_stop / (9.81 * (1 - e));
+    const double t_rest = r.contacts.back().t_end;
+    const double tol = exact ? 1e-12 : 1e-8;
+    EXPECT_LE(t_rest, ref.zeno_time() + tol) << (exact ? "exact" : "cvode");
+    EXPECT_GE(t_rest, ref.zeno_time() - skipped - tol) << (exact ? "exact" : "cvode");
+    if (exact) {
+      // log(rest_speed / V) / log(e) impacts happen before the guard fires.
+      const double expected = std::ceil(std::log(o.rest_speed / ref.V) / std::log(e));
+      EXPECT_NEAR(static_cast<double>(r.contacts.size()), expected, 1.0);
+    }
+    // At rest on the floor afterwards, never below it.
+    for (const auto& s : r.samples) {
+      EXPECT_GE(s.y[0], -1e-12) << "t = " << s.t;
+      if (s.t > ref.zeno_time()) {
+        EXPECT_EQ(s.y[0], 0.0) << "t = " << s.t;
+        EXPECT_EQ(s.y[1], 0.0) << "t = " << s.t;
+      }
+    }
+  }
+}
+
+TEST(EventDriven, PerfectlyInelasticBallStopsAtFirstImpact) {
+  const BallDrop model = ball(0.0);
+  const RigidBounces ref(1.0, 0.0, 9.81, 0.0);
+  const RunResult r = run_event_driven(model, model, options(2.0));
+  ASSERT_TRUE(r.ok());
+  ASSERT_EQ(r.contacts.size(), 1u);
+  EXPECT_NEAR(r.contacts[0].t_begin, ref.T1, 4 * kEps * ref.T1);
+  EXPECT_EQ(r.contacts[0].v_out, 0.0);
+  EXPECT_TRUE(r.apexes.empty());
+  EXPECT_EQ(r.samples.back().y[0], 0.0);
+}
+
+TEST(EventDriven, PerfectlyElasticBallReturnsToItsHeightForever) {
+  const BallDrop model = ball(1.0);
+  const RigidBounces ref(1.0, 0.0, 9.81, 1.0);
+  EXPECT_TRUE(std::isinf(ref.zeno_time()));
+  const RunResult r = run_event_driven(model, model, options(20.0));
+  ASSERT_TRUE(r.ok());
+  // 20 s / (2 t0 = 0.903 s) = 22 impacts, all of speed V, all apexes at h0.
+  EXPECT_EQ(r.contacts.size(), 22u);
+  for (const auto& a : r.apexes) EXPECT_NEAR(a.gap, 1.0, 64 * kEps);
+  for (const auto& c : r.contacts) EXPECT_NEAR(c.v_in, -ref.V, 64 * kEps * ref.V);
+}
+
+TEST(EventDriven, CvodeFlightAgreesWithTheExactFlightToItsTolerance) {
+  const BallDrop model = ball(0.8);
+  const RigidBounces ref(1.0, 0.0, 9.81, 0.8);
+  const RunResult r = run_event_driven(model, options(3.0));
+  ASSERT_TRUE(r.ok()) << r.message;
+  ASSERT_GE(r.contacts.size(), 6u);
+  // Free flight is a polynomial of degree 2, which BDF of order >= 2 integrates exactly, so the
+  // error is set by root location and the first low-order steps: a few rtol of T.
+  for (std::size_t n = 1; n <= 6; ++n)
+    EXPECT_NEAR(r.contacts[n - 1].t_begin, ref.impact_time(n), 1e-8) << "impact " << n;
+  for (std::size_t n = 1; n <= 5; ++n)
+    EXPECT_NEAR(r.apexes[n - 1].gap, ref.apex_height(n), 1e-8) << "apex " << n;
+}
+
+TEST(EventDriven, ImpactCapEndsTheRunWithZenoStatus) {
+  const BallDrop model = ball(0.8);
+  EventOptions o = options(6.0);
+  o.max_events = 10;
+  const RunResult r = run_event_driven(model, model, o);
+  EXPECT_EQ(r.status, Status::ZenoLimit);
+  const RigidBounces ref(1.0, 0.0, 9.81, 0.8);
+  EXPECT_NEAR(r.t_reached, ref.impact_time(11), 1e-12);
+  EXPECT_NE(r.message.find("more than 10 impacts"), std::string::npos);
+}

@@ -1,0 +1,99 @@
+// Game-style resolution (the seed's projection + impulse) on the ball drop.
+#include "ball_drop.hpp"
+#include "game_step.hpp"
+#include "references.hpp"
+#include "spring_mass.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace contact;
+
+namespace {
+constexpr double kEps = 2.220446049250313e-16;
+}
+
+// One impulse: J = -(1+e) v / m^-1, v+ = v + J/m = -e v. Rounding: (1+e) v, times m, over m:
+// a few ulps of v.
+TEST(GameImpulse, OneBounceScalesTheNormalVelocityByE) {
+  for (double e : {0.0, 0.3, 0.8, 1.0}) {
+    for (double m : {0.1, 1.0, 70.0}) {
+      const BallDrop model({m, 9.81, 1.0, 0.0, e, Hooke{1e5}});
+      Vector y{{-0.003, -4.2}};
+      model.project(0, y);
+      EXPECT_EQ(y[0], 0.0);  // the floor does not move: the ball takes the whole overlap
+      model.apply_impulse(0, e, y);
+      EXPECT_NEAR(y[1], 4.2 * e, 4 * kEps * 4.2) << "e = " << e << ", m = " << m;
+    }
+  }
+}
+
+TEST(GameImpulse, EveryLoggedBounceOfAGameRunHasRestitutionE) {
+  for (auto scheme : {FixedStepScheme::ExplicitEuler, FixedStepScheme::SemiImplicitEuler}) {
+    const BallDrop model({1.0, 9.81, 1.0, 0.0, 0.7, Hooke{1e5}});
+    const RunResult r = run_game(model, {1e-3, 3.0, 0.01, scheme, GameResolution::ProjectionImpulse});
+    ASSERT_TRUE(r.ok());
+    ASSERT_GE(r.contacts.size(), 4u);
+    for (std::size_t n = 0; n < 4; ++n) {
+      EXPECT_NEAR(r.contacts[n].restitution(), 0.7, 8 * kEps) << to_string(scheme) << " contact " << n;
+      // Begins at the interpolated crossing inside the step, ends when resolved at its end.
+      EXPECT_GE(r.contacts[n].duration(), 0.0);
+      EXPECT_LE(r.contacts[n].duration(), 1e-3);
+    }
+  }
+}
+
+// Free fall: with v_n = -g n dt exact at step ends for both schemes, explicit Euler's height
+// lags (x_n = h0 - g dt^2 n(n-1)/2) and semi-implicit Euler's leads (n(n+1)/2). The impact is
+// detected at the first step end below the floor, n dt in [t0, t0 + 1.5 dt) for explicit and
+// [t0 - dt/2, t0 + dt) for semi-implicit Euler, so the logged impact speed is off by less than
+// 1.5 g dt and the interpolated impact time by less than 1.5 dt: first order.
+TEST(GameFreeFall, FirstImpactErrorIsBoundedByFirstOrderTerms) {
+  const RigidBounces ref(1.0, 0.0, 9.81, 0.8);
+  for (auto scheme : {FixedStepScheme::ExplicitEuler, FixedStepScheme::SemiImplicitEuler}) {
+    for (double dt : {1e-2, 4e-3, 2e-3, 1e-3, 5e-4, 1e-4}) {
+      const BallDrop model({1.0, 9.81, 1.0, 0.0, 0.8, Hooke{1e5}});
+      const RunResult r = run_game(model, {dt, 1.0, 0.01, scheme, GameResolution::ProjectionImpulse});
+      ASSERT_FALSE(r.contacts.empty());
+      EXPECT_LT(std::abs(-r.contacts[0].v_in - ref.V), 1.5 * 9.81 * dt) << to_string(scheme) << " dt = " << dt;
+      EXPECT_LT(std::abs(r.contacts[0].t_begin - ref.T1), 1.5 * dt) << to_string(scheme) << " dt = " << dt;
+    }
+  }
+}
+
+// Projection alone does not change velocity: the ball is held at the floor while gravity keeps
+// adding g dt of downward speed every step, so its "contact" never ends (the seed's warning).
+TEST(GameProjection, ProjectionAloneNeverLetsGo) {
+  const BallDrop model({1.0, 9.81, 1.0, 0.0, 0.8, Hooke{1e5}});
+  const RunResult r = run_game(model, {1e-3, 2.0, 0.01, FixedStepScheme::SemiImplicitEuler, GameResolution::Projection});
+  ASSERT_EQ(r.contacts.size(), 1u);
+  EXPECT_FALSE(r.contacts[0].closed());
+  EXPECT_EQ(r.samples.back().y[0], 0.0);
+  EXPECT_NEAR(r.samples.back().y[1], -9.81 * 2.0, 9.81 * 2e-3);  // still "falling" at g t
+}
+
+TEST(GameSpring, ExplicitEulerSpringGainsEnergyInEveryContact) {
+  const BallDrop model({1.0, 9.81, 1.0, 0.0, 1.0, Hooke{1e5}});
+  const RunResult r = run_game(model, {1e-3, 3.0, 0.01, FixedStepScheme::ExplicitEuler, GameResolution::Spring});
+  ASSERT_GE(r.contacts.size(), 1u);
+  // In contact each step multiplies the oscillator energy by 1 + (w dt)^2 = 1.1 (test_fixed_step),
+  // over ~ pi / (w dt) = 10 steps: the ball must leave faster than it came.
+  ASSERT_TRUE(r.contacts.front().closed());
+  for (const auto& c : r.contacts) {
+    if (c.closed()) {
+      EXPECT_GT(c.restitution(), 1.5);
+    }
+  }
+}
+
+TEST(GameStep, NonFiniteStateIsReportedWithTheTimeReached) {
+  // A spring so stiff that explicit Euler explodes: w dt = 1e4 multiplies the energy by 1 + 1e8
+  // a step (test_fixed_step): the amplitude grows ~1e4 a step from |v| = w = 1e7, so v passes
+  // the largest double (1.8e308) after (308 - 7) / 4 ~ 75 steps.
+  const SpringMass spring(1.0, 1e14, 1.0, 0.0);
+  const RunResult r = run_game(spring, {1e-3, 1.0, 0.01, FixedStepScheme::ExplicitEuler, GameResolution::Spring});
+  EXPECT_EQ(r.status, Status::NonFiniteState);
+  EXPECT_NEAR(r.t_reached, 0.075, 0.002);
+  EXPECT_NE(r.message.find("not finite"), std::string::npos);
+}

@@ -1,0 +1,157 @@
+// Penalty contact under CVODE against the closed forms of a spring contact
+// (analysis/references.hpp): with gravity, duration (pi + 2 atan(g/(wV)))/w and maximum
+// penetration g/w^2 + sqrt(g^2/w^4 + V^2/w^2); without it pi sqrt(m/k) and V sqrt(m/k).
+//
+// Tolerances: the runs use rtol = 1e-10, atol = 1e-12. CVODE keeps each step's local error below
+// that; a contact takes O(100) steps and a bounce O(10) more, so the global error stays below
+// ~1e-8 relative. Root location adds ~100 ulps of t. A relative tolerance of 1e-6 leaves two
+// orders of margin and is still 10^3-10^4 times smaller than the effects the tests separate
+// (e.g. the gravity correction to the contact time).
+#include "ball_drop.hpp"
+#include "fit.hpp"
+#include "metrics.hpp"
+#include "penalty.hpp"
+#include "references.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+using namespace contact;
+
+namespace {
+
+constexpr double kRel = 1e-6;
+
+PenaltyOptions tight(double t_end) {
+  PenaltyOptions o;
+  o.t_end = t_end;
+  o.sample_dt = 0.01;
+  o.cvode.rtol = 1e-10;
+  o.cvode.atol = 1e-12;
+  return o;
+}
+
+RunResult drop(ContactLaw law, double g, double h0, double v0, double t_end, double e = 1.0) {
+  return run_penalty(BallDrop({1.0, g, h0, v0, e, law}), tight(t_end));
+}
+
+}  // namespace
+
+TEST(PenaltyHooke, ContactDurationAndPenetrationWithGravityMatchTheClosedForm) {
+  for (double k : {1e3, 1e5, 1e7}) {
+    const RunResult r = drop(Hooke{k}, 9.81, 1.0, 0.0, 0.6);
+    ASSERT_TRUE(r.ok()) << r.message;
+    ASSERT_GE(r.contacts.size(), 1u);
+    const double V = std::sqrt(2 * 9.81);
+    const auto ref = hooke_contact(1.0, k, V, 9.81);
+    const auto& c = r.contacts.front();
+    EXPECT_NEAR(c.duration(), ref.duration, kRel * ref.duration) << "k = " << k;
+    EXPECT_NEAR(c.max_penetration, ref.max_penetration, kRel * ref.max_penetration) << "k = " << k;
+    EXPECT_NEAR(c.restitution(), 1.0, kRel) << "k = " << k;
+    // The test separates the gravity forms from the gravity-free limits: at k = 1e3 the two
+    // differ by g/(wV) ~ 7 % in duration.
+    if (k == 1e3) {
+      EXPECT_GT(std::abs(c.duration() - std::numbers::pi * std::sqrt(1.0 / k)), 1e3 * kRel * ref.duration);
+    }
+  }
+}
+
+TEST(PenaltyHooke, WithoutGravityTheContactLastsPiSqrtMOverK) {
+  for (double k : {1e2, 1e4, 1e6, 1e8}) {
+    const double v0 = 2.0;
+    const RunResult r = drop(Hooke{k}, 0.0, 0.1, -v0, 0.1 / v0 + 4 * std::sqrt(1.0 / k));
+    ASSERT_TRUE(r.ok()) << r.message;
+    ASSERT_EQ(r.contacts.size(), 1u);
+    const auto& c = r.contacts.front();
+    EXPECT_NEAR(c.t_begin, 0.1 / v0, kRel * c.t_begin);
+    EXPECT_NEAR(c.duration(), std::numbers::pi * std::sqrt(1.0 / k), kRel * c.duration()) << "k = " << k;
+    EXPECT_NEAR(c.max_penetration, v0 * std::sqrt(1.0 / k), kRel * c.max_penetration) << "k = " << k;
+  }
+}
+
+TEST(PenaltyHooke, UndampedBallKeepsItsApexHeightAndFollowsTheExactPenaltySequence) {
+  const double k = 1e5;
+  const RunResult r = drop(Hooke{k}, 9.81, 1.0, 0.0, 5.0);
+  ASSERT_TRUE(r.ok()) << r.message;
+  ASSERT_GE(r.apexes.size(), 5u);
+  for (const auto& a : r.apexes) EXPECT_NEAR(a.gap, 1.0, kRel) << "t = " << a.t;
+  for (std::size_t n = 1; n <= r.contacts.size(); ++n) {
+    const double Tn = hooke_impact_time(1.0, k, 1.0, 0.0, 9.81, n);
+    EXPECT_NEAR(r.contacts[n - 1].t_begin, Tn, kRel * Tn) << "impact " << n;
+  }
+  EXPECT_LT(compute_metrics(r).max_energy_error, kRel);
+}
+
+TEST(PenaltyKelvinVoigt, UnclampedRestitutionEqualsTheTargetWithoutGravity) {
+  for (double e : {0.1, 0.5, 0.8, 0.95}) {
+    const auto law = kelvin_voigt_for_restitution(1e6, 1.0, e, false);
+    const RunResult r = drop(law, 0.0, 0.1, -1.0, 0.2);
+    ASSERT_TRUE(r.ok()) << r.message;
+    ASSERT_EQ(r.contacts.size(), 1u);
+    const auto ref = kelvin_voigt_contact(1.0, 1e6, damping_ratio_for_restitution(e), 1.0);
+    EXPECT_NEAR(r.contacts[0].restitution(), e, kRel) << "e = " << e;
+    EXPECT_NEAR(r.contacts[0].duration(), ref.duration, kRel * ref.duration) << "e = " << e;
+    EXPECT_NEAR(r.contacts[0].max_penetration, ref.max_penetration, kRel * ref.max_penetration);
+  }
+}
+
+TEST(PenaltyKelvinVoigt, ClampedLawOvershootsTheTargetByTheClosedFormFactor) {
+  for (double e : {0.1, 0.5, 0.8, 0.95}) {
+    const auto law = kelvin_voigt_for_restitution(1e6, 1.0, e, true);
+    const RunResult r = drop(law, 0.0, 0.1, -1.0, 0.2);
+    ASSERT_TRUE(r.ok()) << r.message;
+    ASSERT_EQ(r.contacts.size(), 1u);
+    const double expected = clamped_kelvin_voigt_restitution(damping_ratio_for_restitution(e));
+    EXPECT_NEAR(r.contacts[0].restitution(), expected, kRel) << "e = " << e;
+    // The clamp raises restitution by far more than the tolerance (5e-4 even at e = 0.95).
+    EXPECT_GT(r.contacts[0].restitution(), e + 10 * kRel) << "e = " << e;
+  }
+}
+
+// As k grows the penalty bounce approaches the rigid one. For the undamped spring the second
+// impact is late by exactly the contact time T_c = (pi + 2 atan(g/(wV)))/w, so the error falls
+// as k^(-1/2) (exponent -1/2 up to the O(1/k) gravity term, < 0.01 over k = 1e4..1e8).
+TEST(PenaltyConvergence, BounceTimesApproachTheRigidOnesAsKToTheMinusOneHalf) {
+  const RigidBounces rigid(1.0, 0.0, 9.81, 1.0);
+  std::vector<double> ks, errors;
+  for (double k = 1e4; k <= 1e8 * 1.0001; k *= 10) {
+    const RunResult r = drop(Hooke{k}, 9.81, 1.0, 0.0, 1.5);
+    ASSERT_TRUE(r.ok()) << r.message;
+    ASSERT_GE(r.contacts.size(), 2u);
+    ks.push_back(k);
+    errors.push_back(std::abs(r.contacts[1].t_begin - rigid.impact_time(2)));
+  }
+  const PowerFit fit = fit_power_law(ks, errors);
+  EXPECT_NEAR(fit.exponent, -0.5, 0.01);
+  EXPECT_NEAR(fit.coefficient, std::numbers::pi, 0.05 * std::numbers::pi);  // T_c ~ pi sqrt(m) k^-1/2
+}
+
+// With damping tuned to e and gravity on, the achieved restitution differs from the target by
+// the gravity term, O(g / (w V)), so it too converges as k^(-1/2).
+TEST(PenaltyConvergence, DampedRestitutionApproachesTheTargetWithGravity) {
+  const double e = 0.8;
+  std::vector<double> ks, errors;
+  for (double k = 1e4; k <= 1e8 * 1.0001; k *= 10) {
+    const RunResult r = drop(kelvin_voigt_for_restitution(k, 1.0, e, false), 9.81, 1.0, 0.0, 0.6, e);
+    ASSERT_TRUE(r.ok()) << r.message;
+    ks.push_back(k);
+    errors.push_back(std::abs(r.contacts.front().restitution() - e));
+  }
+  const PowerFit fit = fit_power_law(ks, errors);
+  EXPECT_NEAR(fit.exponent, -0.5, 0.02);
+}
+
+TEST(PenaltyLocating, SwitchesLocatedOrNotGiveTheSameContactAtTightTolerance) {
+  const BallDrop model({1.0, 9.81, 1.0, 0.0, 0.8, kelvin_voigt_for_restitution(1e5, 1.0, 0.8, false)});
+  PenaltyOptions located = tight(0.6), stepped = tight(0.6);
+  stepped.locate_switches = false;
+  const RunResult a = run_penalty(model, located), b = run_penalty(model, stepped);
+  ASSERT_TRUE(a.ok() && b.ok());
+  ASSERT_EQ(a.contacts.size(), b.contacts.size());
+  // The unlocated run steps over the force's jump (c delta_dot at delta = 0): CVODE's error test
+  // rejects and shrinks steps there, so it still meets the tolerance, at a cost.
+  EXPECT_NEAR(a.contacts[0].restitution(), b.contacts[0].restitution(), 1e-5);
+  EXPECT_GT(b.stats.failed_steps, a.stats.failed_steps);
+}
