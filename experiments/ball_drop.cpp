@@ -84,6 +84,17 @@ void add_run_files(const RunResult& r, Table& contacts, Table& apexes, Table& sa
                  st.events, st.restarts, st.wall_time_s, r.message});
 }
 
+// The first contact in closed form where one exists for the law: Hooke exactly (with gravity),
+// unclamped Kelvin–Voigt in its gravity-free limit (error O(g / (w V))), else NaN.
+SpringContact closed_form_contact(const Options& o, double k) {
+  const double nan = std::nan("");
+  const double V = std::sqrt(o.v0 * o.v0 + 2 * o.g * o.h0);
+  if (std::isnan(k) || !(V > 0)) return {nan, nan, nan};
+  if (o.law == "hooke") return hooke_contact(o.m, k, V, o.g);
+  if (o.law == "kelvin-voigt" && o.e > 0) return kelvin_voigt_contact(o.m, k, damping_ratio_for_restitution(o.e), V);
+  return {nan, nan, nan};
+}
+
 // The closed forms a reader compares the table with.
 std::string references(const Options& o) {
   std::string s;
@@ -91,20 +102,9 @@ std::string references(const Options& o) {
     const RigidBounces rigid(o.h0, o.v0, o.g, o.e);
     s += fmt::format("rigid (Newton, e = {:g}): first impact {:.6g} s, first apex e^2 h0 = {:.6g} m, Zeno time {:.6g} s\n",
                      o.e, rigid.T1, rigid.apex_height(1), rigid.zeno_time());
-    if (o.law == "hooke") {
-      const auto c = hooke_contact(o.m, o.k, rigid.V, o.g);
-      s += fmt::format("Hooke spring with gravity: contact duration {:.6g} s, max penetration {:.6g} m, restitution 1\n",
-                       c.duration, c.max_penetration);
-    }
   }
-  if (o.law == "kelvin-voigt" && std::abs(o.v0) + o.h0 > 0) {
-    const double V = std::sqrt(o.v0 * o.v0 + 2 * o.g * o.h0);
-    if (V > 0 && o.e > 0) {
-      const auto c = kelvin_voigt_contact(o.m, o.k, damping_ratio_for_restitution(o.e), V);
-      s += fmt::format("Kelvin–Voigt without gravity: contact duration {:.6g} s, max penetration {:.6g} m, restitution {:g}\n",
-                       c.duration, c.max_penetration, o.e);
-    }
-  }
+  if (o.law == "hooke") s += "closed forms: Hooke spring with gravity (exact); restitution 1\n";
+  if (o.law == "kelvin-voigt") s += "closed forms: Kelvin–Voigt without gravity (error O(g / (omega V))); restitution e\n";
   return s;
 }
 
@@ -139,6 +139,9 @@ int run_single(const Options& o, OutputSet& out) {
   fmt::print("Ball drop: m = {:g} kg, g = {:g} m/s^2, h0 = {:g} m, v0 = {:g} m/s, e = {:g}, law {}, dt = {:g} s, rtol = {:g}, atol = {:g}, t_end = {:g} s\n\n",
              o.m, o.g, o.h0, o.v0, o.e, describe(make_law(o.law, o.k, o.m, o.e)), o.dt, o.rtol, o.atol, o.t_end);
   fmt::print("{}\n{}", comparison.to_markdown(), references(o));
+  if (const SpringContact c = closed_form_contact(o, o.k); !std::isnan(c.duration))
+    fmt::print("closed-form first contact at k = {:g}: duration {:.6g} s, max penetration {:.6g} m\n", o.k,
+               c.duration, c.max_penetration);
   if (failures > 0) return cli::kExitFailure;
   out.add_table("comparison", comparison);
   out.add("contacts.csv", contacts.to_csv());
@@ -154,7 +157,8 @@ int run_sweep(const Options& o, OutputSet& out) {
   const long n = std::max(1L, std::lround(decades * static_cast<double>(o.per_decade)));
   for (long j = 0; j <= n; ++j) ks.push_back(o.k_min * std::pow(o.k_max / o.k_min, static_cast<double>(j) / static_cast<double>(n)));
 
-  std::vector<std::string> columns{"k_N_per_m", "method", "omega_dt"};
+  std::vector<std::string> columns{"k_N_per_m", "method", "omega_dt", "closed_form_penetration_m",
+                                   "closed_form_duration_s"};
   columns.insert(columns.end(), kMetricColumns.begin(), kMetricColumns.end());
   Table sweep(columns);
   std::vector<std::pair<double, MethodInfo>> runs;
@@ -169,8 +173,10 @@ int run_sweep(const Options& o, OutputSet& out) {
     progress.step(fmt::format("k = {:g}, {}", k, m.name));
     const RunResult r = run_ball_drop(m.name, settings_for(o, std::isnan(k) ? o.k : k));
     const bool game = m.name.rfind("game", 0) == 0;
+    const SpringContact ref = closed_form_contact(o, k);
     std::vector<Table::Cell> row{std::isnan(k) ? Table::Cell(std::string("any")) : Table::Cell(k), m.name,
-                                 game && !std::isnan(k) ? std::sqrt(k / o.m) * o.dt : std::nan("")};
+                                 game && !std::isnan(k) ? std::sqrt(k / o.m) * o.dt : std::nan(""),
+                                 ref.max_penetration, ref.duration};
     for (auto& c : metric_cells(r)) row.push_back(std::move(c));
     sweep.add_row(std::move(row));
   }

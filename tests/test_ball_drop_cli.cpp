@@ -1,0 +1,158 @@
+// The ball_drop executable's contract: bad input -> one line naming the option, the value and
+// the accepted range, exit code 2, no output; success -> every declared file with its columns.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Outcome {
+  int code;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+class BallDropCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("ball_drop_cli_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  Outcome run(const std::string& args) const {
+    const std::string cmd = "cd '" + dir_.string() + "' && '" BALL_DROP_EXE "' " + args + " >stdout.txt 2>stderr.txt";
+    const int status = std::system(cmd.c_str());
+    Outcome r{WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir_ / "stdout.txt"), slurp(dir_ / "stderr.txt")};
+    fs::remove(dir_ / "stdout.txt");
+    fs::remove(dir_ / "stderr.txt");
+    return r;
+  }
+  bool dir_is_empty() const { return fs::is_empty(dir_); }
+
+  fs::path dir_;
+};
+
+struct BadInput {
+  std::string args, option, value, accepted;
+};
+
+}  // namespace
+
+TEST_F(BallDropCli, BadInputIsRefusedWithOptionValueAndRangeAndWritesNothing) {
+  const std::vector<BadInput> cases = {
+      {"--k 0", "--k", "'0'", "(0, inf)"},
+      {"--k -1e5", "--k", "'-1e5'", "(0, inf)"},
+      {"--k nan", "--k", "'nan'", "(0, inf)"},
+      {"--k inf", "--k", "'inf'", "(0, inf)"},
+      {"--k 1e5x", "--k", "'1e5x'", "(0, inf)"},
+      {"--m 0", "--m", "'0'", "(0, inf)"},
+      {"--m -2", "--m", "'-2'", "(0, inf)"},
+      {"--g -9.81", "--g", "'-9.81'", "[0, inf)"},
+      {"--h0 0", "--h0", "'0'", "(0, inf)"},
+      {"--dt 0", "--dt", "'0'", "(0, inf)"},
+      {"--dt -1e-3", "--dt", "'-1e-3'", "(0, inf)"},
+      {"--e 1.01", "--e", "'1.01'", "[0, 1]"},
+      {"--e -0.1", "--e", "'-0.1'", "[0, 1]"},
+      {"--e NaN", "--e", "'NaN'", "[0, 1]"},
+      {"--rtol 0", "--rtol", "'0'", "(0, 1)"},
+      {"--atol -1e-9", "--atol", "'-1e-9'", "(0, inf)"},
+      {"--t-end 0", "--t-end", "'0'", "(0, inf)"},
+      {"--t-end ten", "--t-end", "'ten'", "(0, inf)"},
+      {"--v0 nan", "--v0", "'nan'", "(-inf, inf)"},
+      {"--max-steps 0", "--max-steps", "'0'", ">= 1"},
+      {"--method warp-drive", "--method", "'warp-drive'", "event-exact"},
+      {"--method penalty,,game-euler", "--method", "''", "penalty"},
+      {"--law rubber", "--law", "'rubber'", "kelvin-voigt"},
+      {"--bogus 3", "--bogus", "", "--help"},
+      {"--sweep --k-min 1e6 --k-max 1e3", "--k-max", "'1000'", "k-min"},
+  };
+  for (const auto& c : cases) {
+    const Outcome r = run(c.args + " --out results");
+    EXPECT_EQ(r.code, 2) << c.args;
+    EXPECT_NE(r.err.find(c.option), std::string::npos) << c.args << ": " << r.err;
+    EXPECT_NE(r.err.find(c.value), std::string::npos) << c.args << ": " << r.err;
+    EXPECT_NE(r.err.find(c.accepted), std::string::npos) << c.args << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << c.args << ": one line, got " << r.err;
+    EXPECT_TRUE(dir_is_empty()) << c.args << " wrote files";
+  }
+}
+
+TEST_F(BallDropCli, OutputThatIsAFileIsRefused) {
+  std::ofstream(dir_ / "taken") << "x";
+  const Outcome r = run("--out taken");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--out"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("'taken'"), std::string::npos) << r.err;
+}
+
+TEST_F(BallDropCli, HelpListsEveryOptionWithDefaultAndRange) {
+  const Outcome r = run("--help");
+  EXPECT_EQ(r.code, 0);
+  for (const char* s : {"--method", "--law", "--k FLOAT:in (0, inf)=100000", "--e FLOAT:in [0, 1]=0.8",
+                        "--m", "--g", "--h0", "--dt", "--rtol", "--atol", "--t-end", "--out", "--sweep",
+                        "event-exact", "game-symplectic-spring"})
+    EXPECT_NE(r.out.find(s), std::string::npos) << s;
+  EXPECT_TRUE(dir_is_empty());
+}
+
+TEST_F(BallDropCli, SolverFailureExitsOneWithStatusTimeAndMessageAndWritesNothing) {
+  const Outcome r = run("--method penalty --k 1e8 --max-steps 5 --sample-dt 1 --out results");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("max-steps at t = "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("CV_TOO_MUCH_WORK"), std::string::npos) << r.err;
+  EXPECT_TRUE(dir_is_empty());
+}
+
+TEST_F(BallDropCli, SuccessfulRunWritesEveryDeclaredFileWithItsColumns) {
+  const Outcome r = run("--t-end 1 --out results");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::vector<std::pair<std::string, std::string>> files = {
+      {"contacts.csv", "method,t_begin_s,t_end_s,max_penetration_m,v_in_mps,v_out_mps"},
+      {"apexes.csv", "method,t_s,height_m,energy_J"},
+      {"samples.csv", "method,t_s,y_m,v_mps,energy_J"},
+      {"stats.csv", "method,status,t_reached_s,steps,failed_steps,rhs_evals,jac_evals,newton_iters,"
+                    "linear_setups,root_evals,events,restarts,wall_time_s,message"},
+      {"comparison.csv", "method,status,contacts,first_penetration_m"},
+  };
+  for (const auto& [name, header] : files) {
+    const std::string text = slurp(dir_ / "results" / name);
+    EXPECT_EQ(text.rfind(header, 0), 0u) << name << " starts with: " << text.substr(0, 120);
+    EXPECT_GT(std::count(text.begin(), text.end(), '\n'), 1) << name << " has no rows";
+  }
+  for (const char* name : {"comparison.md", "comparison.tex"}) EXPECT_TRUE(fs::exists(dir_ / "results" / name)) << name;
+  const auto meta = nlohmann::json::parse(slurp(dir_ / "results" / "meta.json"));
+  EXPECT_EQ(meta["experiment"], "ball_drop");
+  EXPECT_EQ(meta["options"]["t-end"], "1");
+  EXPECT_EQ(meta["options"]["k"], "100000");
+  EXPECT_TRUE(meta["libraries"].contains("sundials"));
+  EXPECT_TRUE(meta.contains("git_revision"));
+  for (const auto& e : fs::directory_iterator(dir_ / "results"))
+    EXPECT_EQ(e.path().extension() == ".tmp", false) << "left a temporary file " << e.path();
+}
+
+TEST_F(BallDropCli, SweepPrintsOneRowPerStiffnessAndMethod) {
+  const Outcome r = run("--sweep --k-min 1e2 --k-max 1e4 --t-end 1 --out sweep");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string csv = slurp(dir_ / "sweep" / "sweep.csv");
+  // 3 stiffnesses x 4 stiffness-dependent methods + 4 independent ones, plus the header.
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 3 * 4 + 4 + 1) << csv;
+  EXPECT_EQ(csv.rfind("k_N_per_m,method,omega_dt,closed_form_penetration_m,closed_form_duration_s,status", 0), 0u);
+}
