@@ -1,5 +1,6 @@
 #include "event_driven.hpp"
 
+#include "cvode_driver.hpp"
 #include "run_recorder.hpp"
 
 #include <fmt/format.h>
@@ -83,41 +84,20 @@ RunResult run_event_driven(const MechanicalSystem& model, const EventOptions& op
       g[static_cast<Eigen::Index>(2 * i + 1)] = rest ? 1.0 : model.gap_rate(i, y);
     }
   };
-  const Vector y0 = model.initial_state();
-  CvodeSolver solver(sys, 0.0, y0, opt.cvode);
-  solver.set_root_directions(std::vector<int>(2 * nc, -1));
-
-  SolverStats own;
-  double t = 0.0;
-  try {
-    for (double t_out = rec.next_sample_time(); std::isfinite(t_out); t_out = rec.next_sample_time()) {
-      if (t_out > t) {
-        const auto out = solver.advance(t_out);
-        t = out.t;
-        if (out.root) {
-          Vector y = solver.y();
-          bool impact = false;
-          for (std::size_t i = 0; i < nc; ++i) {
-            if (out.roots_found[2 * i + 1] != 0) rec.apex(i, t, model.gap(i, y), model.energy(y));
-            if (out.roots_found[2 * i] != 0) {
-              impacts.resolve(i, t, y);
-              impact = true;
-            }
-          }
-          own.events += std::count_if(out.roots_found.begin(), out.roots_found.end(),
-                                      [](int r) { return r != 0; });
-          if (impact) solver.reinit(t, y);
-          continue;
-        }
+  CvodeDrive drive;
+  drive.root_directions.assign(2 * nc, -1);
+  drive.on_roots = [&](double t, Vector& y, const std::vector<int>& roots) {
+    bool impact = false;
+    for (std::size_t i = 0; i < nc; ++i) {
+      if (roots[2 * i + 1] != 0) rec.apex(i, t, model.gap(i, y), model.energy(y));
+      if (roots[2 * i] != 0) {
+        impacts.resolve(i, t, y);
+        impact = true;
       }
-      rec.sample(t, solver.y());
     }
-  } catch (const SolverFailure& f) {
-    own += solver.stats();
-    return rec.fail(f, own);
-  }
-  own += solver.stats();
-  return rec.finish(own, t);
+    return impact;
+  };
+  return drive_cvode(std::move(sys), model.initial_state(), opt.cvode, rec, drive);
 }
 
 RunResult run_event_driven(const MechanicalSystem& model, const AnalyticFlight& flight,

@@ -60,7 +60,7 @@ RunResult run_game(const MechanicalSystem& model, const GameOptions& opt) {
     t = n == n_steps ? opt.t_end : static_cast<double>(n) * opt.dt;
     y_prev = y;
     // 1. integrate
-    if (spring) model.modes_from_state(y).swap(modes);
+    if (spring) model.modes_from_state(y, modes);
     stats.rhs_evals += fixed_step(opt.scheme, f, model.position_size(), t0, h, y, work);
     stats.steps += 1;
     if (!y.allFinite()) {

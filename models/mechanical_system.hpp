@@ -58,11 +58,12 @@ class MechanicalSystem {
   // Put contact i at rest on its surface (gap 0, no normal velocity).
   virtual void settle(std::size_t i, VectorRef y) const = 0;
 
-  ContactModes modes_from_state(ConstVectorRef y) const {
-    ContactModes modes(contact_count());
+  // Penalty where the switching function is positive, free elsewhere; fills `modes` in place
+  // (sized contact_count()) so that callers inside a step loop allocate nothing.
+  void modes_from_state(ConstVectorRef y, ContactModes& modes) const {
+    modes.resize(contact_count());
     for (std::size_t i = 0; i < modes.size(); ++i)
       modes[i] = switching(i, y) > 0 ? ContactMode::Penalty : ContactMode::Free;
-    return modes;
   }
   ContactModes all_modes(ContactMode m) const { return ContactModes(contact_count(), m); }
 };
