@@ -76,7 +76,9 @@ std::vector<Table::Cell> metric_cells(const RunResult& r) {
 void add_run_files(const RunResult& r, Table& contacts, Table& apexes, Table& samples, Table& stats) {
   for (const auto& c : r.contacts)
     contacts.add_row({r.method, c.t_begin, c.t_end, c.max_penetration, c.v_in, c.v_out});
-  for (const auto& a : r.apexes) apexes.add_row({r.method, a.t, a.gap, a.energy});
+  const auto drift = apex_energy_errors(r);
+  for (std::size_t j = 0; j < r.apexes.size(); ++j)
+    apexes.add_row({r.method, r.apexes[j].t, r.apexes[j].gap, r.apexes[j].energy, drift[j]});
   for (const auto& s : r.samples) samples.add_row({r.method, s.t, s.y[0], s.y[1], s.energy});
   const auto& st = r.stats;
   stats.add_row({r.method, std::string(to_string(r.status)), r.t_reached, st.steps, st.failed_steps,
@@ -115,7 +117,7 @@ int run_single(const Options& o, OutputSet& out) {
     return c;
   }());
   Table contacts({"method", "t_begin_s", "t_end_s", "max_penetration_m", "v_in_mps", "v_out_mps"});
-  Table apexes({"method", "t_s", "height_m", "energy_J"});
+  Table apexes({"method", "t_s", "height_m", "energy_J", "energy_change_rel"});
   Table samples({"method", "t_s", "y_m", "v_mps", "energy_J"});
   Table stats({"method", "status", "t_reached_s", "steps", "failed_steps", "rhs_evals", "jac_evals",
                "newton_iters", "linear_setups", "root_evals", "events", "restarts", "wall_time_s",
