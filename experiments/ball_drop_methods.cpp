@@ -12,13 +12,13 @@ namespace contact {
 
 const std::vector<MethodInfo>& ball_drop_methods() {
   static const std::vector<MethodInfo> methods = {
-      {"penalty", "penalty spring under CVODE BDF, analytic Jacobian, switches root-located", true},
-      {"penalty-dq", "as penalty, with CVODE's difference-quotient Jacobian", true},
+      {"penalty", "penalty spring as an ODE (--integrator, CVODE BDF by default), analytic Jacobian, switches root-located", true},
+      {"penalty-dq", "as penalty, with the integrator's difference-quotient Jacobian", true},
       {"game-euler", "explicit Euler at fixed dt, projection + impulse", false},
       {"game-symplectic", "semi-implicit Euler at fixed dt, projection + impulse", false},
       {"game-euler-spring", "explicit Euler at fixed dt, penalty spring force", true},
       {"game-symplectic-spring", "semi-implicit Euler at fixed dt, penalty spring force", true},
-      {"event-cvode", "event-driven impulses, flight by CVODE with root finding", false},
+      {"event-ode", "event-driven impulses, flight integrated with root finding (--integrator)", false},
       {"event-exact", "event-driven impulses, exact parabolic flight (reference)", false},
   };
   return methods;
@@ -44,11 +44,11 @@ RunResult run_ball_drop(const std::string& method, const BallDropSettings& s) {
   auto game = [&](FixedStepScheme scheme, GameResolution resolution) {
     return run_game(model, GameOptions{s.dt, s.t_end, s.sample_dt, scheme, resolution});
   };
-  auto events = [&] { return EventOptions{s.t_end, s.sample_dt, s.cvode, s.rest_speed, 0.0, s.max_events}; };
+  auto events = [&] { return EventOptions{s.t_end, s.sample_dt, s.integrator, s.rest_speed, 0.0, s.max_events}; };
   RunResult r;
   if (method == "penalty" || method == "penalty-dq") {
-    PenaltyOptions o{s.t_end, s.sample_dt, s.cvode, true};
-    o.cvode.jacobian = method == "penalty" ? JacobianMode::Analytic : JacobianMode::DifferenceQuotient;
+    PenaltyOptions o{s.t_end, s.sample_dt, s.integrator, true};
+    if (method == "penalty-dq") o.integrator.jacobian = JacobianMode::DifferenceQuotient;
     r = run_penalty(model, o);
   } else if (method == "game-euler") {
     r = game(FixedStepScheme::ExplicitEuler, GameResolution::ProjectionImpulse);
@@ -58,7 +58,7 @@ RunResult run_ball_drop(const std::string& method, const BallDropSettings& s) {
     r = game(FixedStepScheme::ExplicitEuler, GameResolution::Spring);
   } else if (method == "game-symplectic-spring") {
     r = game(FixedStepScheme::SemiImplicitEuler, GameResolution::Spring);
-  } else if (method == "event-cvode") {
+  } else if (method == "event-ode") {
     r = run_event_driven(model, events());
   } else if (method == "event-exact") {
     r = run_event_driven(model, model, events());

@@ -2,7 +2,7 @@
 // The ball drop resolved every way the study compares, by name. Shared by the ball_drop
 // experiment, the tests and the benchmarks so that all three run exactly the same thing.
 #include "ball_drop.hpp"
-#include "cvode_solver.hpp"
+#include "integrator.hpp"
 #include "run_result.hpp"
 
 #include <string>
@@ -17,7 +17,7 @@ struct MethodInfo {
 };
 
 // penalty, penalty-dq, game-euler, game-symplectic, game-euler-spring, game-symplectic-spring,
-// event-cvode, event-exact.
+// event-ode, event-exact.
 const std::vector<MethodInfo>& ball_drop_methods();
 std::vector<std::string> ball_drop_method_names();
 
@@ -31,7 +31,7 @@ struct BallDropSettings {
   double t_end = 3.0;       // [s]
   double sample_dt = 0.01;  // [s]
   double dt = 1e-3;         // fixed step of the game methods [s]
-  CvodeOptions cvode;       // penalty and event-cvode
+  IntegratorOptions integrator;  // penalty, penalty-dq and event-ode (CVODE BDF by default)
   double rest_speed = 1e-7; // event-driven rest threshold [m/s]
   long max_events = 1000000;
 };

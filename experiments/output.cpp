@@ -1,6 +1,6 @@
 #include "output.hpp"
 
-#include "cvode_solver.hpp"
+#include "sundials_integrators.hpp"
 #include "fit.hpp"
 #include "table.hpp"
 

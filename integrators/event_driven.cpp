@@ -1,6 +1,6 @@
 #include "event_driven.hpp"
 
-#include "cvode_driver.hpp"
+#include "integrator_driver.hpp"
 #include "run_recorder.hpp"
 
 #include <fmt/format.h>
@@ -64,16 +64,10 @@ class Impacts {
 
 RunResult run_event_driven(const MechanicalSystem& model, const EventOptions& opt) {
   const std::size_t nc = model.contact_count();
-  RunRecorder rec(model, "event-driven cvode", opt.sample_dt, opt.t_end);
+  RunRecorder rec(model, "event-driven " + opt.integrator.method, opt.sample_dt, opt.t_end);
   Impacts impacts(model, opt, rec);
 
-  OdeSystem sys;
-  sys.size = model.state_size();
-  sys.position_size = model.position_size();
-  sys.rhs = [&](double t, ConstVectorRef y, VectorRef yd) { model.rhs(t, y, impacts.modes(), yd); };
-  sys.jacobian = [&](double t, ConstVectorRef y, MatrixRef J) {
-    model.jacobian(t, y, impacts.modes(), J);
-  };
+  OdeSystem sys = mechanical_ode(model, [&](ConstVectorRef) -> const ContactModes& { return impacts.modes(); });
   // Per contact: the gap (impact) and the gap rate (apex), both on falling zeros only. A
   // resting contact's functions are held at 1 so they never fire.
   sys.root_count = 2 * nc;
@@ -84,7 +78,7 @@ RunResult run_event_driven(const MechanicalSystem& model, const EventOptions& op
       g[static_cast<Eigen::Index>(2 * i + 1)] = rest ? 1.0 : model.gap_rate(i, y);
     }
   };
-  CvodeDrive drive;
+  EventHandling drive;
   drive.root_directions.assign(2 * nc, -1);
   drive.on_roots = [&](double t, Vector& y, const std::vector<int>& roots) {
     bool impact = false;
@@ -97,7 +91,7 @@ RunResult run_event_driven(const MechanicalSystem& model, const EventOptions& op
     }
     return impact;
   };
-  return drive_cvode(std::move(sys), model.initial_state(), opt.cvode, rec, drive);
+  return contact::drive(std::move(sys), model.initial_state(), opt.integrator, rec, drive);
 }
 
 RunResult run_event_driven(const MechanicalSystem& model, const AnalyticFlight& flight,

@@ -13,10 +13,10 @@
 // A numerical flight also rests a contact at a located impact that is not approaching: bounces
 // lower than its absolute tolerance are below what it resolves.
 //
-// Two flights: CVODE with root finding (any model), or the model's closed form (AnalyticFlight),
+// Two flights: any Integrator with root finding (any model), or the model's closed form (AnalyticFlight),
 // the exact reference. With the closed form a resting contact holds the whole state, which is
 // exact for one body on a static surface, the case closed forms cover here.
-#include "cvode_solver.hpp"
+#include "integrator.hpp"
 #include "mechanical_system.hpp"
 #include "run_result.hpp"
 
@@ -25,13 +25,13 @@ namespace contact {
 struct EventOptions {
   double t_end = 3.0;            // [s]
   double sample_dt = 0.01;       // output spacing [s]
-  CvodeOptions cvode;            // used by the CVODE flight
+  IntegratorOptions integrator;  // the numerical flight (CVODE BDF by default)
   double rest_speed = 1e-7;      // [m/s]
   double min_event_spacing = 0;  // [s]
   long max_events = 1000000;
 };
 
-// Flight by CVODE.
+// Flight by a numerical integrator.
 RunResult run_event_driven(const MechanicalSystem& model, const EventOptions& options);
 // Flight by the model's closed form.
 RunResult run_event_driven(const MechanicalSystem& model, const AnalyticFlight& flight,

@@ -43,7 +43,8 @@ RunResult run_game(const MechanicalSystem& model, const GameOptions& opt) {
   ContactModes modes = model.all_modes(ContactMode::Free);
   const OdeSystem::Rhs f = [&](double t, ConstVectorRef y, VectorRef yd) { model.rhs(t, y, modes, yd); };
 
-  Vector y = model.initial_state(), y_prev = y, work(y.size());
+  Vector y = model.initial_state(), y_prev = y;
+  FixedStepWork work(y.size());
   std::vector<double> d_prev(nc);
   for (std::size_t i = 0; i < nc; ++i) {
     d_prev[i] = detect(i, y);

@@ -1,7 +1,8 @@
 #pragma once
 // An ODE y' = f(t, y) as integrators see it: callables only, no model. Optional parts are left
-// empty: a Jacobian df/dy, and root (switching) functions g(t, y) whose sign changes the
-// integrator locates.
+// empty: a sparse Jacobian df/dy with the band that holds it, and root (switching) functions
+// g(t, y) whose sign changes the integrator locates. An IMEX split f = f_explicit + f_implicit
+// is optional too.
 #include "linear_algebra.hpp"
 
 #include <cstddef>
@@ -11,16 +12,20 @@ namespace contact {
 
 struct OdeSystem {
   using Rhs = std::function<void(double t, ConstVectorRef y, VectorRef ydot)>;
-  using Jacobian = std::function<void(double t, ConstVectorRef y, MatrixRef J)>;
+  using Jacobian = std::function<void(double t, ConstVectorRef y, SparseMatrix& J)>;
   using Roots = std::function<void(double t, ConstVectorRef y, VectorRef g)>;
 
   std::size_t size = 0;
   // y = [q; v] with q' depending on v only (needed by semi-implicit schemes); 0 = no split.
   std::size_t position_size = 0;
   Rhs rhs;
-  Jacobian jacobian;  // empty: none (CVODE then uses difference quotients)
+  Jacobian jacobian;   // empty: none (implicit methods then use difference quotients)
+  Bandwidth bandwidth; // of the Jacobian; used by band solvers and preconditioners
   std::size_t root_count = 0;
-  Roots roots;        // empty when root_count == 0
+  Roots roots;         // empty when root_count == 0
+  // IMEX: the stiff part, integrated implicitly, and its Jacobian; the rest of rhs is explicit.
+  Rhs implicit_rhs;
+  Jacobian implicit_jacobian;
 };
 
 }  // namespace contact

@@ -1,6 +1,6 @@
 #include "penalty.hpp"
 
-#include "cvode_driver.hpp"
+#include "integrator_driver.hpp"
 
 #include <cmath>
 
@@ -8,7 +8,7 @@ namespace contact {
 
 RunResult run_penalty(const MechanicalSystem& model, const PenaltyOptions& opt) {
   const std::size_t nc = model.contact_count();
-  RunRecorder rec(model, "penalty-cvode", opt.sample_dt, opt.t_end);
+  RunRecorder rec(model, "penalty " + opt.integrator.method, opt.sample_dt, opt.t_end);
   const Vector y0 = model.initial_state();
   ContactModes modes(nc);
   model.modes_from_state(y0, modes);
@@ -18,13 +18,7 @@ RunResult run_penalty(const MechanicalSystem& model, const PenaltyOptions& opt) 
     if (!opt.locate_switches) model.modes_from_state(y, modes);
     return modes;
   };
-  OdeSystem sys;
-  sys.size = model.state_size();
-  sys.position_size = model.position_size();
-  sys.rhs = [&](double t, ConstVectorRef y, VectorRef yd) { model.rhs(t, y, modes_at(y), yd); };
-  sys.jacobian = [&](double t, ConstVectorRef y, MatrixRef J) {
-    model.jacobian(t, y, modes_at(y), J);
-  };
+  OdeSystem sys = mechanical_ode(model, modes_at);
   sys.root_count = 2 * nc;
   sys.roots = [&](double, ConstVectorRef y, VectorRef g) {
     for (std::size_t i = 0; i < nc; ++i) {
@@ -36,7 +30,7 @@ RunResult run_penalty(const MechanicalSystem& model, const PenaltyOptions& opt) 
   for (std::size_t i = 0; i < nc; ++i)
     if (modes[i] == ContactMode::Penalty) rec.contact_begin(i, 0.0, model.gap_rate(i, y0));
 
-  CvodeDrive drive;
+  EventHandling drive;
   drive.on_roots = [&](double t, Vector& y, const std::vector<int>& roots) {
     bool switched = false;
     for (std::size_t i = 0; i < nc; ++i) {
@@ -59,7 +53,7 @@ RunResult run_penalty(const MechanicalSystem& model, const PenaltyOptions& opt) 
   drive.before_sample = [&](ConstVectorRef y) {
     for (std::size_t i = 0; i < nc; ++i) rec.observe_penetration(i, -model.gap(i, y));
   };
-  return drive_cvode(std::move(sys), y0, opt.cvode, rec, drive);
+  return contact::drive(std::move(sys), y0, opt.integrator, rec, drive);
 }
 
 }  // namespace contact

@@ -1,16 +1,16 @@
 #pragma once
 // Penalty resolution: contacts are springs (the model's contact law), and the whole system is
-// one stiff ODE integrated by CVODE.
+// one stiff ODE integrated by any Integrator (CVODE BDF by default).
 //
 // Each contact has two root functions: its switching function (the law pushes while > 0) and
 // its gap rate. With `locate_switches`, the run holds every contact in a fixed mode (free or
 // penalty) between roots, stops exactly where a switching function crosses zero, flips that
-// contact's mode and re-initialises CVODE: no step straddles the kink of the force, and the
-// right-hand side CVODE sees is smooth on every segment. Without it the mode is read from the
+// contact's mode and restarts the integrator: no step straddles the kink of the force, and the
+// right-hand side the integrator sees is smooth on every segment. Without it the mode is read from the
 // state at each call (the kink is stepped over) and the roots are only logged, which is what
 // convergence studies compare against. Gap-rate roots give the apexes (free flight) and the
 // maximum penetration (in contact) exactly.
-#include "cvode_solver.hpp"
+#include "integrator.hpp"
 #include "mechanical_system.hpp"
 #include "run_result.hpp"
 
@@ -19,7 +19,7 @@ namespace contact {
 struct PenaltyOptions {
   double t_end = 3.0;      // [s]
   double sample_dt = 0.01; // output spacing [s]
-  CvodeOptions cvode;
+  IntegratorOptions integrator;
   bool locate_switches = true;
 };
 

@@ -14,6 +14,7 @@ struct SolverStats {
   long jac_evals = 0;         // Jacobian evaluations (analytic or difference quotient)
   long newton_iters = 0;      // nonlinear (Newton) iterations
   long linear_setups = 0;     // linear-solver setups (factorisations)
+  long linear_iters = 0;      // iterations of an iterative linear solver (GMRES)
   long root_evals = 0;        // root (switching-function) evaluations
   long events = 0;            // roots located and acted on: contact switches, impacts, apexes
   long restarts = 0;          // re-initialisations after an event
@@ -26,6 +27,7 @@ struct SolverStats {
     jac_evals += o.jac_evals;
     newton_iters += o.newton_iters;
     linear_setups += o.linear_setups;
+    linear_iters += o.linear_iters;
     root_evals += o.root_evals;
     events += o.events;
     restarts += o.restarts;

@@ -1,6 +1,8 @@
 #pragma once
 // Move-only owners for every SUNDIALS object the project creates. Each handle frees its object
 // with the matching SUNDIALS destructor; nothing outside integrators/ sees a raw handle.
+#include <arkode/arkode_arkstep.h>
+#include <arkode/arkode_erkstep.h>
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
@@ -28,11 +30,20 @@ struct CvodeFree {
   void operator()(void* mem) const { CVodeFree(&mem); }
 };
 
+struct ArkStepFree {
+  void operator()(void* mem) const { ARKStepFree(&mem); }
+};
+struct ErkStepFree {
+  void operator()(void* mem) const { ERKStepFree(&mem); }
+};
+
 using Context = std::unique_ptr<std::remove_pointer_t<SUNContext>, ContextFree>;
 using NVector = std::unique_ptr<std::remove_pointer_t<N_Vector>, VectorFree>;
 using Matrix = std::unique_ptr<std::remove_pointer_t<SUNMatrix>, MatrixFree>;
 using LinearSolver = std::unique_ptr<std::remove_pointer_t<SUNLinearSolver>, LinearSolverFree>;
 using CvodeMemory = std::unique_ptr<void, CvodeFree>;
+using ArkStepMemory = std::unique_ptr<void, ArkStepFree>;
+using ErkStepMemory = std::unique_ptr<void, ErkStepFree>;
 
 Context make_context();
 

@@ -37,7 +37,7 @@ class BallDrop final : public MechanicalSystem, public AnalyticFlight {
   std::vector<std::string> state_labels() const override { return {"y_m", "v_mps"}; }
 
   void rhs(double t, ConstVectorRef y, const ContactModes& modes, VectorRef ydot) const override;
-  void jacobian(double t, ConstVectorRef y, const ContactModes& modes, MatrixRef J) const override;
+  void jacobian(double t, ConstVectorRef y, const ContactModes& modes, SparseMatrix& J) const override;
   double energy(ConstVectorRef y) const override;
 
   std::size_t contact_count() const override { return 1; }

@@ -1,6 +1,7 @@
 #pragma once
 // The vector and matrix types shared by models and integrators (Eigen, dynamic size).
 #include <Eigen/Dense>
+#include <Eigen/SparseCore>
 
 namespace contact {
 using Vector = Eigen::VectorXd;
@@ -8,4 +9,13 @@ using Matrix = Eigen::MatrixXd;
 using ConstVectorRef = Eigen::Ref<const Vector>;
 using VectorRef = Eigen::Ref<Vector>;
 using MatrixRef = Eigen::Ref<Matrix>;
+// Jacobians: compressed column storage, the layout of SUNDIALS' sparse (KLU) matrices.
+using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor>;
+using Triplet = Eigen::Triplet<double>;
+
+// Non-zero band of a Jacobian: entry (i, j) may be non-zero only if -lower <= j - i <= upper.
+struct Bandwidth {
+  long lower = 0;
+  long upper = 0;
+};
 }  // namespace contact

@@ -36,8 +36,14 @@ class MechanicalSystem {
 
   // y' = f(t, y) with every contact in the given mode.
   virtual void rhs(double t, ConstVectorRef y, const ContactModes& modes, VectorRef ydot) const = 0;
-  // Analytic df/dy for the same modes.
-  virtual void jacobian(double t, ConstVectorRef y, const ContactModes& modes, MatrixRef J) const = 0;
+  // Analytic df/dy for the same modes, sized state_size() square. Every entry of the pattern is
+  // stored, zeros included, whatever the modes, so that sparse factorisations can reuse it.
+  virtual void jacobian(double t, ConstVectorRef y, const ContactModes& modes, SparseMatrix& J) const = 0;
+  // The band that holds every non-zero of the Jacobian (default: full).
+  virtual Bandwidth jacobian_bandwidth() const {
+    const auto n = static_cast<long>(state_size());
+    return {n - 1, n - 1};
+  }
   // Kinetic + potential + energy stored in penalty springs [J].
   virtual double energy(ConstVectorRef y) const = 0;
 

@@ -22,8 +22,10 @@ class SpringMass final : public MechanicalSystem {
   void rhs(double, ConstVectorRef y, const ContactModes&, VectorRef ydot) const override {
     ydot << y[1], -(k_ / m_) * y[0];
   }
-  void jacobian(double, ConstVectorRef, const ContactModes&, MatrixRef J) const override {
-    J << 0.0, 1.0, -(k_ / m_), 0.0;
+  void jacobian(double, ConstVectorRef, const ContactModes&, SparseMatrix& J) const override {
+    const Triplet entries[] = {{0, 1, 1.0}, {1, 0, -(k_ / m_)}};
+    J.resize(2, 2);
+    J.setFromTriplets(std::begin(entries), std::end(entries));
   }
   double energy(ConstVectorRef y) const override {
     return 0.5 * (m_ * y[1] * y[1] + k_ * y[0] * y[0]);

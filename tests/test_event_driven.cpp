@@ -21,8 +21,8 @@ EventOptions options(double t_end) {
   EventOptions o;
   o.t_end = t_end;
   o.sample_dt = 0.05;
-  o.cvode.rtol = 1e-10;
-  o.cvode.atol = 1e-12;
+  o.integrator.rtol = 1e-10;
+  o.integrator.atol = 1e-12;
   return o;
 }
 
@@ -70,7 +70,7 @@ TEST(EventDriven, ZenoCascadeStopsAtTheZenoTimeAndTheBallRests) {
     // flight adds the error of ~80 root locations, each within its tolerance (rtol 1e-10 of t).
     // The CVODE flight also stops resolving bounces lower than its absolute tolerance; taking
     // heights below 100 atol as unresolved, the speed at which it may stop is sqrt(2 g 100 atol).
-    const double v_stop = exact ? o.rest_speed : std::sqrt(2 * 9.81 * 100 * o.cvode.atol);
+    const double v_stop = exact ? o.rest_speed : std::sqrt(2 * 9.81 * 100 * o.integrator.atol);
     const double skipped = 2 * v_stop / (9.81 * (1 - e));
     const double t_rest = r.contacts.back().t_end;
     const double tol = exact ? 1e-12 : 1e-8;

@@ -37,7 +37,8 @@ TEST(ExplicitEuler, EnergyGrowsByExactlyOnePlusOmegaSquaredDtSquaredPerStep) {
   const auto f = rhs_of(spring);
   for (double wh : {0.01, 0.3, 1.0, 3.0}) {
     const double h = wh / spring.omega();
-    Vector y = spring.initial_state(), work(2);
+    Vector y = spring.initial_state();
+    FixedStepWork work(2);
     for (int n = 0; n < 50; ++n) {
       const double E = spring.energy(y);
       fixed_step(FixedStepScheme::ExplicitEuler, f, 1, 0.0, h, y, work);
@@ -52,7 +53,8 @@ TEST(SemiImplicitEuler, EnergyStaysWithinTheModifiedEnergyBoundBelowOmegaDtTwo) 
   const auto f = rhs_of(spring);
   for (double wh : {0.1, 1.0, 1.9, 1.99}) {
     const double h = wh / spring.omega(), peak = 1 / (1 - wh / 2);
-    Vector y = spring.initial_state(), work(2);  // x = 0
+    Vector y = spring.initial_state();  // x = 0
+    FixedStepWork work(2);
     const double E0 = spring.energy(y);
     double worst = 0;
     for (int n = 0; n < 100000; ++n) {
@@ -74,7 +76,8 @@ TEST(SemiImplicitEuler, EnergyGrowsByTheUnstableEigenvalueSquaredAboveOmegaDtTwo
   for (double wh : {2.01, 2.1, 3.0}) {
     const double h = wh / spring.omega();
     const double lambda = (wh * wh - 2 + wh * std::sqrt(wh * wh - 4)) / 2;
-    Vector y = spring.initial_state(), work(2);
+    Vector y = spring.initial_state();
+    FixedStepWork work(2);
     // After the stable mode has decayed (its eigenvalue is 1/lambda), the energy ratio per step
     // tends to lambda^2; 200 steps put the other mode below 1/lambda^400 of it.
     for (int n = 0; n < 200; ++n) {

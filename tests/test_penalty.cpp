@@ -29,8 +29,8 @@ PenaltyOptions tight(double t_end) {
   PenaltyOptions o;
   o.t_end = t_end;
   o.sample_dt = 0.01;
-  o.cvode.rtol = 1e-10;
-  o.cvode.atol = 1e-12;
+  o.integrator.rtol = 1e-10;
+  o.integrator.atol = 1e-12;
   return o;
 }
 

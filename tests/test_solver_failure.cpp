@@ -15,7 +15,7 @@ TEST(SolverFailure, TooFewStepsStopsWithMaxStepsTheTimeReachedAndCvodesMessage) 
   PenaltyOptions o;
   o.t_end = 1.0;
   o.sample_dt = 1.0;  // one output interval: the step budget applies to all of it
-  o.cvode.max_steps = 20;
+  o.integrator.max_steps = 20;
   const RunResult r = run_penalty(model, o);
   EXPECT_EQ(r.status, Status::MaxSteps);
   EXPECT_GT(r.t_reached, 0.0);
@@ -37,7 +37,7 @@ class PoisonedBall final : public MechanicalSystem {
     ball_.rhs(t, y, m, yd);
     if (y[0] < -1e-4) yd[1] = std::numeric_limits<double>::quiet_NaN();
   }
-  void jacobian(double t, ConstVectorRef y, const ContactModes& m, MatrixRef J) const override { ball_.jacobian(t, y, m, J); }
+  void jacobian(double t, ConstVectorRef y, const ContactModes& m, SparseMatrix& J) const override { ball_.jacobian(t, y, m, J); }
   double energy(ConstVectorRef y) const override { return ball_.energy(y); }
   std::size_t contact_count() const override { return 1; }
   double gap(std::size_t i, ConstVectorRef y) const override { return ball_.gap(i, y); }

@@ -1,0 +1,152 @@
+// ARKODE behind the Integrator interface: ERKStep (explicit), ARKStep fully implicit (DIRK) and
+// ARKStep IMEX (OdeSystem::implicit_rhs implicit, the rest explicit). All at order 4; a positive
+// IntegratorOptions::dt fixes the step (no error control), which is how the order tests run them.
+#include "sundials_integrator_base.hpp"
+#include "sundials_integrators.hpp"
+
+#include <arkode/arkode_arkstep.h>
+#include <arkode/arkode_bandpre.h>
+#include <arkode/arkode_erkstep.h>
+
+#include <stdexcept>
+
+namespace contact {
+
+namespace {
+
+constexpr int kOrder = 4;
+
+class ErkIntegrator final : public sundials::IntegratorBase {
+ public:
+  ErkIntegrator(const IntegratorOptions& o, OdeSystem system, double t0, ConstVectorRef y0)
+      : IntegratorBase(std::move(system), t0, y0) {
+    mem_.reset(ERKStepCreate(sundials::rhs, t0, y_.get(), ctx_.get()));
+    if (!mem_) throw SolverFailure(Status::SolverError, t0, "ERKStepCreate failed");
+    void* m = mem_.get();
+    check(ERKStepSetErrHandlerFn(m, sundials::error_handler, &data_), "ERKStepSetErrHandlerFn");
+    check(ERKStepSetUserData(m, &data_), "ERKStepSetUserData");
+    check(ERKStepSetOrder(m, kOrder), "ERKStepSetOrder");
+    check(ERKStepSStolerances(m, o.rtol, o.atol), "ERKStepSStolerances");
+    check(ERKStepSetMaxNumSteps(m, o.max_steps), "ERKStepSetMaxNumSteps");
+    if (o.max_step > 0) check(ERKStepSetMaxStep(m, o.max_step), "ERKStepSetMaxStep");
+    if (o.dt > 0) check(ERKStepSetFixedStep(m, o.dt), "ERKStepSetFixedStep");
+    if (data_.sys.root_count > 0) {
+      check(ERKStepRootInit(m, static_cast<int>(data_.sys.root_count), sundials::roots), "ERKStepRootInit");
+      check(ERKStepSetNoInactiveRootWarn(m), "ERKStepSetNoInactiveRootWarn");
+    }
+  }
+
+ private:
+  int evolve(double t_out, double& t_ret) override {
+    return ERKStepEvolve(mem_.get(), t_out, y_.get(), &t_ret, ARK_NORMAL);
+  }
+  int root_info(int* found) override { return ERKStepGetRootInfo(mem_.get(), found); }
+  int restart(double t) override { return ERKStepReInit(mem_.get(), sundials::rhs, t, y_.get()); }
+  int root_directions(int* d) override { return ERKStepSetRootDirection(mem_.get(), d); }
+  double current_time() const override {
+    double t = t_;
+    ERKStepGetCurrentTime(mem_.get(), &t);
+    return t;
+  }
+  char* flag_name(int flag) const override { return ERKStepGetReturnFlagName(flag); }
+  SolverStats segment_stats() const override {
+    SolverStats s;
+    void* m = mem_.get();
+    ERKStepGetNumSteps(m, &s.steps);
+    ERKStepGetNumRhsEvals(m, &s.rhs_evals);
+    ERKStepGetNumErrTestFails(m, &s.failed_steps);
+    if (data_.sys.root_count > 0) ERKStepGetNumGEvals(m, &s.root_evals);
+    return s;
+  }
+
+  sundials::ErkStepMemory mem_;
+};
+
+class ArkIntegrator final : public sundials::IntegratorBase {
+ public:
+  ArkIntegrator(const IntegratorOptions& o, OdeSystem system, double t0, ConstVectorRef y0)
+      : IntegratorBase(std::move(system), t0, y0), imex_(o.method == "arkode-imex") {
+    if (imex_ && !data_.sys.implicit_rhs)
+      throw std::invalid_argument("arkode-imex needs a system with an implicit part (OdeSystem::implicit_rhs)");
+    mem_.reset(imex_ ? ARKStepCreate(sundials::explicit_rhs, sundials::implicit_rhs, t0, y_.get(), ctx_.get())
+                     : ARKStepCreate(nullptr, sundials::rhs, t0, y_.get(), ctx_.get()));
+    if (!mem_) throw SolverFailure(Status::SolverError, t0, "ARKStepCreate failed");
+    void* m = mem_.get();
+    check(ARKStepSetErrHandlerFn(m, sundials::error_handler, &data_), "ARKStepSetErrHandlerFn");
+    check(ARKStepSetUserData(m, &data_), "ARKStepSetUserData");
+    check(ARKStepSetOrder(m, kOrder), "ARKStepSetOrder");
+    check(ARKStepSStolerances(m, o.rtol, o.atol), "ARKStepSStolerances");
+    check(ARKStepSetMaxNumSteps(m, o.max_steps), "ARKStepSetMaxNumSteps");
+    if (o.max_step > 0) check(ARKStepSetMaxStep(m, o.max_step), "ARKStepSetMaxStep");
+    if (o.dt > 0) check(ARKStepSetFixedStep(m, o.dt), "ARKStepSetFixedStep");
+
+    const auto& jac = imex_ ? data_.sys.implicit_jacobian : data_.sys.jacobian;
+    make_linear_system(o, jac, y0);
+    check(ARKStepSetLinearSolver(m, linear_.solver.get(), linear_.matrix.get()), "ARKStepSetLinearSolver");
+    if (o.jacobian == JacobianMode::Analytic && jac) {
+      if (linear_.matrix) check(ARKStepSetJacFn(m, imex_ ? sundials::implicit_jacobian : sundials::jacobian), "ARKStepSetJacFn");
+      else check(ARKStepSetJacTimes(m, sundials::jtimes_setup, sundials::jtimes), "ARKStepSetJacTimes");
+    }
+    if (o.linear_solver == LinearSolverKind::GmresBandPreconditioned) {
+      const auto n = static_cast<sunindextype>(data_.sys.size);
+      check(ARKBandPrecInit(m, n, data_.sys.bandwidth.upper, data_.sys.bandwidth.lower), "ARKBandPrecInit");
+    }
+    if (data_.sys.root_count > 0) {
+      check(ARKStepRootInit(m, static_cast<int>(data_.sys.root_count), sundials::roots), "ARKStepRootInit");
+      check(ARKStepSetNoInactiveRootWarn(m), "ARKStepSetNoInactiveRootWarn");
+    }
+  }
+
+ private:
+  int evolve(double t_out, double& t_ret) override {
+    return ARKStepEvolve(mem_.get(), t_out, y_.get(), &t_ret, ARK_NORMAL);
+  }
+  int root_info(int* found) override { return ARKStepGetRootInfo(mem_.get(), found); }
+  int restart(double t) override {
+    return imex_ ? ARKStepReInit(mem_.get(), sundials::explicit_rhs, sundials::implicit_rhs, t, y_.get())
+                 : ARKStepReInit(mem_.get(), nullptr, sundials::rhs, t, y_.get());
+  }
+  int root_directions(int* d) override { return ARKStepSetRootDirection(mem_.get(), d); }
+  double current_time() const override {
+    double t = t_;
+    ARKStepGetCurrentTime(mem_.get(), &t);
+    return t;
+  }
+  char* flag_name(int flag) const override { return ARKStepGetReturnFlagName(flag); }
+  SolverStats segment_stats() const override {
+    SolverStats s;
+    void* m = mem_.get();
+    long nfe = 0, nfi = 0, nfe_ls = 0, netf = 0, ncfn = 0;
+    ARKStepGetNumSteps(m, &s.steps);
+    ARKStepGetNumRhsEvals(m, &nfe, &nfi);
+    ARKStepGetNumLinRhsEvals(m, &nfe_ls);
+    ARKStepGetNumErrTestFails(m, &netf);
+    ARKStepGetNumNonlinSolvConvFails(m, &ncfn);
+    ARKStepGetNumNonlinSolvIters(m, &s.newton_iters);
+    ARKStepGetNumJacEvals(m, &s.jac_evals);
+    ARKStepGetNumLinSolvSetups(m, &s.linear_setups);
+    ARKStepGetNumLinIters(m, &s.linear_iters);
+    if (!linear_.matrix) {
+      long njtv = 0;
+      ARKStepGetNumJtimesEvals(m, &njtv);
+      s.jac_evals += njtv;
+    }
+    if (data_.sys.root_count > 0) ARKStepGetNumGEvals(m, &s.root_evals);
+    s.rhs_evals = nfe + nfi + nfe_ls;
+    s.failed_steps = netf + ncfn;
+    return s;
+  }
+
+  bool imex_;
+  sundials::ArkStepMemory mem_;
+};
+
+}  // namespace
+
+std::unique_ptr<Integrator> make_arkode(const IntegratorOptions& o, OdeSystem system, double t0,
+                                        ConstVectorRef y0) {
+  if (o.method == "arkode-erk") return std::make_unique<ErkIntegrator>(o, std::move(system), t0, y0);
+  return std::make_unique<ArkIntegrator>(o, std::move(system), t0, y0);
+}
+
+}  // namespace contact

@@ -1,0 +1,151 @@
+#include "gsl_integrator.hpp"
+
+#include "gsl_handles.hpp"
+#include "stepping_integrator.hpp"
+
+#include <fmt/format.h>
+#include <gsl/gsl_errno.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace contact {
+
+namespace {
+
+const gsl_odeiv2_step_type* step_type(const std::string& method) {
+  if (method == "gsl-rk8pd") return gsl_odeiv2_step_rk8pd;
+  if (method == "gsl-rkf45") return gsl_odeiv2_step_rkf45;
+  if (method == "gsl-msbdf") return gsl_odeiv2_step_msbdf;
+  if (method == "gsl-bsimp") return gsl_odeiv2_step_bsimp;
+  throw std::invalid_argument(fmt::format("unknown GSL method '{}'", method));
+}
+
+class GslIntegrator final : public SteppingIntegrator {
+ public:
+  GslIntegrator(const IntegratorOptions& o, OdeSystem system, double t0, ConstVectorRef y0)
+      : SteppingIntegrator(std::move(system), t0, y0, o.max_steps),
+        type_(step_type(o.method)),
+        multistep_(type_ == gsl_odeiv2_step_msbdf),
+        fixed_dt_(o.dt),
+        analytic_(o.jacobian == JacobianMode::Analytic && static_cast<bool>(sys_.jacobian)),
+        n_(static_cast<std::size_t>(y0.size())),
+        f_a_(y0.size()),
+        f_b_(y0.size()),
+        fd_(y0.size()) {
+    gsl_sys_ = {&GslIntegrator::function, &GslIntegrator::jacobian, n_, this};
+    const double h0 = o.dt > 0 ? o.dt : 1e-6;
+    driver_.reset(gsl_odeiv2_driver_alloc_y_new(&gsl_sys_, type_, h0, o.atol, o.rtol));
+    if (!driver_) throw SolverFailure(Status::SolverError, t0, "gsl_odeiv2_driver_alloc_y_new failed");
+    if (o.max_step > 0) gsl_odeiv2_driver_set_hmax(driver_.get(), o.max_step);
+    h_ = h0;
+    if (!multistep_) dense_step_.reset(gsl_odeiv2_step_alloc(type_, n_));
+  }
+
+  SolverStats stats() const override {
+    SolverStats s = SteppingIntegrator::stats();
+    s.failed_steps = failed_ + static_cast<long>(driver_->e->failed_steps);
+    s.jac_evals = jac_evals_;
+    return s;
+  }
+
+ private:
+  static int function(double t, const double y[], double dydt[], void* params) {
+    auto& self = *static_cast<GslIntegrator*>(params);
+    const auto n = static_cast<Eigen::Index>(self.n_);
+    Eigen::Map<Vector> out(dydt, n);
+    self.f(t, Eigen::Map<const Vector>(y, n), out);
+    return out.allFinite() ? GSL_SUCCESS : GSL_EBADFUNC;
+  }
+
+  // GSL wants df/dy row-major and df/dt; the latter by a central difference in t (zero for the
+  // autonomous systems of this project, at the cost of two right-hand sides).
+  static int jacobian(double t, const double y[], double* dfdy, double dfdt[], void* params) {
+    auto& self = *static_cast<GslIntegrator*>(params);
+    const auto n = static_cast<Eigen::Index>(self.n_);
+    Eigen::Map<const Vector> ym(y, n);
+    Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> J(dfdy, n, n);
+    ++self.jac_evals_;
+    if (self.analytic_) {
+      self.sys_.jacobian(t, ym, self.J_);
+      J = Matrix(self.J_);
+    } else {  // forward differences, one right-hand side per column
+      Vector yp = ym, f0(n);
+      self.f(t, ym, f0);
+      for (Eigen::Index j = 0; j < n; ++j) {
+        const double h = std::sqrt(std::numeric_limits<double>::epsilon()) * std::max(1.0, std::abs(ym[j]));
+        yp[j] = ym[j] + h;
+        self.f(t, yp, self.fd_);
+        J.col(j) = (self.fd_ - f0) / h;
+        yp[j] = ym[j];
+      }
+    }
+    const double ht = 1e-7 * std::max(1.0, std::abs(t));
+    Vector fp(n), fm(n);
+    self.f(t + ht, ym, fp);
+    self.f(t - ht, ym, fm);
+    Eigen::Map<Vector>(dfdt, n) = (fp - fm) / (2 * ht);
+    return J.allFinite() ? GSL_SUCCESS : GSL_EBADFUNC;
+  }
+
+  void step(double t_limit) override {
+    double t = ta_;
+    yb_ = ya_;
+    auto* d = driver_.get();
+    const int status = fixed_dt_ > 0
+                           ? gsl_odeiv2_evolve_apply_fixed_step(d->e, d->c, d->s, &gsl_sys_, &t, fixed_dt_, yb_.data())
+                           : gsl_odeiv2_evolve_apply(d->e, d->c, d->s, &gsl_sys_, &t, t_limit, &h_, yb_.data());
+    if (status != GSL_SUCCESS) {
+      ++failed_;
+      throw SolverFailure(status == GSL_EBADFUNC ? Status::NonFiniteState : Status::ErrorTestFailure, ta_,
+                          fmt::format("GSL {}: {} (step size {:g})", type_->name, gsl_strerror(status), h_));
+    }
+    tb_ = t;
+    have_f_b_ = false;
+  }
+
+  void dense(double t, VectorRef y) override {
+    const double h = t - ta_;
+    if (!multistep_) {  // re-step from the step's start with a fresh stepper
+      y = ya_;
+      gsl_odeiv2_step_reset(dense_step_.get());
+      Vector yerr(y.size());
+      gsl_odeiv2_step_apply(dense_step_.get(), ta_, h, y.data(), yerr.data(), nullptr, nullptr, &gsl_sys_);
+      return;
+    }
+    // Cubic Hermite on [ta, tb] from the end values and slopes.
+    if (!have_f_b_) {
+      f(ta_, ya_, f_a_);
+      f(tb_, yb_, f_b_);
+      have_f_b_ = true;
+    }
+    const double H = tb_ - ta_, s = h / H;
+    const double h00 = (1 + 2 * s) * (1 - s) * (1 - s), h10 = s * (1 - s) * (1 - s);
+    const double h01 = s * s * (3 - 2 * s), h11 = s * s * (s - 1);
+    y = h00 * ya_ + h10 * H * f_a_ + h01 * yb_ + h11 * H * f_b_;
+  }
+
+  void restarted() override { gsl_odeiv2_driver_reset(driver_.get()); }
+
+  const gsl_odeiv2_step_type* type_;
+  bool multistep_;
+  double fixed_dt_;
+  bool analytic_;
+  std::size_t n_;
+  gsl_odeiv2_system gsl_sys_{};
+  gsl::Driver driver_;
+  gsl::Step dense_step_;
+  double h_ = 0;
+  long failed_ = 0, jac_evals_ = 0;
+  SparseMatrix J_;
+  Vector f_a_, f_b_, fd_;
+  bool have_f_b_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<Integrator> make_gsl(const IntegratorOptions& o, OdeSystem system, double t0, ConstVectorRef y0) {
+  return std::make_unique<GslIntegrator>(o, std::move(system), t0, y0);
+}
+
+}  // namespace contact

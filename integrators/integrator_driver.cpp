@@ -1,0 +1,73 @@
+#include "integrator_driver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+namespace contact {
+
+RunResult drive(OdeSystem system, ConstVectorRef y0, const IntegratorOptions& options, RunRecorder& rec,
+                const EventHandling& events) {
+  std::unique_ptr<Integrator> integrator;
+  try {
+    integrator = make_integrator(options, std::move(system), 0.0, y0);
+  } catch (const SolverFailure& f) {
+    return rec.fail(f, SolverStats{});
+  }
+  if (!events.root_directions.empty()) integrator->set_root_directions(events.root_directions);
+  long handled = 0;
+  auto stats = [&] {
+    SolverStats s = integrator->stats();
+    s.events += handled;
+    return s;
+  };
+  double t = 0.0;
+  try {
+    for (double t_out = rec.next_sample_time(); std::isfinite(t_out); t_out = rec.next_sample_time()) {
+      if (t_out > t) {
+        const auto out = integrator->advance(t_out);
+        t = out.t;
+        if (out.root) {
+          Vector y = integrator->y();
+          handled += std::count_if(out.roots_found.begin(), out.roots_found.end(), [](int r) { return r != 0; });
+          if (events.on_roots(t, y, out.roots_found)) integrator->reinit(t, y);
+          continue;
+        }
+      }
+      if (events.before_sample) events.before_sample(integrator->y());
+      rec.sample(t, integrator->y());
+    }
+  } catch (const SolverFailure& f) {
+    return rec.fail(f, stats());
+  }
+  return rec.finish(stats(), t);
+}
+
+OdeSystem mechanical_ode(const MechanicalSystem& model, ModesAt modes_at) {
+  OdeSystem sys;
+  sys.size = model.state_size();
+  sys.position_size = model.position_size();
+  sys.bandwidth = model.jacobian_bandwidth();
+  sys.rhs = [&model, modes_at](double t, ConstVectorRef y, VectorRef yd) { model.rhs(t, y, modes_at(y), yd); };
+  sys.jacobian = [&model, modes_at](double t, ConstVectorRef y, SparseMatrix& J) {
+    model.jacobian(t, y, modes_at(y), J);
+  };
+  // IMEX: the contact forces are what makes the system stiff, so they are the implicit part:
+  // f_implicit = f(modes) - f(all free), with the Jacobian likewise.
+  auto free = std::make_shared<const ContactModes>(model.all_modes(ContactMode::Free));
+  auto buffer = std::make_shared<Vector>(sys.size);
+  sys.implicit_rhs = [&model, modes_at, free, buffer](double t, ConstVectorRef y, VectorRef yd) {
+    model.rhs(t, y, modes_at(y), yd);
+    model.rhs(t, y, *free, *buffer);
+    yd -= *buffer;
+  };
+  sys.implicit_jacobian = [&model, modes_at, free](double t, ConstVectorRef y, SparseMatrix& J) {
+    SparseMatrix J_free;
+    model.jacobian(t, y, modes_at(y), J);
+    model.jacobian(t, y, *free, J_free);
+    J -= J_free;
+  };
+  return sys;
+}
+
+}  // namespace contact

@@ -1,0 +1,32 @@
+#pragma once
+// The loop shared by the penalty and event-driven paradigms, for any Integrator: integrate
+// through the recorder's output times, stop at each root, let the paradigm act on it (log it,
+// switch a contact mode, apply an impulse), restart the integrator when the paradigm changed the
+// state or the right-hand side, and end the run with the solver's status on failure.
+#include "integrator.hpp"
+#include "mechanical_system.hpp"
+#include "run_recorder.hpp"
+
+#include <functional>
+
+namespace contact {
+
+struct EventHandling {
+  // Called at every root with the state there (editable) and the root info. Returns whether the
+  // integrator must restart from (t, y).
+  std::function<bool(double t, Vector& y, const std::vector<int>& roots_found)> on_roots;
+  // Called just before each sample is recorded (optional).
+  std::function<void(ConstVectorRef y)> before_sample;
+  std::vector<int> root_directions;  // empty: both directions
+};
+
+RunResult drive(OdeSystem system, ConstVectorRef y0, const IntegratorOptions& options, RunRecorder& recorder,
+                const EventHandling& events);
+
+// The ODE of `model` with every contact in the modes `modes_at(y)` gives: right-hand side,
+// Jacobian and its band, and the IMEX split (contact forces implicit, free motion explicit).
+// No root functions; the paradigm adds its own.
+using ModesAt = std::function<const ContactModes&(ConstVectorRef y)>;
+OdeSystem mechanical_ode(const MechanicalSystem& model, ModesAt modes_at);
+
+}  // namespace contact

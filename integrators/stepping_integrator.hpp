@@ -1,0 +1,53 @@
+#pragma once
+// The Integrator interface for methods that only take steps (fixed-step schemes, GSL odeiv2).
+// The base keeps the last step [ta, tb] and serves outputs and roots inside it from the method's
+// dense evaluation: an output time inside the step is evaluated there, and a sign change of a
+// root function between the current time and the step's end is located by GSL's Brent solver on
+// g(t, y(t)). A root is reported at the first time where g has its new sign (as CVODE does), and
+// the next advance() continues from there through the rest of the step.
+#include "integrator.hpp"
+
+namespace contact {
+
+class SteppingIntegrator : public Integrator {
+ public:
+  Outcome advance(double t_out) override;
+  void reinit(double t, ConstVectorRef y) override;
+  void set_root_directions(const std::vector<int>& directions) override { directions_ = directions; }
+  double t() const override { return t_; }
+  ConstVectorRef y() const override { return y_; }
+  SolverStats stats() const override { return counts_; }
+
+ protected:
+  SteppingIntegrator(OdeSystem system, double t0, ConstVectorRef y0, long max_steps);
+
+  // One step from (ta_, ya_) to (tb_, yb_); it may stop at t_limit but need not.
+  virtual void step(double t_limit) = 0;
+  // The state at t in [ta_, tb_].
+  virtual void dense(double t, VectorRef y) = 0;
+  // Called after a restart, to drop any history the method keeps.
+  virtual void restarted() {}
+
+  // The right-hand side, counted.
+  void f(double t, ConstVectorRef y, VectorRef ydot) {
+    ++counts_.rhs_evals;
+    sys_.rhs(t, y, ydot);
+  }
+
+  OdeSystem sys_;
+  double ta_, tb_;
+  Vector ya_, yb_;
+  SolverStats counts_;
+
+ private:
+  void eval_roots(double t, ConstVectorRef y, Vector& g);
+  // A root in (t_, t_hi] given the state there; fills out and moves (t_, y_) to it.
+  bool locate_root(double t_hi, ConstVectorRef y_hi, Outcome& out);
+
+  double t_;
+  Vector y_, g_, g_hi_, y_tmp_;
+  std::vector<int> directions_;
+  long max_steps_;
+};
+
+}  // namespace contact

@@ -1,0 +1,96 @@
+#pragma once
+// What CVODE, ERKStep and ARKStep share behind the Integrator interface: the callback data, the
+// context, the state vector and linear system, statistics summed across re-initialisations, root
+// directions re-applied after each one, and failures turned into SolverFailure. A concrete
+// integrator supplies only its own SUNDIALS calls.
+#include "integrator.hpp"
+#include "sundials_callbacks.hpp"
+#include "sundials_handles.hpp"
+#include "sundials_linear_solver.hpp"
+
+#include <fmt/format.h>
+
+#include <cstdlib>
+
+namespace contact::sundials {
+
+class IntegratorBase : public Integrator {
+ public:
+  Outcome advance(double t_out) override {
+    Outcome out;
+    data_.clear();
+    const int flag = evolve(t_out, out.t);
+    if (flag < 0) {
+      char* name = flag_name(flag);
+      const SolverFailure f = data_.failure(flag, name ? name : "SUNDIALS error", current_time());
+      std::free(name);
+      throw f;
+    }
+    t_ = out.t;
+    if (flag == kRootReturn) {
+      out.root = true;
+      out.roots_found.assign(data_.sys.root_count, 0);
+      root_info(out.roots_found.data());
+    }
+    return out;
+  }
+
+  void reinit(double t, ConstVectorRef y) override {
+    closed_ += segment_stats();  // re-initialising zeroes the solver's counters
+    closed_.restarts += 1;
+    data_.map(y_.get()) = y;
+    t_ = t;
+    check(restart(t), "re-initialisation");
+    if (!directions_.empty()) set_root_directions(directions_);
+  }
+
+  void set_root_directions(const std::vector<int>& d) override {
+    directions_ = d;
+    check(root_directions(directions_.data()), "setting root directions");
+  }
+  double t() const override { return t_; }
+  ConstVectorRef y() const override { return data_.map(y_.get()); }
+  SolverStats stats() const override {
+    SolverStats s = closed_;
+    s += segment_stats();
+    return s;
+  }
+
+ protected:
+  // CV_ROOT_RETURN == ARK_ROOT_RETURN == 2.
+  static constexpr int kRootReturn = 2;
+
+  IntegratorBase(OdeSystem system, double t0, ConstVectorRef y0) : t_(t0) {
+    data_.sys = std::move(system);
+    y_.reset(N_VNew_Serial(static_cast<sunindextype>(data_.sys.size), ctx_.get()));
+    if (!y_) throw SolverFailure(Status::SolverError, t0, "N_VNew_Serial failed");
+    data_.map(y_.get()) = y0;
+  }
+  void check(int flag, const char* call) const {
+    if (flag < 0) throw SolverFailure(Status::SolverError, t_, fmt::format("{} failed ({})", call, flag));
+  }
+  // The analytic Jacobian's pattern (for sparse storage) and the linear system of the options.
+  void make_linear_system(const IntegratorOptions& o, const OdeSystem::Jacobian& jac, ConstVectorRef y0) {
+    if (o.jacobian == JacobianMode::Analytic && jac) jac(t_, y0, data_.J);
+    linear_ = sundials::make_linear_system(o.linear_solver, y_.get(), data_.sys.bandwidth,
+                                           static_cast<long>(data_.J.nonZeros()), ctx_.get());
+  }
+
+  virtual int evolve(double t_out, double& t_ret) = 0;
+  virtual int root_info(int* found) = 0;
+  virtual int restart(double t) = 0;
+  virtual int root_directions(int* d) = 0;
+  virtual double current_time() const = 0;
+  virtual char* flag_name(int flag) const = 0;  // malloc'd by SUNDIALS; freed here
+  virtual SolverStats segment_stats() const = 0;
+
+  CallbackData data_;  // first member: the solver's callbacks point into it
+  Context ctx_ = make_context();
+  NVector y_;
+  LinearSystem linear_;
+  std::vector<int> directions_;
+  SolverStats closed_;
+  double t_;
+};
+
+}  // namespace contact::sundials

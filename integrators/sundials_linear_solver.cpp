@@ -1,0 +1,93 @@
+#include "sundials_linear_solver.hpp"
+
+#include <sunlinsol/sunlinsol_band.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunlinsol/sunlinsol_klu.h>
+#include <sunlinsol/sunlinsol_spgmr.h>
+#include <sunmatrix/sunmatrix_band.h>
+#include <sunmatrix/sunmatrix_dense.h>
+#include <sunmatrix/sunmatrix_sparse.h>
+
+#include <stdexcept>
+
+namespace contact::sundials {
+
+LinearSystem make_linear_system(LinearSolverKind kind, N_Vector y, Bandwidth band, long nonzeros,
+                                SUNContext ctx) {
+  const sunindextype n = N_VGetLength(y);
+  LinearSystem ls;
+  switch (kind) {
+    case LinearSolverKind::Dense:
+      ls.matrix.reset(SUNDenseMatrix(n, n, ctx));
+      ls.solver.reset(SUNLinSol_Dense(y, ls.matrix.get(), ctx));
+      break;
+    case LinearSolverKind::Band:
+      ls.matrix.reset(SUNBandMatrix(n, band.upper, band.lower, ctx));
+      ls.solver.reset(SUNLinSol_Band(y, ls.matrix.get(), ctx));
+      break;
+    case LinearSolverKind::Klu:
+      ls.matrix.reset(SUNSparseMatrix(n, n, std::max(nonzeros, 1L), CSC_MAT, ctx));
+      ls.solver.reset(SUNLinSol_KLU(y, ls.matrix.get(), ctx));
+      break;
+    case LinearSolverKind::Gmres:
+      ls.solver.reset(SUNLinSol_SPGMR(y, SUN_PREC_NONE, 0, ctx));
+      break;
+    case LinearSolverKind::GmresBandPreconditioned:
+      ls.solver.reset(SUNLinSol_SPGMR(y, SUN_PREC_LEFT, 0, ctx));
+      break;
+  }
+  if (!ls.solver) throw std::runtime_error("SUNDIALS linear solver allocation failed");
+  return ls;
+}
+
+bool copy_jacobian(const SparseMatrix& J, SUNMatrix A) {
+  switch (SUNMatGetID(A)) {
+    case SUNMATRIX_DENSE: {
+      SUNMatZero(A);
+      const sunindextype ld = SUNDenseMatrix_LData(A) / SUNDenseMatrix_Columns(A);
+      sunrealtype* data = SUNDenseMatrix_Data(A);
+      for (int j = 0; j < J.outerSize(); ++j)
+        for (SparseMatrix::InnerIterator it(J, j); it; ++it) data[j * ld + it.row()] = it.value();
+      return true;
+    }
+    case SUNMATRIX_BAND: {
+      SUNMatZero(A);
+      const sunindextype mu = SUNBandMatrix_UpperBandwidth(A), ml = SUNBandMatrix_LowerBandwidth(A);
+      for (int j = 0; j < J.outerSize(); ++j) {
+        sunrealtype* col = SUNBandMatrix_Column(A, j);
+        for (SparseMatrix::InnerIterator it(J, j); it; ++it) {
+          const sunindextype i = it.row();
+          if (i - j > ml || j - i > mu) return false;
+          SM_COLUMN_ELEMENT_B(col, i, j) = it.value();
+        }
+      }
+      return true;
+    }
+    case SUNMATRIX_SPARSE: {
+      if (SUNSparseMatrix_NNZ(A) < J.nonZeros() &&
+          SUNSparseMatrix_Reallocate(A, static_cast<sunindextype>(J.nonZeros())) != 0)
+        return false;
+      sunindextype* colptr = SUNSparseMatrix_IndexPointers(A);
+      sunindextype* rows = SUNSparseMatrix_IndexValues(A);
+      sunrealtype* data = SUNSparseMatrix_Data(A);
+      const int* outer = J.outerIndexPtr();
+      for (int j = 0; j <= J.outerSize(); ++j) colptr[j] = J.isCompressed() ? outer[j] : 0;
+      if (!J.isCompressed()) return false;
+      for (long k = 0; k < J.nonZeros(); ++k) {
+        rows[k] = J.innerIndexPtr()[k];
+        data[k] = J.valuePtr()[k];
+      }
+      return true;
+    }
+    default:
+      return false;
+  }
+}
+
+void multiply(const SparseMatrix& J, N_Vector v, N_Vector Jv) {
+  const auto n = static_cast<Eigen::Index>(N_VGetLength(v));
+  Eigen::Map<Vector> out(N_VGetArrayPointer(Jv), n);
+  out.noalias() = J * Eigen::Map<const Vector>(N_VGetArrayPointer(v), n);
+}
+
+}  // namespace contact::sundials
