@@ -12,10 +12,11 @@ std::string_view to_string(FixedStepScheme s) {
   return "?";
 }
 
-int fixed_step(FixedStepScheme scheme, const OdeSystem::Rhs& f, std::size_t position_size,
-               double t, double h, VectorRef y, FixedStepWork& w) {
-  const auto nq = static_cast<Eigen::Index>(position_size);
-  const auto nv = y.size() - nq;
+int fixed_step(FixedStepScheme scheme, const OdeSystem::Rhs& f, const Mask& q, double t, double h,
+               VectorRef y, FixedStepWork& w) {
+  // Updates of the positions only, or of the velocities only, by h times the rates in k.
+  auto move_positions = [&](double h_, const Vector& k) { y = q.select((y + h_ * k).array(), y.array()).matrix(); };
+  auto move_velocities = [&](double h_, const Vector& k) { y = q.select(y.array(), (y + h_ * k).array()).matrix(); };
   switch (scheme) {
     case FixedStepScheme::ExplicitEuler:
       f(t, y, w.k1);
@@ -23,17 +24,17 @@ int fixed_step(FixedStepScheme scheme, const OdeSystem::Rhs& f, std::size_t posi
       return 1;
     case FixedStepScheme::SemiImplicitEuler:
       f(t, y, w.k1);
-      y.tail(nv) += h * w.k1.tail(nv);
+      move_velocities(h, w.k1);
       f(t, y, w.k1);  // position rates from the updated velocities
-      y.head(nq) += h * w.k1.head(nq);
+      move_positions(h, w.k1);
       return 2;
     case FixedStepScheme::VelocityVerlet:
       f(t, y, w.k1);
-      y.tail(nv) += 0.5 * h * w.k1.tail(nv);
+      move_velocities(0.5 * h, w.k1);
       f(t + 0.5 * h, y, w.k1);  // position rates at the half-step velocities
-      y.head(nq) += h * w.k1.head(nq);
+      move_positions(h, w.k1);
       f(t + h, y, w.k1);  // accelerations at the new positions
-      y.tail(nv) += 0.5 * h * w.k1.tail(nv);
+      move_velocities(0.5 * h, w.k1);
       return 3;
     case FixedStepScheme::Rk4:
       f(t, y, w.k1);

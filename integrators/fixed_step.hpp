@@ -1,6 +1,7 @@
 #pragma once
 // Fixed-step one-step schemes. Each advances y by h in place and returns the number of
-// right-hand-side evaluations it made. For y = [q; v] with q' depending on v only:
+// right-hand-side evaluations it made. With q the entries `positions` marks and v the others
+// (q' depending on v only):
 //   explicit Euler        y+ = y + h f(t, y)                                          order 1
 //   semi-implicit Euler   v+ = v + h a(q, v);  q+ = q + h q'(q, v+)                     order 1
 //                         (symplectic: the velocity first, the position with it)
@@ -24,7 +25,7 @@ struct FixedStepWork {
   explicit FixedStepWork(Eigen::Index n = 0) : k1(n), k2(n), k3(n), k4(n), tmp(n) {}
 };
 
-int fixed_step(FixedStepScheme scheme, const OdeSystem::Rhs& f, std::size_t position_size,
+int fixed_step(FixedStepScheme scheme, const OdeSystem::Rhs& f, const Mask& positions,
                double t, double h, VectorRef y, FixedStepWork& work);
 
 }  // namespace contact

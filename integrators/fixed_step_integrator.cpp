@@ -23,11 +23,11 @@ class FixedStepIntegrator final : public SteppingIntegrator {
     ++n_;
     tb_ = origin_ + static_cast<double>(n_) * dt_;
     yb_ = ya_;
-    fixed_step(scheme_, rhs_, sys_.position_size, ta_, tb_ - ta_, yb_, work_);
+    fixed_step(scheme_, rhs_, sys_.positions, ta_, tb_ - ta_, yb_, work_);
   }
   void dense(double t, VectorRef y) override {
     y = ya_;
-    if (t > ta_) fixed_step(scheme_, rhs_, sys_.position_size, ta_, t - ta_, y, work_);
+    if (t > ta_) fixed_step(scheme_, rhs_, sys_.positions, ta_, t - ta_, y, work_);
   }
   void restarted() override {
     origin_ = ta_;

@@ -93,7 +93,8 @@ class GslIntegrator final : public SteppingIntegrator {
     yb_ = ya_;
     auto* d = driver_.get();
     const int status = fixed_dt_ > 0
-                           ? gsl_odeiv2_evolve_apply_fixed_step(d->e, d->c, d->s, &gsl_sys_, &t, fixed_dt_, yb_.data())
+                           // No control object: at a fixed step the error test must not reject.
+                           ? gsl_odeiv2_evolve_apply_fixed_step(d->e, nullptr, d->s, &gsl_sys_, &t, fixed_dt_, yb_.data())
                            : gsl_odeiv2_evolve_apply(d->e, d->c, d->s, &gsl_sys_, &t, t_limit, &h_, yb_.data());
     if (status != GSL_SUCCESS) {
       ++failed_;

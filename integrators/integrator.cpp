@@ -25,7 +25,7 @@ const std::vector<IntegratorInfo>& integrator_catalog() {
       {"arkode-dirk", "ARKODE", 4, false, true, true, true, "ARKODE ARKStep, diagonally implicit RK"},
       {"arkode-imex", "ARKODE", 4, false, true, true, true, "ARKODE ARKStep IMEX: contact forces implicit"},
       {"gsl-rk8pd", "GSL", 8, false, true, true, false, "GSL Runge-Kutta Prince-Dormand (8,9)"},
-      {"gsl-rkf45", "GSL", 4, false, true, true, false, "GSL Runge-Kutta-Fehlberg (4,5)"},
+      {"gsl-rkf45", "GSL", 5, false, true, true, false, "GSL Runge-Kutta-Fehlberg (4,5), propagates the 5th-order solution"},
       {"gsl-msbdf", "GSL", 5, true, true, false, true, "GSL multistep BDF, orders 1-5"},
       {"gsl-bsimp", "GSL", 0, true, true, false, true, "GSL implicit Bulirsch-Stoer (Bader-Deuflhard)"},
   };
@@ -102,7 +102,7 @@ std::unique_ptr<Integrator> make_integrator(const IntegratorOptions& o, OdeSyste
                                  : o.method == "semi-implicit-euler" ? FixedStepScheme::SemiImplicitEuler
                                  : o.method == "velocity-verlet"     ? FixedStepScheme::VelocityVerlet
                                                                      : FixedStepScheme::Rk4;
-  if (scheme != FixedStepScheme::ExplicitEuler && scheme != FixedStepScheme::Rk4 && system.position_size == 0)
+  if (scheme != FixedStepScheme::ExplicitEuler && scheme != FixedStepScheme::Rk4 && system.positions.size() == 0)
     throw std::invalid_argument(fmt::format("{} needs a system split into positions and velocities", o.method));
   return make_fixed_step(scheme, o, std::move(system), t0, y0);
 }

@@ -46,7 +46,7 @@ RunResult drive(OdeSystem system, ConstVectorRef y0, const IntegratorOptions& op
 OdeSystem mechanical_ode(const MechanicalSystem& model, ModesAt modes_at) {
   OdeSystem sys;
   sys.size = model.state_size();
-  sys.position_size = model.position_size();
+  sys.positions = model.position_mask();
   sys.bandwidth = model.jacobian_bandwidth();
   sys.rhs = [&model, modes_at](double t, ConstVectorRef y, VectorRef yd) { model.rhs(t, y, modes_at(y), yd); };
   sys.jacobian = [&model, modes_at](double t, ConstVectorRef y, SparseMatrix& J) {

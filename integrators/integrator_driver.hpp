@@ -8,6 +8,7 @@
 #include "run_recorder.hpp"
 
 #include <functional>
+#include <limits>
 
 namespace contact {
 
@@ -19,6 +20,13 @@ struct EventHandling {
   std::function<void(ConstVectorRef y)> before_sample;
   std::vector<int> root_directions;  // empty: both directions
 };
+
+// Root functions of switching and gap values are offset by this much, towards the side of the
+// mode a contact is held in, so that none is ever exactly zero where an integrator (re)starts:
+// CVODE deactivates a root function that is exactly zero at its initial time and reactivates it
+// without reporting a root when it turns non-zero, which would let touching bodies pass through
+// each other unnoticed. The offset is the smallest normal double, so it moves no root.
+inline constexpr double kRootOffset = std::numeric_limits<double>::min();
 
 RunResult drive(OdeSystem system, ConstVectorRef y0, const IntegratorOptions& options, RunRecorder& recorder,
                 const EventHandling& events);

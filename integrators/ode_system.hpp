@@ -16,8 +16,9 @@ struct OdeSystem {
   using Roots = std::function<void(double t, ConstVectorRef y, VectorRef g)>;
 
   std::size_t size = 0;
-  // y = [q; v] with q' depending on v only (needed by semi-implicit schemes); 0 = no split.
-  std::size_t position_size = 0;
+  // Which entries are positions q, with q' depending on the velocities only (needed by
+  // semi-implicit schemes); empty = no split.
+  Mask positions;
   Rhs rhs;
   Jacobian jacobian;   // empty: none (implicit methods then use difference quotients)
   Bandwidth bandwidth; // of the Jacobian; used by band solvers and preconditioners

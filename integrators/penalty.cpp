@@ -22,7 +22,9 @@ RunResult run_penalty(const MechanicalSystem& model, const PenaltyOptions& opt) 
   sys.root_count = 2 * nc;
   sys.roots = [&](double, ConstVectorRef y, VectorRef g) {
     for (std::size_t i = 0; i < nc; ++i) {
-      g[static_cast<Eigen::Index>(2 * i)] = model.switching(i, y);
+      // Touching counts as the mode held (see kRootOffset).
+      const double side = modes[i] == ContactMode::Penalty ? kRootOffset : -kRootOffset;
+      g[static_cast<Eigen::Index>(2 * i)] = model.switching(i, y) + side;
       g[static_cast<Eigen::Index>(2 * i + 1)] = model.gap_rate(i, y);
     }
   };

@@ -31,7 +31,7 @@ class BallDrop final : public MechanicalSystem, public AnalyticFlight {
   const BallDropParams& params() const { return p_; }
 
   std::string name() const override { return "ball_drop"; }
-  std::size_t position_size() const override { return 1; }
+  Mask position_mask() const override { return Mask{{true, false}}; }
   std::size_t state_size() const override { return 2; }
   Vector initial_state() const override { return Vector{{p_.h0, p_.v0}}; }
   std::vector<std::string> state_labels() const override { return {"y_m", "v_mps"}; }

@@ -12,6 +12,8 @@ using MatrixRef = Eigen::Ref<Matrix>;
 // Jacobians: compressed column storage, the layout of SUNDIALS' sparse (KLU) matrices.
 using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor>;
 using Triplet = Eigen::Triplet<double>;
+// Which state entries are positions (true) rather than velocities.
+using Mask = Eigen::Array<bool, Eigen::Dynamic, 1>;
 
 // Non-zero band of a Jacobian: entry (i, j) may be non-zero only if -lower <= j - i <= upper.
 struct Bandwidth {

@@ -2,8 +2,9 @@
 // What every scene offers to the three contact paradigms. A scene is a mechanical system with
 // unilateral contacts; it knows its physics and nothing of the integrator that runs it.
 //
-// State layout: y = [positions; velocities]. The first position_size() entries change only
-// through the velocities (q' = Q(q) v), which is what semi-implicit Euler relies on.
+// State layout: position_mask() marks the positions; the other entries are velocities.
+// Positions change only through the velocities (q' = Q(q) v), which is what semi-implicit
+// schemes rely on. A scene may interleave them (x0, v0, x1, v1, ...) to keep its Jacobian banded.
 //
 // Contact modes: how each potential contact takes part in the dynamics right now.
 //   Free     no contact force (free flight);
@@ -28,7 +29,7 @@ class MechanicalSystem {
   virtual ~MechanicalSystem() = default;
 
   virtual std::string name() const = 0;
-  virtual std::size_t position_size() const = 0;
+  virtual Mask position_mask() const = 0;
   virtual std::size_t state_size() const = 0;
   virtual Vector initial_state() const = 0;
   // Column names with units, one per state entry, e.g. "y_m", "v_mps".

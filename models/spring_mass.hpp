@@ -14,7 +14,7 @@ class SpringMass final : public MechanicalSystem {
   double omega() const { return std::sqrt(k_ / m_); }
 
   std::string name() const override { return "spring_mass"; }
-  std::size_t position_size() const override { return 1; }
+  Mask position_mask() const override { return Mask{{true, false}}; }
   std::size_t state_size() const override { return 2; }
   Vector initial_state() const override { return Vector{{x0_, v0_}}; }
   std::vector<std::string> state_labels() const override { return {"x_m", "v_mps"}; }

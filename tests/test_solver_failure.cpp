@@ -29,7 +29,7 @@ class PoisonedBall final : public MechanicalSystem {
  public:
   explicit PoisonedBall(BallDropParams p) : ball_(p) {}
   std::string name() const override { return "poisoned"; }
-  std::size_t position_size() const override { return 1; }
+  Mask position_mask() const override { return ball_.position_mask(); }
   std::size_t state_size() const override { return 2; }
   Vector initial_state() const override { return ball_.initial_state(); }
   std::vector<std::string> state_labels() const override { return ball_.state_labels(); }

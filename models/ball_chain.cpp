@@ -1,0 +1,109 @@
+#include "ball_chain.hpp"
+
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+namespace contact {
+
+BallChain::BallChain(BallChainParams p) : p_(std::move(p)) {
+  if (p_.n < 2) throw std::invalid_argument(fmt::format("ball chain: n = {} balls; accepted range [2, inf)", p_.n));
+}
+
+Mask BallChain::position_mask() const {
+  Mask m(static_cast<Eigen::Index>(2 * p_.n));
+  for (Eigen::Index k = 0; k < m.size(); ++k) m[k] = k % 2 == 0;
+  return m;
+}
+
+Vector BallChain::initial_state() const {
+  // Ball 1 at the origin, the resting balls spaced behind it, the striker `approach` before it.
+  Vector y = Vector::Zero(static_cast<Eigen::Index>(2 * p_.n));
+  for (std::size_t b = 1; b < p_.n; ++b)
+    y[static_cast<Eigen::Index>(2 * b)] = static_cast<double>(b - 1) * (2 * p_.r + p_.spacing);
+  y[0] = -(2 * p_.r + p_.approach);
+  y[1] = p_.v0;
+  return y;
+}
+
+std::vector<std::string> BallChain::state_labels() const {
+  std::vector<std::string> labels;
+  for (std::size_t b = 0; b < p_.n; ++b) {
+    labels.push_back(fmt::format("x{}_m", b));
+    labels.push_back(fmt::format("v{}_mps", b));
+  }
+  return labels;
+}
+
+void BallChain::rhs(double, ConstVectorRef y, const ContactModes& modes, VectorRef ydot) const {
+  for (std::size_t b = 0; b < p_.n; ++b) {
+    ydot[static_cast<Eigen::Index>(2 * b)] = v(y, b);
+    ydot[static_cast<Eigen::Index>(2 * b + 1)] = 0.0;
+  }
+  for (std::size_t i = 0; i + 1 < p_.n; ++i) {
+    if (modes[i] != ContactMode::Penalty) continue;
+    const double F = force(p_.law, -gap(i, y), -gap_rate(i, y));
+    ydot[static_cast<Eigen::Index>(2 * i + 1)] -= F / p_.m;
+    ydot[static_cast<Eigen::Index>(2 * i + 3)] += F / p_.m;
+  }
+}
+
+void BallChain::jacobian(double, ConstVectorRef y, const ContactModes& modes, SparseMatrix& J) const {
+  // x_b' = v_b; contact i couples (x_i, v_i, x_{i+1}, v_{i+1}) into v_i' and v_{i+1}'. With
+  // delta = x_i - x_{i+1} + 2r and delta_dot = v_i - v_{i+1}:
+  //   d v_i'/d x_i = -F_d/m, d v_i'/d x_{i+1} = +F_d/m, d v_i'/d v_i = -F_r/m, d v_i'/d v_{i+1} = +F_r/m,
+  // and the opposite signs for v_{i+1}'. Every entry of the pattern is stored, zero when free.
+  std::vector<Triplet> t;
+  t.reserve(9 * p_.n);
+  for (std::size_t b = 0; b < p_.n; ++b)
+    t.emplace_back(static_cast<int>(2 * b), static_cast<int>(2 * b + 1), 1.0);
+  for (std::size_t i = 0; i + 1 < p_.n; ++i) {
+    double Fd = 0, Fr = 0;
+    if (modes[i] == ContactMode::Penalty) {
+      Fd = dforce_ddelta(p_.law, -gap(i, y), -gap_rate(i, y)) / p_.m;
+      Fr = dforce_drate(p_.law, -gap(i, y), -gap_rate(i, y)) / p_.m;
+    }
+    const int xi = static_cast<int>(2 * i), vi = xi + 1, xj = xi + 2, vj = xi + 3;
+    for (const auto& [row, sign] : {std::pair{vi, -1.0}, std::pair{vj, 1.0}}) {
+      t.emplace_back(row, xi, sign * Fd);
+      t.emplace_back(row, xj, -sign * Fd);
+      t.emplace_back(row, vi, sign * Fr);
+      t.emplace_back(row, vj, -sign * Fr);
+    }
+  }
+  J.resize(static_cast<Eigen::Index>(2 * p_.n), static_cast<Eigen::Index>(2 * p_.n));
+  J.setFromTriplets(t.begin(), t.end());  // duplicates (a ball in two contacts) are summed
+}
+
+double BallChain::energy(ConstVectorRef y) const {
+  double E = 0;
+  for (std::size_t b = 0; b < p_.n; ++b) E += 0.5 * p_.m * v(y, b) * v(y, b);
+  for (std::size_t i = 0; i + 1 < p_.n; ++i) E += stored_energy(p_.law, -gap(i, y));
+  return E;
+}
+
+void BallChain::project(std::size_t i, VectorRef y) const {
+  // Equal masses: each ball takes half the overlap (inverse-mass share).
+  const double overlap = -gap(i, y);
+  if (overlap <= 0) return;
+  y[static_cast<Eigen::Index>(2 * i)] -= 0.5 * overlap;
+  y[static_cast<Eigen::Index>(2 * i + 2)] += 0.5 * overlap;
+}
+
+void BallChain::apply_impulse(std::size_t i, double e, VectorRef y) const {
+  // Normal from ball i to ball i+1; v_r.n = v_{i+1} - v_i = gap rate.
+  const double inv_m = 1.0 / p_.m;
+  const double J = -(1.0 + e) * gap_rate(i, y) / (inv_m + inv_m);
+  y[static_cast<Eigen::Index>(2 * i + 1)] -= J * inv_m;
+  y[static_cast<Eigen::Index>(2 * i + 3)] += J * inv_m;
+}
+
+void BallChain::settle(std::size_t i, VectorRef y) const {
+  // Both balls take their common velocity: no relative normal motion left. (Without gravity
+  // nothing holds them together afterwards: the chain's dynamics treat Resting as Free.)
+  project(i, y);
+  const double mean = 0.5 * (v(y, i) + v(y, i + 1));
+  y[static_cast<Eigen::Index>(2 * i + 1)] = y[static_cast<Eigen::Index>(2 * i + 3)] = mean;
+}
+
+}  // namespace contact

@@ -1,0 +1,62 @@
+#pragma once
+// N-ball chain (Newton's cradle generalised): N equal balls of mass m [kg] and radius r [m] on a
+// line, no gravity. Ball 0, the striker, starts a distance `approach` [m] from ball 1 moving at
+// v0 [m/s] towards it; balls 1..N-1 rest with `spacing` [m] between neighbours (0: touching).
+// Contact i joins balls i and i+1:
+//   gap       x_{i+1} - x_i - 2r,        overlap delta = -gap,   delta_dot = v_i - v_{i+1}
+//   penalty   F = law(delta, delta_dot) pushes ball i back and ball i+1 on
+//   impulse   J = -(1+e) (v_{i+1} - v_i) / (1/m + 1/m) along the line
+//   energy    sum m v^2 / 2 + stored spring energy
+// State interleaved as y = [x0, v0, x1, v1, ...], so the Jacobian is banded (two entries either
+// side of the diagonal): band and sparse solvers scale linearly in N.
+#include "contact_law.hpp"
+#include "mechanical_system.hpp"
+
+namespace contact {
+
+struct BallChainParams {
+  std::size_t n = 5;        // number of balls (>= 2)
+  double m = 0.1;           // mass of each ball [kg]
+  double r = 0.01;          // radius [m]
+  double v0 = 1.0;          // striker velocity [m/s]
+  double approach = 0.01;   // striker's initial distance to ball 1 [m]
+  double spacing = 0.0;     // gap between the resting balls [m]
+  double e = 1.0;           // Newton restitution for impulses
+  ContactLaw law = Hooke{1e6};
+};
+
+class BallChain final : public MechanicalSystem {
+ public:
+  explicit BallChain(BallChainParams p);
+  const BallChainParams& params() const { return p_; }
+
+  std::string name() const override { return "ball_chain"; }
+  Mask position_mask() const override;
+  std::size_t state_size() const override { return 2 * p_.n; }
+  Vector initial_state() const override;
+  std::vector<std::string> state_labels() const override;
+
+  void rhs(double t, ConstVectorRef y, const ContactModes& modes, VectorRef ydot) const override;
+  void jacobian(double t, ConstVectorRef y, const ContactModes& modes, SparseMatrix& J) const override;
+  Bandwidth jacobian_bandwidth() const override { return {2, 2}; }
+  double energy(ConstVectorRef y) const override;
+
+  std::size_t contact_count() const override { return p_.n - 1; }
+  double gap(std::size_t i, ConstVectorRef y) const override { return x(y, i + 1) - x(y, i) - 2 * p_.r; }
+  double gap_rate(std::size_t i, ConstVectorRef y) const override { return v(y, i + 1) - v(y, i); }
+  double switching(std::size_t i, ConstVectorRef y) const override {
+    return contact::switching(p_.law, -gap(i, y), -gap_rate(i, y));
+  }
+
+  double restitution(std::size_t) const override { return p_.e; }
+  void project(std::size_t i, VectorRef y) const override;
+  void apply_impulse(std::size_t i, double e, VectorRef y) const override;
+  void settle(std::size_t i, VectorRef y) const override;
+
+ private:
+  static double x(ConstVectorRef y, std::size_t b) { return y[static_cast<Eigen::Index>(2 * b)]; }
+  static double v(ConstVectorRef y, std::size_t b) { return y[static_cast<Eigen::Index>(2 * b + 1)]; }
+  BallChainParams p_;
+};
+
+}  // namespace contact
