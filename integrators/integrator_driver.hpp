@@ -8,7 +8,6 @@
 #include "run_recorder.hpp"
 
 #include <functional>
-#include <limits>
 
 namespace contact {
 
@@ -24,9 +23,11 @@ struct EventHandling {
 // Root functions of switching and gap values are offset by this much, towards the side of the
 // mode a contact is held in, so that none is ever exactly zero where an integrator (re)starts:
 // CVODE deactivates a root function that is exactly zero at its initial time and reactivates it
-// without reporting a root when it turns non-zero, which would let touching bodies pass through
-// each other unnoticed. The offset is the smallest normal double, so it moves no root.
-inline constexpr double kRootOffset = std::numeric_limits<double>::min();
+// without reporting a root when it turns non-zero, which let touching bodies pass through each
+// other unnoticed. The offset must not be so small that CVODE's sign test glo * ghi < 0
+// underflows to zero (the smallest normal double, tried first, did: roots went unreported), nor
+// large enough to move a root: 1e-150 m is far below any length resolved here.
+inline constexpr double kRootOffset = 1e-150;
 
 RunResult drive(OdeSystem system, ConstVectorRef y0, const IntegratorOptions& options, RunRecorder& recorder,
                 const EventHandling& events);

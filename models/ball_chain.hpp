@@ -7,8 +7,8 @@
 //   penalty   F = law(delta, delta_dot) pushes ball i back and ball i+1 on
 //   impulse   J = -(1+e) (v_{i+1} - v_i) / (1/m + 1/m) along the line
 //   energy    sum m v^2 / 2 + stored spring energy
-// State interleaved as y = [x0, v0, x1, v1, ...], so the Jacobian is banded (two entries either
-// side of the diagonal): band and sparse solvers scale linearly in N.
+// State interleaved as y = [x0, v0, x1, v1, ...], so the Jacobian is banded (3 below the diagonal,
+// 2 above): band and sparse solvers scale linearly in N.
 #include "contact_law.hpp"
 #include "mechanical_system.hpp"
 
@@ -38,7 +38,9 @@ class BallChain final : public MechanicalSystem {
 
   void rhs(double t, ConstVectorRef y, const ContactModes& modes, VectorRef ydot) const override;
   void jacobian(double t, ConstVectorRef y, const ContactModes& modes, SparseMatrix& J) const override;
-  Bandwidth jacobian_bandwidth() const override { return {2, 2}; }
+  // With y = [x0, v0, x1, v1, ...]: v_i' depends on x_{i-1} (3 columns left of it) through
+  // v_{i+1} (2 columns right).
+  Bandwidth jacobian_bandwidth() const override { return {3, 2}; }
   double energy(ConstVectorRef y) const override;
 
   std::size_t contact_count() const override { return p_.n - 1; }

@@ -1,0 +1,164 @@
+// The N-ball chain: its analytic Jacobian, band and sparse storage, every linear solver on the
+// same penalty run, and Newton's cradle by sequential impulses.
+#include "ball_chain.hpp"
+#include "event_driven.hpp"
+#include "penalty.hpp"
+#include "sundials_linear_solver.hpp"
+
+#include <gtest/gtest.h>
+#include <sunmatrix/sunmatrix_band.h>
+#include <sunmatrix/sunmatrix_dense.h>
+#include <sunmatrix/sunmatrix_sparse.h>
+
+#include <cmath>
+
+using namespace contact;
+
+namespace {
+
+BallChain chain(std::size_t n, ContactLaw law, double e = 1.0) {
+  BallChainParams p;
+  p.n = n;
+  p.law = law;
+  p.e = e;
+  return BallChain(p);
+}
+
+// A mid-collision state: every contact overlapping a little, with spread velocities.
+Vector compressed_state(const BallChain& c) {
+  Vector y = c.initial_state();
+  for (Eigen::Index k = 0; k < y.size(); k += 2) {
+    y[k] -= 1e-5 * static_cast<double>(k);  // each gap closes by 2e-5 m
+    y[k + 1] = 0.3 - 0.1 * static_cast<double>(k);
+  }
+  return y;
+}
+
+Matrix dense_of(SUNMatrix A, Eigen::Index n) {
+  Matrix M = Matrix::Zero(n, n);
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (Eigen::Index j = 0; j < n; ++j) {
+      if (SUNMatGetID(A) == SUNMATRIX_DENSE) M(i, j) = SM_ELEMENT_D(A, i, j);
+      if (SUNMatGetID(A) == SUNMATRIX_BAND && i - j <= SUNBandMatrix_LowerBandwidth(A) &&
+          j - i <= SUNBandMatrix_UpperBandwidth(A))
+        M(i, j) = SM_ELEMENT_B(A, i, j);
+    }
+  if (SUNMatGetID(A) == SUNMATRIX_SPARSE) {
+    const sunindextype* col = SUNSparseMatrix_IndexPointers(A);
+    for (Eigen::Index j = 0; j < n; ++j)
+      for (sunindextype k = col[j]; k < col[j + 1]; ++k)
+        M(SUNSparseMatrix_IndexValues(A)[k], j) = SUNSparseMatrix_Data(A)[k];
+  }
+  return M;
+}
+
+}  // namespace
+
+// Central differences: truncation vanishes (the forces are affine in the state within a mode)
+// and rounding is eps |f| / h ~ 1e-10 relative with h = 1e-7 m.
+TEST(BallChain, JacobianMatchesCentralDifferencesInEveryMode) {
+  for (const ContactLaw& law : {ContactLaw{Hooke{1e6}}, ContactLaw{kelvin_voigt_for_restitution(1e6, 0.1, 0.7, false)}}) {
+    const BallChain c = chain(6, law);
+    const Vector y = compressed_state(c);
+    for (auto mode : {ContactMode::Free, ContactMode::Penalty}) {
+      const ContactModes modes(c.contact_count(), mode);
+      SparseMatrix J;
+      c.jacobian(0.0, y, modes, J);
+      const auto n = y.size();
+      Matrix numeric(n, n);
+      Vector yp = y, ym = y, fp(n), fm(n);
+      for (Eigen::Index j = 0; j < n; ++j) {
+        yp[j] += 1e-7;
+        ym[j] -= 1e-7;
+        c.rhs(0, yp, modes, fp);
+        c.rhs(0, ym, modes, fm);
+        numeric.col(j) = (fp - fm) / 2e-7;
+        yp[j] = ym[j] = y[j];
+      }
+      const Matrix analytic(J);
+      EXPECT_LE((analytic - numeric).cwiseAbs().maxCoeff(), 1e-7 * std::max(1.0, numeric.cwiseAbs().maxCoeff()));
+      // Every non-zero lies in the declared band, and the band is no wider than needed.
+      long lower = 0, upper = 0;
+      for (int j = 0; j < J.outerSize(); ++j)
+        for (SparseMatrix::InnerIterator it(J, j); it; ++it) {
+          lower = std::max(lower, static_cast<long>(it.row()) - j);
+          upper = std::max(upper, j - static_cast<long>(it.row()));
+        }
+      EXPECT_EQ(lower, c.jacobian_bandwidth().lower);
+      EXPECT_EQ(upper, c.jacobian_bandwidth().upper);
+      // The pattern does not depend on the mode (sparse factorisations reuse it).
+      SparseMatrix J_free;
+      c.jacobian(0.0, y, ContactModes(c.contact_count(), ContactMode::Free), J_free);
+      EXPECT_EQ(J.nonZeros(), J_free.nonZeros());
+    }
+  }
+}
+
+TEST(BallChain, BandAndSparseStorageHoldTheDenseJacobian) {
+  const BallChain c = chain(7, Hooke{1e6});
+  const Vector y = compressed_state(c);
+  SparseMatrix J;
+  c.jacobian(0.0, y, ContactModes(c.contact_count(), ContactMode::Penalty), J);
+  const auto n = static_cast<sunindextype>(y.size());
+  const Matrix dense(J);
+  contact::sundials::Context ctx = contact::sundials::make_context();
+  contact::sundials::Matrix A_dense(SUNDenseMatrix(n, n, ctx.get()));
+  const Bandwidth band = c.jacobian_bandwidth();
+  contact::sundials::Matrix A_band(SUNBandMatrix(n, band.upper, band.lower, ctx.get()));
+  contact::sundials::Matrix A_sparse(SUNSparseMatrix(n, n, 1, CSC_MAT, ctx.get()));  // grows on copy
+  for (SUNMatrix A : {A_dense.get(), A_band.get(), A_sparse.get()}) {
+    ASSERT_TRUE(contact::sundials::copy_jacobian(J, A));
+    EXPECT_EQ(dense_of(A, y.size()), dense) << "matrix id " << SUNMatGetID(A);
+  }
+  // A band too narrow for the Jacobian is refused, not silently truncated.
+  contact::sundials::Matrix narrow(SUNBandMatrix(n, band.upper, band.lower - 1, ctx.get()));
+  EXPECT_FALSE(contact::sundials::copy_jacobian(J, narrow.get()));
+}
+
+// Every linear solver must produce the same trajectory: they solve the same Newton systems, to
+// the same tolerance (rtol 1e-9). Final velocities agree to 1e-6 of the striker speed.
+TEST(BallChain, EveryLinearSolverGivesTheSamePenaltyRun) {
+  const BallChain c = chain(8, Hooke{1e6});
+  PenaltyOptions o;
+  o.t_end = 0.05;
+  o.sample_dt = 0.05;
+  o.integrator.rtol = 1e-9;
+  o.integrator.atol = 1e-12;
+  const RunResult ref = run_penalty(c, o);
+  ASSERT_TRUE(ref.ok()) << ref.message;
+  for (const char* method : {"cvode-bdf", "arkode-dirk"})
+    for (auto ls : {LinearSolverKind::Dense, LinearSolverKind::Band, LinearSolverKind::Klu, LinearSolverKind::Gmres,
+                    LinearSolverKind::GmresBandPreconditioned}) {
+      o.integrator.method = method;
+      o.integrator.linear_solver = ls;
+      const RunResult r = run_penalty(c, o);
+      ASSERT_TRUE(r.ok()) << method << " " << to_string(ls) << ": " << r.message;
+      const Vector& y = r.samples.back().y;
+      const Vector& y_ref = ref.samples.back().y;
+      for (Eigen::Index k = 1; k < y.size(); k += 2)
+        EXPECT_NEAR(y[k], y_ref[k], 1e-6 * c.params().v0) << method << " " << to_string(ls) << " v" << k / 2;
+    }
+}
+
+// Sequential impulses with e = 1 on touching equal balls: each contact swaps the two velocities,
+// so the striker stops and the last ball leaves at v0, exactly (to rounding).
+TEST(BallChain, NewtonsCradleBySequentialImpulsesPassesTheVelocityToTheLastBall) {
+  for (std::size_t n : {2, 3, 5, 10}) {
+    const BallChain c = chain(n, Hooke{1e6}, 1.0);
+    EventOptions o;
+    o.t_end = 0.1;
+    o.sample_dt = 0.1;
+    const RunResult r = run_event_driven(c, o);
+    ASSERT_TRUE(r.ok()) << r.message;
+    const Vector& y = r.samples.back().y;
+    for (std::size_t b = 0; b + 1 < n; ++b) EXPECT_NEAR(y[static_cast<Eigen::Index>(2 * b + 1)], 0.0, 1e-14) << "ball " << b;
+    EXPECT_NEAR(y[static_cast<Eigen::Index>(2 * n - 1)], c.params().v0, 1e-14);
+    EXPECT_EQ(r.contacts.size(), n - 1);
+  }
+}
+
+TEST(BallChain, RefusesFewerThanTwoBalls) {
+  BallChainParams p;
+  p.n = 1;
+  EXPECT_THROW(BallChain{p}, std::invalid_argument);
+}
