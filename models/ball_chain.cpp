@@ -17,11 +17,10 @@ Mask BallChain::position_mask() const {
 }
 
 Vector BallChain::initial_state() const {
-  // Ball 1 at the origin, the resting balls spaced behind it, the striker `approach` before it.
+  // Everything at rest at its rest position but the striker, displaced so that its gap to
+  // ball 1 is `approach`: spacing + u_1 - u_0 = approach.
   Vector y = Vector::Zero(static_cast<Eigen::Index>(2 * p_.n));
-  for (std::size_t b = 1; b < p_.n; ++b)
-    y[static_cast<Eigen::Index>(2 * b)] = static_cast<double>(b - 1) * (2 * p_.r + p_.spacing);
-  y[0] = -(2 * p_.r + p_.approach);
+  y[0] = p_.spacing - p_.approach;
   y[1] = p_.v0;
   return y;
 }
@@ -29,7 +28,7 @@ Vector BallChain::initial_state() const {
 std::vector<std::string> BallChain::state_labels() const {
   std::vector<std::string> labels;
   for (std::size_t b = 0; b < p_.n; ++b) {
-    labels.push_back(fmt::format("x{}_m", b));
+    labels.push_back(fmt::format("u{}_m", b));
     labels.push_back(fmt::format("v{}_mps", b));
   }
   return labels;
@@ -49,14 +48,16 @@ void BallChain::rhs(double, ConstVectorRef y, const ContactModes& modes, VectorR
 }
 
 void BallChain::jacobian(double, ConstVectorRef y, const ContactModes& modes, SparseMatrix& J) const {
-  // x_b' = v_b; contact i couples (x_i, v_i, x_{i+1}, v_{i+1}) into v_i' and v_{i+1}'. With
-  // delta = x_i - x_{i+1} + 2r and delta_dot = v_i - v_{i+1}:
-  //   d v_i'/d x_i = -F_d/m, d v_i'/d x_{i+1} = +F_d/m, d v_i'/d v_i = -F_r/m, d v_i'/d v_{i+1} = +F_r/m,
+  // u_b' = v_b; contact i couples (u_i, v_i, u_{i+1}, v_{i+1}) into v_i' and v_{i+1}'. With
+  // delta = u_i - u_{i+1} - spacing and delta_dot = v_i - v_{i+1}:
+  //   d v_i'/d u_i = -F_d/m, d v_i'/d u_{i+1} = +F_d/m, d v_i'/d v_i = -F_r/m, d v_i'/d v_{i+1} = +F_r/m,
   // and the opposite signs for v_{i+1}'. Every entry of the pattern is stored, zero when free.
   std::vector<Triplet> t;
   t.reserve(9 * p_.n);
-  for (std::size_t b = 0; b < p_.n; ++b)
+  for (std::size_t b = 0; b < p_.n; ++b) {
+    t.emplace_back(static_cast<int>(2 * b), static_cast<int>(2 * b), 0.0);  // diagonal, for I - gamma J
     t.emplace_back(static_cast<int>(2 * b), static_cast<int>(2 * b + 1), 1.0);
+  }
   for (std::size_t i = 0; i + 1 < p_.n; ++i) {
     double Fd = 0, Fr = 0;
     if (modes[i] == ContactMode::Penalty) {

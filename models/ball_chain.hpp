@@ -2,12 +2,17 @@
 // N-ball chain (Newton's cradle generalised): N equal balls of mass m [kg] and radius r [m] on a
 // line, no gravity. Ball 0, the striker, starts a distance `approach` [m] from ball 1 moving at
 // v0 [m/s] towards it; balls 1..N-1 rest with `spacing` [m] between neighbours (0: touching).
+// Positions are displacements u_b from rest positions X_b = b (2r + spacing), so that
+//   gap_i = X_{i+1} - X_i - 2r + u_{i+1} - u_i = spacing + u_{i+1} - u_i
+// is exactly zero for touching balls: with absolute positions, rounding in x_{i+1} - x_i - 2r
+// left "touching" gaps of +-1e-17 m (1e-13 m a thousand metres down a long chain), each a
+// spurious contact switch and a restart of the integrator.
 // Contact i joins balls i and i+1:
-//   gap       x_{i+1} - x_i - 2r,        overlap delta = -gap,   delta_dot = v_i - v_{i+1}
+//   gap       spacing + u_{i+1} - u_i,   overlap delta = -gap,   delta_dot = v_i - v_{i+1}
 //   penalty   F = law(delta, delta_dot) pushes ball i back and ball i+1 on
 //   impulse   J = -(1+e) (v_{i+1} - v_i) / (1/m + 1/m) along the line
 //   energy    sum m v^2 / 2 + stored spring energy
-// State interleaved as y = [x0, v0, x1, v1, ...], so the Jacobian is banded (3 below the diagonal,
+// State interleaved as y = [u0, v0, u1, v1, ...], so the Jacobian is banded (3 below the diagonal,
 // 2 above): band and sparse solvers scale linearly in N.
 #include "contact_law.hpp"
 #include "mechanical_system.hpp"
@@ -38,13 +43,13 @@ class BallChain final : public MechanicalSystem {
 
   void rhs(double t, ConstVectorRef y, const ContactModes& modes, VectorRef ydot) const override;
   void jacobian(double t, ConstVectorRef y, const ContactModes& modes, SparseMatrix& J) const override;
-  // With y = [x0, v0, x1, v1, ...]: v_i' depends on x_{i-1} (3 columns left of it) through
+  // With y = [u0, v0, u1, v1, ...]: v_i' depends on u_{i-1} (3 columns left of it) through
   // v_{i+1} (2 columns right).
   Bandwidth jacobian_bandwidth() const override { return {3, 2}; }
   double energy(ConstVectorRef y) const override;
 
   std::size_t contact_count() const override { return p_.n - 1; }
-  double gap(std::size_t i, ConstVectorRef y) const override { return x(y, i + 1) - x(y, i) - 2 * p_.r; }
+  double gap(std::size_t i, ConstVectorRef y) const override { return p_.spacing + (u(y, i + 1) - u(y, i)); }
   double gap_rate(std::size_t i, ConstVectorRef y) const override { return v(y, i + 1) - v(y, i); }
   double switching(std::size_t i, ConstVectorRef y) const override {
     return contact::switching(p_.law, -gap(i, y), -gap_rate(i, y));
@@ -56,7 +61,7 @@ class BallChain final : public MechanicalSystem {
   void settle(std::size_t i, VectorRef y) const override;
 
  private:
-  static double x(ConstVectorRef y, std::size_t b) { return y[static_cast<Eigen::Index>(2 * b)]; }
+  static double u(ConstVectorRef y, std::size_t b) { return y[static_cast<Eigen::Index>(2 * b)]; }
   static double v(ConstVectorRef y, std::size_t b) { return y[static_cast<Eigen::Index>(2 * b + 1)]; }
   BallChainParams p_;
 };

@@ -24,7 +24,7 @@ void BallDrop::rhs(double, ConstVectorRef y, const ContactModes& modes, VectorRe
 }
 
 void BallDrop::jacobian(double, ConstVectorRef y, const ContactModes& modes, SparseMatrix& J) const {
-  // Pattern [0 1; a b], entries zero where the mode has none.
+  // Pattern [0 1; a b] with the diagonal, entries zero where the mode has none.
   double dx = 1.0, a = 0.0, b = 0.0;
   if (modes[0] == ContactMode::Resting) dx = 0.0;
   if (modes[0] == ContactMode::Penalty) {
@@ -32,7 +32,7 @@ void BallDrop::jacobian(double, ConstVectorRef y, const ContactModes& modes, Spa
     a = -dforce_ddelta(p_.law, -y[0], -y[1]) / p_.m;
     b = -dforce_drate(p_.law, -y[0], -y[1]) / p_.m;
   }
-  const Triplet entries[] = {{0, 1, dx}, {1, 0, a}, {1, 1, b}};
+  const Triplet entries[] = {{0, 0, 0.0}, {0, 1, dx}, {1, 0, a}, {1, 1, b}};
   J.resize(2, 2);
   J.setFromTriplets(std::begin(entries), std::end(entries));
 }

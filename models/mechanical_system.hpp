@@ -38,7 +38,10 @@ class MechanicalSystem {
   // y' = f(t, y) with every contact in the given mode.
   virtual void rhs(double t, ConstVectorRef y, const ContactModes& modes, VectorRef ydot) const = 0;
   // Analytic df/dy for the same modes, sized state_size() square. Every entry of the pattern is
-  // stored, zeros included, whatever the modes, so that sparse factorisations can reuse it.
+  // stored, zeros included, whatever the modes, so that sparse factorisations can reuse it; the
+  // pattern includes the whole diagonal, which the Newton matrix I - gamma J needs (without it
+  // SUNDIALS inserts the diagonal into the sparse arrays at every setup, an O(N nnz) shuffle that
+  // made KLU quadratic in the chain's length).
   virtual void jacobian(double t, ConstVectorRef y, const ContactModes& modes, SparseMatrix& J) const = 0;
   // The band that holds every non-zero of the Jacobian (default: full).
   virtual Bandwidth jacobian_bandwidth() const {

@@ -23,7 +23,7 @@ class SpringMass final : public MechanicalSystem {
     ydot << y[1], -(k_ / m_) * y[0];
   }
   void jacobian(double, ConstVectorRef, const ContactModes&, SparseMatrix& J) const override {
-    const Triplet entries[] = {{0, 1, 1.0}, {1, 0, -(k_ / m_)}};
+    const Triplet entries[] = {{0, 0, 0.0}, {0, 1, 1.0}, {1, 0, -(k_ / m_)}, {1, 1, 0.0}};
     J.resize(2, 2);
     J.setFromTriplets(std::begin(entries), std::end(entries));
   }

@@ -85,6 +85,10 @@ TEST(BallChain, JacobianMatchesCentralDifferencesInEveryMode) {
           upper = std::max(upper, j - static_cast<long>(it.row()));
         }
       EXPECT_EQ(lower, c.jacobian_bandwidth().lower);
+      for (Eigen::Index d = 0; d < J.rows(); ++d) EXPECT_TRUE(J.coeff(d, d) == J.coeff(d, d) && [&] {
+        for (SparseMatrix::InnerIterator it(J, d); it; ++it) if (it.row() == d) return true;
+        return false;
+      }()) << "diagonal entry " << d << " missing from the pattern";
       EXPECT_EQ(upper, c.jacobian_bandwidth().upper);
       // The pattern does not depend on the mode (sparse factorisations reuse it).
       SparseMatrix J_free;

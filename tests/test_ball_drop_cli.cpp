@@ -83,6 +83,10 @@ TEST_F(BallDropCli, BadInputIsRefusedWithOptionValueAndRangeAndWritesNothing) {
       {"--law rubber", "--law", "'rubber'", "kelvin-voigt"},
       {"--bogus 3", "--bogus", "", "--help"},
       {"--sweep --k-min 1e6 --k-max 1e3", "--k-max", "'1000'", "k-min"},
+      {"--integrator warp", "--integrator", "'warp'", "cvode-bdf"},
+      {"--linear-solver cholesky", "--linear-solver", "'cholesky'", "klu"},
+      {"--integrator gsl-rk8pd --linear-solver klu", "--linear-solver", "'klu'", "implicit SUNDIALS methods"},
+      {"--jacobian exact", "--jacobian", "'exact'", "analytic, dq"},
   };
   for (const auto& c : cases) {
     const Outcome r = run(c.args + " --out results");
@@ -107,6 +111,7 @@ TEST_F(BallDropCli, HelpListsEveryOptionWithDefaultAndRange) {
   const Outcome r = run("--help");
   EXPECT_EQ(r.code, 0);
   for (const char* s : {"--method", "--law", "--k FLOAT:in (0, inf)=100000", "--e FLOAT:in [0, 1]=0.8",
+                        "--integrator", "--linear-solver", "arkode-imex", "gmres-band",
                         "--m", "--g", "--h0", "--dt", "--rtol", "--atol", "--t-end", "--out", "--sweep",
                         "event-exact", "game-symplectic-spring"})
     EXPECT_NE(r.out.find(s), std::string::npos) << s;

@@ -32,6 +32,12 @@ void expect_jacobian_matches(const MechanicalSystem& s, ConstVectorRef y, const 
   SparseMatrix sparse;
   s.jacobian(0.0, y, modes, sparse);
   const Matrix analytic(sparse);
+  // The pattern holds the whole diagonal (mechanical_system.hpp says why).
+  for (Eigen::Index d = 0; d < sparse.rows(); ++d) {
+    bool stored = false;
+    for (SparseMatrix::InnerIterator it(sparse, d); it; ++it) stored = stored || it.row() == d;
+    EXPECT_TRUE(stored) << s.name() << ": diagonal entry " << d << " missing from the pattern";
+  }
   const Matrix numeric = central_difference(s, y, modes);
   const double scale = std::max(1.0, numeric.cwiseAbs().maxCoeff());
   EXPECT_LE((analytic - numeric).cwiseAbs().maxCoeff(), 1e-7 * scale) << s.name() << "\\n" << analytic << "\\n" << numeric;

@@ -1,0 +1,55 @@
+// N-ball chain under CVODE BDF with each linear solver, N = 10 ... 1e5 (dense to 1e3, where
+// its N^3 factorisations already take seconds). Ten touching balls' worth of wave: t in
+// [0, 2 ms] after the striker (touching ball 1, v0 = 1 m/s) hits; Hooke k = 1e6 N/m, m = 0.1 kg.
+// Counter time_per_sim_s: wall time per simulated second, the number the targets are about.
+#include "ball_chain.hpp"
+#include "penalty.hpp"
+
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+
+using namespace contact;
+
+namespace {
+
+constexpr double kTEnd = 2e-3;
+
+void Chain(benchmark::State& state, LinearSolverKind solver) {
+  BallChainParams p;
+  p.n = static_cast<std::size_t>(state.range(0));
+  p.approach = 0.0;
+  p.law = Hooke{1e6};
+  const BallChain chain(p);
+  PenaltyOptions o;
+  o.t_end = kTEnd;
+  o.sample_dt = kTEnd;
+  o.integrator.rtol = 1e-6;
+  o.integrator.atol = 1e-10;
+  o.integrator.linear_solver = solver;
+  o.integrator.max_steps = 10000000;
+  RunResult r;
+  double seconds = 0;
+  for (auto _ : state) {
+    const auto t0 = std::chrono::steady_clock::now();
+    r = run_penalty(chain, o);
+    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
+  state.counters["N"] = static_cast<double>(p.n);
+  state.counters["steps"] = static_cast<double>(r.stats.steps);
+  state.counters["rhs_evals"] = static_cast<double>(r.stats.rhs_evals);
+  state.counters["jac_evals"] = static_cast<double>(r.stats.jac_evals);
+  state.counters["linear_iters"] = static_cast<double>(r.stats.linear_iters);
+  state.counters["time_per_sim_s"] = seconds / static_cast<double>(state.iterations()) / kTEnd;
+  if (!r.ok()) state.SkipWithError(r.message.c_str());
+}
+
+}  // namespace
+
+BENCHMARK_CAPTURE(Chain, dense, LinearSolverKind::Dense)->RangeMultiplier(10)->Range(10, 1000)->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(Chain, band, LinearSolverKind::Band)->RangeMultiplier(10)->Range(10, 100000)->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(Chain, klu, LinearSolverKind::Klu)->RangeMultiplier(10)->Range(10, 100000)->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(Chain, gmres, LinearSolverKind::Gmres)->RangeMultiplier(10)->Range(10, 100000)->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(Chain, gmres_band, LinearSolverKind::GmresBandPreconditioned)->RangeMultiplier(10)->Range(10, 100000)->Iterations(1)->Unit(benchmark::kMillisecond);
+
+BENCHMARK_MAIN();

@@ -1,0 +1,105 @@
+// Ball drop under every integrator, k = 10^2 ... 10^10, and the study's benchmark targets.
+//   BallDrop/<integrator>/<log10 k>: penalty ball drop (Kelvin–Voigt tuned to e = 0.8, t in
+//     [0, 3] s, contacts root-located). Adaptive methods at rtol 1e-6, atol 1e-9; fixed-step
+//     methods at w dt = 0.05 (w = sqrt(k/m)), the step their accuracy and stability ask for.
+//   ApexTarget/<integrator>/<-log10 rtol>: undamped Hooke ball at k = 1e6, the largest error of
+//     the first five apex heights against the exact penalty solution (h0: the spring returns the
+//     impact speed) and the right-hand sides it took.
+//   ExactBounces: event-driven impacts per second with the closed-form flight.
+// Counters are work, not time: steps, rhs_evals, jac_evals, contacts, steps_per_contact.
+#include "ball_drop.hpp"
+#include "event_driven.hpp"
+#include "penalty.hpp"
+
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+
+using namespace contact;
+
+namespace {
+
+void report(benchmark::State& state, const RunResult& r) {
+  state.counters["steps"] = static_cast<double>(r.stats.steps);
+  state.counters["rhs_evals"] = static_cast<double>(r.stats.rhs_evals);
+  state.counters["jac_evals"] = static_cast<double>(r.stats.jac_evals);
+  state.counters["contacts"] = static_cast<double>(r.contacts.size());
+  state.counters["steps_per_contact"] =
+      r.contacts.empty() ? 0.0 : static_cast<double>(r.stats.steps) / static_cast<double>(r.contacts.size());
+  if (!r.ok()) state.SkipWithError(r.message.c_str());
+}
+
+void BallDrop_(benchmark::State& state, const std::string& method) {
+  const double k = std::pow(10.0, static_cast<double>(state.range(0)));
+  const BallDrop model({1.0, 9.81, 1.0, 0.0, 0.8, kelvin_voigt_for_restitution(k, 1.0, 0.8, false)});
+  PenaltyOptions o;
+  o.t_end = 3.0;
+  o.sample_dt = 3.0;  // no dense output: the integration alone
+  o.integrator.method = method;
+  o.integrator.rtol = 1e-6;
+  o.integrator.atol = 1e-9;
+  o.integrator.max_steps = 100000000;
+  if (!integrator_info(method).adaptive) o.integrator.dt = 0.05 / std::sqrt(k);
+  RunResult r;
+  for (auto _ : state) r = run_penalty(model, o);
+  report(state, r);
+}
+
+void ApexTarget(benchmark::State& state, const std::string& method) {
+  const BallDrop model({1.0, 9.81, 1.0, 0.0, 1.0, Hooke{1e6}});
+  PenaltyOptions o;
+  o.t_end = 4.6;  // five bounces of 2 t0 = 0.9 s
+  o.sample_dt = 4.6;
+  o.integrator.method = method;
+  o.integrator.rtol = std::pow(10.0, -static_cast<double>(state.range(0)));
+  o.integrator.atol = o.integrator.rtol * 1e-2;
+  o.integrator.max_steps = 10000000;
+  RunResult r;
+  for (auto _ : state) r = run_penalty(model, o);
+  double worst = 0;
+  for (std::size_t n = 0; n < 5 && n < r.apexes.size(); ++n) worst = std::max(worst, std::abs(r.apexes[n].gap - 1.0));
+  report(state, r);
+  state.counters["apexes"] = static_cast<double>(r.apexes.size());
+  state.counters["apex_error_m"] = worst;
+}
+
+void ExactBounces(benchmark::State& state) {
+  // e = 0.9: about 270 impacts before the rest guard (rest speed 1e-12 m/s) ends the cascade.
+  const BallDrop model({1.0, 9.81, 1.0, 0.0, 0.9, Hooke{1e6}});
+  EventOptions o;
+  o.t_end = 10.0;
+  o.sample_dt = 10.0;
+  o.rest_speed = 1e-12;
+  long impacts = 0;
+  RunResult r;
+  for (auto _ : state) {
+    r = run_event_driven(model, model, o);
+    impacts += static_cast<long>(r.contacts.size());
+  }
+  state.counters["impacts"] = static_cast<double>(r.contacts.size());
+  state.counters["impacts_per_s"] = benchmark::Counter(static_cast<double>(impacts), benchmark::Counter::kIsRate);
+}
+
+void register_all() {
+  for (const auto& info : integrator_catalog()) {
+    // Fixed-step methods at k = 1e10 take 1e7 steps; they stop at 1e8.
+    const int k_max = info.adaptive ? 10 : 8;
+    auto* b = benchmark::RegisterBenchmark(("BallDrop/" + info.name).c_str(), BallDrop_, info.name);
+    b->DenseRange(2, k_max, 1)->Unit(benchmark::kMillisecond)->Iterations(info.adaptive ? 3 : 1);
+    if (info.adaptive) {
+      benchmark::RegisterBenchmark(("ApexTarget/" + info.name).c_str(), ApexTarget, info.name)
+          ->DenseRange(8, 12, 2)->Unit(benchmark::kMillisecond)->Iterations(1);
+    }
+  }
+  benchmark::RegisterBenchmark("ExactBounces", ExactBounces)->Unit(benchmark::kMicrosecond);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  register_all();
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
