@@ -50,7 +50,9 @@ int main(int argc, char** argv) {
     const json j = json::parse(in);
     context = j["context"];
     for (const auto& b : j["benchmarks"]) {
-      const std::string name = b["name"];
+      std::string name = b["name"];
+      // "Family/variant/arg/iterations:N": the last part is Google Benchmark's, not ours.
+      if (const auto it = name.find("/iterations:"); it != std::string::npos) name.erase(it);
       const auto s1 = name.find('/'), s2 = name.rfind('/');
       Row r{name.substr(0, s1), "", 0, b};
       if (s1 != std::string::npos && s2 != s1) {
@@ -59,7 +61,6 @@ int main(int argc, char** argv) {
       } else if (s1 != std::string::npos) {
         r.variant = name.substr(s1 + 1);
       }
-      if (r.variant.find("/iterations:") != std::string::npos) r.variant = r.variant.substr(0, r.variant.find('/'));
       rows.push_back(r);
     }
   }
