@@ -16,6 +16,7 @@ RunMetrics compute_metrics(const RunResult& run) {
   auto rel = [&](double E) { return (E - run.energy0) / scale; };
   for (const auto& s : run.samples) m.max_energy_error = std::max(m.max_energy_error, std::abs(rel(s.energy)));
   for (const auto& a : run.apexes) m.max_energy_error = std::max(m.max_energy_error, std::abs(rel(a.energy)));
+  for (double d : energy_drifts(run)) m.max_energy_drift = std::max(m.max_energy_drift, std::abs(d));
   m.final_energy_error = run.samples.empty() ? kNaN : rel(run.samples.back().energy);
   m.contacts = run.contacts.size();
   m.first_penetration = m.first_duration = m.first_restitution = kNaN;
@@ -30,6 +31,13 @@ RunMetrics compute_metrics(const RunResult& run) {
   for (const auto& c : run.contacts) m.max_penetration = std::max(m.max_penetration, c.max_penetration);
   m.first_apex = run.apexes.empty() ? kNaN : run.apexes.front().gap;
   return m;
+}
+
+std::vector<double> energy_drifts(const RunResult& run) {
+  std::vector<double> out;
+  const double scale = std::abs(run.energy0) > 0 ? std::abs(run.energy0) : 1.0;
+  for (const auto& s : run.samples) out.push_back((run.energy0 - s.energy - s.dissipated) / scale);
+  return out;
 }
 
 std::vector<double> apex_energy_errors(const RunResult& run) {

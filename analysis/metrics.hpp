@@ -9,6 +9,7 @@ namespace contact {
 
 struct RunMetrics {
   double max_energy_error = 0;   // max |E - E0| / |E0| over samples and apexes
+  double max_energy_drift = 0;   // max |E0 - E - dissipated| / |E0|: the numerical part
   double final_energy_error = 0; // (E(t_end) - E0) / |E0|
   std::size_t contacts = 0;      // contacts begun
   // First contact (NaN when there is none or it never closed):
@@ -21,6 +22,8 @@ struct RunMetrics {
 
 RunMetrics compute_metrics(const RunResult& run);
 
+// Relative energy drift (E0 - E - dissipated) / |E0| of each sample, in order.
+std::vector<double> energy_drifts(const RunResult& run);
 // Relative energy error at each apex, in order.
 std::vector<double> apex_energy_errors(const RunResult& run);
 // Effective restitution of each closed contact, in order.

@@ -71,12 +71,12 @@ std::vector<std::string> chosen_methods(const Options& o) {
 // Metric and cost columns shared by the comparison and sweep tables.
 const std::vector<std::string> kMetricColumns = {
     "status", "contacts", "first_penetration_m", "first_duration_s", "first_restitution",
-    "first_apex_m", "max_energy_change_rel", "steps", "rhs_evals", "jac_evals", "wall_time_s"};
+    "first_apex_m", "max_energy_change_rel", "energy_drift_rel", "steps", "rhs_evals", "jac_evals", "wall_time_s"};
 
 std::vector<Table::Cell> metric_cells(const RunResult& r) {
   const RunMetrics m = compute_metrics(r);
   return {std::string(to_string(r.status)), static_cast<long>(m.contacts), m.first_penetration,
-          m.first_duration, m.first_restitution, m.first_apex, m.max_energy_error, r.stats.steps,
+          m.first_duration, m.first_restitution, m.first_apex, m.max_energy_error, m.max_energy_drift, r.stats.steps,
           r.stats.rhs_evals, r.stats.jac_evals, r.stats.wall_time_s};
 }
 
@@ -86,7 +86,7 @@ void add_run_files(const RunResult& r, Table& contacts, Table& apexes, Table& sa
   const auto drift = apex_energy_errors(r);
   for (std::size_t j = 0; j < r.apexes.size(); ++j)
     apexes.add_row({r.method, r.apexes[j].t, r.apexes[j].gap, r.apexes[j].energy, drift[j]});
-  for (const auto& s : r.samples) samples.add_row({r.method, s.t, s.y[0], s.y[1], s.energy});
+  for (const auto& s : r.samples) samples.add_row({r.method, s.t, s.y[0], s.y[1], s.energy, s.dissipated});
   const auto& st = r.stats;
   stats.add_row({r.method, std::string(to_string(r.status)), r.t_reached, st.steps, st.failed_steps,
                  st.rhs_evals, st.jac_evals, st.newton_iters, st.linear_setups, st.root_evals,
@@ -125,7 +125,7 @@ int run_single(const Options& o, OutputSet& out) {
   }());
   Table contacts({"method", "t_begin_s", "t_end_s", "max_penetration_m", "v_in_mps", "v_out_mps"});
   Table apexes({"method", "t_s", "height_m", "energy_J", "energy_change_rel"});
-  Table samples({"method", "t_s", "y_m", "v_mps", "energy_J"});
+  Table samples({"method", "t_s", "y_m", "v_mps", "energy_J", "dissipated_J"});
   Table stats({"method", "status", "t_reached_s", "steps", "failed_steps", "rhs_evals", "jac_evals",
                "newton_iters", "linear_setups", "root_evals", "events", "restarts", "wall_time_s",
                "message"});

@@ -40,6 +40,7 @@ class Impacts {
     // bounce lower than the absolute tolerance): the cascade has ended there. The impulse would
     // turn that separating rate into an approaching one, so the contact rests instead.
     const bool unresolved = v_in >= 0;
+    const double before = model_.energy(y);
     if (!unresolved) model_.apply_impulse(i, model_.restitution(i), y);
     const bool slow = unresolved || model_.gap_rate(i, y) < opt_.rest_speed;
     const bool crowded = t - last_[i] < opt_.min_event_spacing;
@@ -48,6 +49,7 @@ class Impacts {
       model_.settle(i, y);
       modes_[i] = ContactMode::Resting;
     }
+    rec_.add_dissipated(before - model_.energy(y));  // the impulse's loss, and the final stop
     last_[i] = t;
   }
 

@@ -62,7 +62,14 @@ RunResult run_game(const MechanicalSystem& model, const GameOptions& opt) {
     t = n == n_steps ? opt.t_end : static_cast<double>(n) * opt.dt;
     y_prev = y;
     // 1. integrate
-    if (spring) model.modes_from_state(y, modes);
+    if (spring) {
+      model.modes_from_state(y, modes);
+      // The dashpot's loss over the step, by the rectangle rule the Euler step itself uses.
+      double power = 0;
+      for (std::size_t i = 0; i < nc; ++i)
+        if (modes[i] == ContactMode::Penalty) power += model.dissipated_power(i, y);
+      rec.add_dissipated(h * power);
+    }
     stats.rhs_evals += fixed_step(opt.scheme, f, positions, t0, h, y, work);
     stats.steps += 1;
     if (!y.allFinite()) {
@@ -85,7 +92,9 @@ RunResult run_game(const MechanicalSystem& model, const GameOptions& opt) {
         rec.observe_penetration(i, -model.gap(i, y));
         if (project) model.project(i, y);
         if (impulse && model.gap_rate(i, y) < 0) {
+          const double before = model.energy(y);
           model.apply_impulse(i, model.restitution(i), y);
+          rec.add_dissipated(before - model.energy(y));
           stats.events += 1;
         }
       }

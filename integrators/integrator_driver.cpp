@@ -34,8 +34,8 @@ RunResult drive(OdeSystem system, ConstVectorRef y0, const IntegratorOptions& op
           continue;
         }
       }
-      if (events.before_sample) events.before_sample(integrator->y());
-      rec.sample(t, integrator->y());
+      if (events.sample) events.sample(t, integrator->y());
+      else rec.sample(t, integrator->y());
     }
   } catch (const SolverFailure& f) {
     return rec.fail(f, stats());
@@ -67,6 +67,42 @@ OdeSystem mechanical_ode(const MechanicalSystem& model, ModesAt modes_at) {
     model.jacobian(t, y, *free, J_free);
     J -= J_free;
   };
+  return sys;
+}
+
+OdeSystem with_ledger(OdeSystem base, std::function<double(ConstVectorRef y)> power) {
+  const auto n = static_cast<Eigen::Index>(base.size);
+  OdeSystem sys = base;
+  sys.size = base.size + 1;
+  if (base.positions.size() > 0) {
+    sys.positions.resize(n + 1);
+    sys.positions << base.positions, false;
+  }
+  sys.rhs = [base, power, n](double t, ConstVectorRef y, VectorRef yd) {
+    base.rhs(t, y.head(n), yd.head(n));
+    yd[n] = power(y.head(n));
+  };
+  // Every Jacobian gets the extra row and column with only its (zero) diagonal entry.
+  auto extend = [n](const OdeSystem::Jacobian& jac) -> OdeSystem::Jacobian {
+    if (!jac) return {};
+    return [jac, n](double t, ConstVectorRef y, SparseMatrix& J) {
+      jac(t, y.head(n), J);
+      J.conservativeResize(n + 1, n + 1);
+      J.insert(n, n) = 0.0;
+      J.makeCompressed();
+    };
+  };
+  sys.jacobian = extend(base.jacobian);
+  if (base.implicit_rhs) {
+    sys.implicit_rhs = [base, n](double t, ConstVectorRef y, VectorRef yd) {
+      base.implicit_rhs(t, y.head(n), yd.head(n));
+      yd[n] = 0.0;
+    };
+    sys.implicit_jacobian = extend(base.implicit_jacobian);
+  }
+  if (base.roots) {
+    sys.roots = [base, n](double t, ConstVectorRef y, VectorRef g) { base.roots(t, y.head(n), g); };
+  }
   return sys;
 }
 

@@ -15,8 +15,8 @@ struct EventHandling {
   // Called at every root with the state there (editable) and the root info. Returns whether the
   // integrator must restart from (t, y).
   std::function<bool(double t, Vector& y, const std::vector<int>& roots_found)> on_roots;
-  // Called just before each sample is recorded (optional).
-  std::function<void(ConstVectorRef y)> before_sample;
+  // Records a sample (optional; default: the recorder's sample(t, y)).
+  std::function<void(double t, ConstVectorRef y)> sample;
   std::vector<int> root_directions;  // empty: both directions
 };
 
@@ -37,5 +37,10 @@ RunResult drive(OdeSystem system, ConstVectorRef y0, const IntegratorOptions& op
 // No root functions; the paradigm adds its own.
 using ModesAt = std::function<const ContactModes&(ConstVectorRef y)>;
 OdeSystem mechanical_ode(const MechanicalSystem& model, ModesAt modes_at);
+
+// The same ODE with one more state, W' = power(y): the energy a physical loss has removed. W
+// enters nothing else, so its Jacobian row is left empty (Newton's iteration for W converges as
+// soon as y's does) and the band is unchanged; in an IMEX split it is explicit.
+OdeSystem with_ledger(OdeSystem base, std::function<double(ConstVectorRef y)> power);
 
 }  // namespace contact

@@ -28,8 +28,10 @@ double RunRecorder::next_sample_time() const {
                                       : std::numeric_limits<double>::infinity();
 }
 
-void RunRecorder::sample(double t, ConstVectorRef y) {
-  result_.samples.push_back({t, y, model_.energy(y)});
+void RunRecorder::sample(double t, ConstVectorRef y) { sample(t, y, dissipated_); }
+
+void RunRecorder::sample(double t, ConstVectorRef y, double dissipated) {
+  result_.samples.push_back({t, y, model_.energy(y), dissipated});
   // Fixed-step methods sample at step ends: skip every grid time this sample stands for.
   while (next_sample_ < times_.size() && times_[next_sample_] <= t * (1 + 1e-12)) ++next_sample_;
 }
@@ -54,7 +56,11 @@ void RunRecorder::observe_penetration(std::size_t i, double penetration) {
 }
 
 void RunRecorder::apex(std::size_t i, double t, double gap, double energy) {
-  result_.apexes.push_back({i, t, gap, energy});
+  apex(i, t, gap, energy, dissipated_);
+}
+
+void RunRecorder::apex(std::size_t i, double t, double gap, double energy, double dissipated) {
+  result_.apexes.push_back({i, t, gap, energy, dissipated});
 }
 
 RunResult RunRecorder::finish(SolverStats stats, double t_reached) {

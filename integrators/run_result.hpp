@@ -12,9 +12,10 @@
 namespace contact {
 
 struct Sample {
-  double t;       // [s]
-  Vector y;       // state, labelled by the model's state_labels()
-  double energy;  // [J]
+  double t;           // [s]
+  Vector y;           // state, labelled by the model's state_labels()
+  double energy;      // [J]
+  double dissipated;  // energy removed by physical dissipation so far [J] (dashpots, impulses)
 };
 
 // One contact, from the moment the bodies start to interact to the moment they stop.
@@ -35,11 +36,16 @@ struct ContactRecord {
 // A local maximum of a contact's gap during free flight (the top of a bounce).
 struct Apex {
   std::size_t contact = 0;
-  double t = 0.0;       // [s]
-  double gap = 0.0;     // [m]
-  double energy = 0.0;  // [J]
+  double t = 0.0;           // [s]
+  double gap = 0.0;         // [m]
+  double energy = 0.0;      // [J]
+  double dissipated = 0.0;  // [J], as in Sample
 };
 
+// The energy ledger: E0 = E(t) + dissipated(t) + drift(t). Penalty runs integrate the laws'
+// dissipated power as an extra state; impulsive methods add the kinetic energy each impulse
+// removes. What is left, the drift, is numerical: integration error, and for game methods the
+// energy that projection adds or removes.
 struct RunResult {
   std::string method;
   std::vector<std::string> state_labels;

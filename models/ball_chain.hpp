@@ -55,6 +55,9 @@ class BallChain final : public MechanicalSystem {
     return contact::switching(p_.law, -gap(i, y), -gap_rate(i, y));
   }
 
+  double dissipated_power(std::size_t i, ConstVectorRef y) const override {
+    return contact::dissipated_power(p_.law, -gap(i, y), -gap_rate(i, y));
+  }
   double restitution(std::size_t) const override { return p_.e; }
   void project(std::size_t i, VectorRef y) const override;
   void apply_impulse(std::size_t i, double e, VectorRef y) const override;

@@ -47,6 +47,9 @@ class BallDrop final : public MechanicalSystem, public AnalyticFlight {
     return contact::switching(p_.law, -y[0], -y[1]);
   }
 
+  double dissipated_power(std::size_t, ConstVectorRef y) const override {
+    return contact::dissipated_power(p_.law, -y[0], -y[1]);
+  }
   double restitution(std::size_t) const override { return p_.e; }
   void project(std::size_t i, VectorRef y) const override;
   void apply_impulse(std::size_t i, double e, VectorRef y) const override;

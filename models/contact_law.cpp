@@ -31,6 +31,9 @@ double switching(const ContactLaw& law, double d, double dd) {
 double stored_energy(const ContactLaw& law, double d) {
   return std::visit([&](const auto& l) { return l.stored_energy(d); }, law);
 }
+double dissipated_power(const ContactLaw& law, double d, double dd) {
+  return std::visit([&](const auto& l) { return l.dissipated_power(d, dd); }, law);
+}
 double stiffness(const ContactLaw& law) {
   return std::visit([](const auto& l) { return l.k; }, law);
 }
@@ -38,6 +41,9 @@ double stiffness(const ContactLaw& law) {
 std::string describe(const ContactLaw& law) {
   struct Describe {
     std::string operator()(const Hooke& h) const { return fmt::format("hooke k={:g} N/m", h.k); }
+    std::string operator()(const HuntCrossley& h) const {
+      return fmt::format("hunt-crossley K={:g} N/m^{:g} n={:g} chi={:g} s/m", h.k, h.n, h.n, h.chi);
+    }
     std::string operator()(const KelvinVoigt& kv) const {
       return fmt::format("kelvin-voigt{} k={:g} N/m c={:g} N s/m", kv.no_pull ? " (no pull)" : "",
                          kv.k, kv.c);
@@ -45,5 +51,32 @@ std::string describe(const ContactLaw& law) {
   };
   return std::visit(Describe{}, law);
 }
+
+double damping_factor(DampingRule rule, double e, double v) {
+  switch (rule) {
+    case DampingRule::HuntCrossley: return 3.0 * (1.0 - e) / (2.0 * v);
+    case DampingRule::LankaraniNikravesh: return 3.0 * (1.0 - e * e) / (4.0 * v);
+    case DampingRule::Flores: return 8.0 * (1.0 - e) / (5.0 * e * v);
+    case DampingRule::Gonthier: return (1.0 - e * e) / (e * v);
+  }
+  return 0.0;
+}
+
+std::string_view to_string(DampingRule rule) {
+  switch (rule) {
+    case DampingRule::HuntCrossley: return "hunt-crossley";
+    case DampingRule::LankaraniNikravesh: return "lankarani-nikravesh";
+    case DampingRule::Flores: return "flores";
+    case DampingRule::Gonthier: return "gonthier";
+  }
+  return "?";
+}
+
+double effective_modulus(double E1, double nu1, double E2, double nu2) {
+  const double c2 = std::isinf(E2) ? 0.0 : (1.0 - nu2 * nu2) / E2;
+  return 1.0 / ((1.0 - nu1 * nu1) / E1 + c2);
+}
+
+double hertz_stiffness(double radius, double E_eff) { return 4.0 / 3.0 * E_eff * std::sqrt(radius); }
 
 }  // namespace contact

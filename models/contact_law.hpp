@@ -9,10 +9,12 @@
 //   dforce_drate(d, dd)     dF/d(delta_dot);
 //   switching(d, dd)        > 0 exactly while the law pushes [m]; its zeros are where the force
 //                           switches on or off, located by root finding;
-//   stored_energy(d)        elastic energy held in the spring [J].
+//   stored_energy(d)        elastic energy held in the spring [J];
+//   dissipated_power(d, dd) power the law's damping removes while it pushes [W] (energy ledger).
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <string_view>
 #include <variant>
 
 namespace contact {
@@ -26,6 +28,7 @@ struct Hooke {
   double dforce_drate(double, double) const { return 0.0; }
   double switching(double d, double) const { return d; }
   double stored_energy(double d) const { return d > 0 ? 0.5 * k * d * d : 0.0; }
+  double dissipated_power(double, double) const { return 0.0; }
 };
 
 // Spring and dashpot in parallel: F = k delta + c delta_dot.
@@ -48,9 +51,54 @@ struct KelvinVoigt {
     return no_pull ? std::min(d, d + (c / k) * dd) : d;
   }
   double stored_energy(double d) const { return d > 0 ? 0.5 * k * d * d : 0.0; }
+  // Power the dashpot takes out while the law is on [W]: c delta_dot^2. (Unclamped, the dashpot
+  // also acts at small negative delta near the end; the ledger counts it where the law is on.)
+  double dissipated_power(double, double dd) const { return c * dd * dd; }
 };
 
-using ContactLaw = std::variant<Hooke, KelvinVoigt>;
+// The Hunt–Crossley family: F = K delta^n (1 + chi delta_dot), clamped to F >= 0 (a contact
+// pushes, it never glues). n = 3/2 with chi = 0 is Hertz's law. The damping term vanishes with
+// the overlap, so the force has no jump when contact begins or ends, unlike Kelvin–Voigt.
+// For delta < 0 (the smooth extension integrators may probe past a located root) delta^n is
+// continued as sign(delta) |delta|^n.
+struct HuntCrossley {
+  double k = 1e9;    // K [N/m^n]
+  double n = 1.5;    // exponent
+  double chi = 0.0;  // damping factor [s/m]
+
+  double force(double d, double dd) const { return k * pow_n(d) * (1.0 + chi * dd); }
+  double dforce_ddelta(double d, double dd) const {
+    return k * n * std::pow(std::abs(d), n - 1.0) * (1.0 + chi * dd);
+  }
+  double dforce_drate(double d, double) const { return k * chi * pow_n(d); }
+  // On while overlapping and 1 + chi delta_dot > 0. The second factor is dimensionless; it is
+  // scaled by 1 mm only to read as a length (a root's location does not depend on the scale).
+  double switching(double d, double dd) const { return std::min(d, 1e-3 * (1.0 + chi * dd)); }
+  double stored_energy(double d) const { return d > 0 ? k * std::pow(d, n + 1.0) / (n + 1.0) : 0.0; }
+  double dissipated_power(double d, double dd) const { return d > 0 ? k * chi * pow_n(d) * dd * dd : 0.0; }
+
+ private:
+  double pow_n(double d) const { return std::copysign(std::pow(std::abs(d), n), d); }
+};
+
+using ContactLaw = std::variant<Hooke, KelvinVoigt, HuntCrossley>;
+
+// Rules that set the Hunt–Crossley damping factor from a target restitution e and the impact
+// speed v (> 0); each was derived for a particular range of e, and the study measures how far
+// each misses its target elsewhere:
+//   Hunt & Crossley (1975)          chi = 3 (1 - e) / (2 v)
+//   Lankarani & Nikravesh (1990)    chi = 3 (1 - e^2) / (4 v)        (derived for e near 1)
+//   Flores et al. (2011)            chi = 8 (1 - e) / (5 e v)
+//   Gonthier et al. (2004)          chi = (1 - e^2) / (e v)
+enum class DampingRule { HuntCrossley, LankaraniNikravesh, Flores, Gonthier };
+double damping_factor(DampingRule rule, double e, double v);
+std::string_view to_string(DampingRule rule);
+
+// Hertz stiffness of a sphere of radius R [m] on a flat, K = (4/3) E* sqrt(R) [N/m^(3/2)], with
+// the effective modulus 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2 (a rigid flat: E2 = infinity).
+// For two spheres R is the effective radius R1 R2 / (R1 + R2).
+double effective_modulus(double E1, double nu1, double E2, double nu2);
+double hertz_stiffness(double radius, double effective_modulus);
 
 // Damping ratio zeta of the unclamped linear spring-dashpot that gives restitution e on an
 // isolated contact without gravity.
@@ -71,6 +119,7 @@ double dforce_ddelta(const ContactLaw& law, double d, double dd);
 double dforce_drate(const ContactLaw& law, double d, double dd);
 double switching(const ContactLaw& law, double d, double dd);
 double stored_energy(const ContactLaw& law, double d);
+double dissipated_power(const ContactLaw& law, double d, double dd);
 double stiffness(const ContactLaw& law);
 std::string describe(const ContactLaw& law);
 

@@ -58,6 +58,8 @@ class MechanicalSystem {
   virtual double gap_rate(std::size_t i, ConstVectorRef y) const = 0;
   // > 0 exactly while the penalty law of contact i pushes [m].
   virtual double switching(std::size_t i, ConstVectorRef y) const = 0;
+  // Power contact i's penalty law dissipates while in Penalty mode [W] (the energy ledger).
+  virtual double dissipated_power(std::size_t i, ConstVectorRef y) const = 0;
 
   // Impulsive resolution, the seed's way. e is Newton's restitution for contact i.
   virtual double restitution(std::size_t i) const = 0;

@@ -132,7 +132,7 @@ TEST_F(BallDropCli, SuccessfulRunWritesEveryDeclaredFileWithItsColumns) {
   const std::vector<std::pair<std::string, std::string>> files = {
       {"contacts.csv", "method,t_begin_s,t_end_s,max_penetration_m,v_in_mps,v_out_mps"},
       {"apexes.csv", "method,t_s,height_m,energy_J,energy_change_rel"},
-      {"samples.csv", "method,t_s,y_m,v_mps,energy_J"},
+      {"samples.csv", "method,t_s,y_m,v_mps,energy_J,dissipated_J"},
       {"stats.csv", "method,status,t_reached_s,steps,failed_steps,rhs_evals,jac_evals,newton_iters,"
                     "linear_setups,root_evals,events,restarts,wall_time_s,message"},
       {"comparison.csv", "method,status,contacts,first_penetration_m"},

@@ -140,3 +140,21 @@ TEST(EventDriven, ImpactCapEndsTheRunWithZenoStatus) {
   EXPECT_NEAR(r.t_reached, ref.impact_time(11), 1e-12);
   EXPECT_NE(r.message.find("more than 10 impacts"), std::string::npos);
 }
+
+// Each impulse books the kinetic energy it removes, (1 - e^2) of the normal part, so the ledger
+// closes to rounding with the exact flight.
+TEST(EventDriven, LedgerBooksEachImpulseLossExactly) {
+  const BallDrop model = ball(0.8);
+  const RunResult r = run_event_driven(model, model, options(3.0));
+  ASSERT_TRUE(r.ok());
+  for (const auto& s : r.samples)
+    EXPECT_NEAR(s.energy + s.dissipated, r.energy0, 64 * kEps * r.energy0) << "t = " << s.t;
+  // After the first impact: m V^2 (1 - e^2) / 2 is gone.
+  const RigidBounces ref(1.0, 0.0, 9.81, 0.8);
+  const double first_loss = 0.5 * ref.V * ref.V * (1 - 0.64);
+  for (const auto& s : r.samples) {
+    if (s.t > ref.T1 && s.t < ref.impact_time(2)) {
+      EXPECT_NEAR(s.dissipated, first_loss, 64 * kEps * r.energy0);
+    }
+  }
+}

@@ -161,3 +161,25 @@ TEST(PenaltyLocating, SwitchesLocatedOrNotGiveTheSameContactAtTightTolerance) {
   EXPECT_NEAR(a.contacts[0].restitution(), b.contacts[0].restitution(), 1e-5);
   EXPECT_GT(b.stats.failed_steps, a.stats.failed_steps);
 }
+
+// The energy ledger: E0 = E + dissipated + drift. The drift is the integration error of E and of
+// the integrated dissipation, each controlled by the tolerance: it must fall with rtol, and stay
+// within ~1000 rtol (global error over ~700 steps and 6 contacts, each within the local tolerance).
+TEST(EnergyLedger, PenaltyDriftShrinksWithTheToleranceWhileTheLossIsPhysical) {
+  const BallDrop model({1.0, 9.81, 1.0, 0.0, 0.8, kelvin_voigt_for_restitution(1e5, 1.0, 0.8, false)});
+  double previous = 1.0;
+  for (double rtol : {1e-6, 1e-8, 1e-10}) {
+    PenaltyOptions o = tight(3.0);
+    o.integrator.rtol = rtol;
+    o.integrator.atol = rtol * 1e-2;
+    const RunResult r = run_penalty(model, o);
+    ASSERT_TRUE(r.ok()) << r.message;
+    const RunMetrics m = compute_metrics(r);
+    EXPECT_LT(m.max_energy_drift, 1000 * rtol) << "rtol " << rtol;
+    EXPECT_LT(m.max_energy_drift, previous) << "rtol " << rtol;
+    previous = m.max_energy_drift;
+    // The loss itself is physical and does not depend on the tolerance: e = 0.8 over six
+    // bounces leaves about e^12 of the energy above the floor, so > 90 % was dissipated.
+    EXPECT_GT(r.samples.back().dissipated / r.energy0, 0.9);
+  }
+}
