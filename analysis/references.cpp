@@ -49,6 +49,18 @@ double clamped_kelvin_voigt_restitution(double zeta) {
   return std::exp(-zeta * (std::numbers::pi - 2.0 * std::asin(zeta)) / std::sqrt(1.0 - zeta * zeta));
 }
 
+double power_law_time_factor(double n) {
+  const double a = 1.0 / (n + 1.0);
+  return a * std::tgamma(a) * std::tgamma(0.5) / std::tgamma(a + 0.5);
+}
+
+SpringContact power_law_contact(double m, double K, double n, double V) {
+  const double dmax = std::pow((n + 1.0) * m * V * V / (2.0 * K), 1.0 / (n + 1.0));
+  return {2.0 * dmax / V * power_law_time_factor(n), dmax, V};
+}
+
+double hunt_crossley_small_damping_loss(double chi, double V) { return 4.0 / 3.0 * chi * V; }
+
 double hooke_impact_time(double m, double k, double h0, double v0, double g, std::size_t n) {
   const RigidBounces rigid(h0, v0, g, 1.0);
   const double cycle = hooke_contact(m, k, rigid.V, g).duration + 2.0 * rigid.V / g;

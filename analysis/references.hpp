@@ -31,6 +31,20 @@
 // and the bracket is -(cos 2a + 2 sin^2 a) = -1, so the ball leaves force-free at
 //   e_clamped = exp(-zeta (pi - 2 asin zeta) / sqrt(1 - zeta^2)) = e_target exp(2 zeta asin(zeta) / sqrt(1 - zeta^2)),
 // always above the target the damping was tuned for (e.g. 0.8 -> 0.808, 0.5 -> 0.550, 0.1 -> 0.253).
+//
+// Power-law contact F = K delta^n (Hertz: n = 3/2), undamped, no gravity, entered at speed V:
+// energy gives V^2 - delta_dot^2 = 2K delta^(n+1) / ((n+1) m), so
+//   delta_max = ((n+1) m V^2 / (2K))^(1/(n+1)),
+//   T_c = 2 int_0^dmax d(delta)/delta_dot = (2 delta_max / V) int_0^1 (1 - x^(n+1))^(-1/2) dx
+//       = (2 delta_max / V) B(1/(n+1), 1/2) / (n+1)
+// (n = 1: pi sqrt(m/K); n = 3/2: 2.9432 delta_max / V, Hertz's classical result).
+//
+// Hunt–Crossley damping F = K delta^n (1 + chi delta_dot) at small chi: the loss is, to first
+// order, the undamped path's integral of K chi delta^n delta_dot^2, twice the approach:
+//   2 K chi delta_max^(n+1) V int_0^1 x^n sqrt(1 - x^(n+1)) dx = (2/3) m chi V^3,
+// the same for every n, so 1 - e^2 = (4/3) chi V + O((chi V)^2). Lankarani–Nikravesh's rule is
+// exactly this; Hunt–Crossley's agrees to first order in (1 - e); Flores' and Gonthier's, built
+// for low restitution, do not.
 #include <cstddef>
 
 namespace contact {
@@ -56,6 +70,12 @@ SpringContact hooke_contact(double m, double k, double V, double g);
 SpringContact kelvin_voigt_contact(double m, double k, double zeta, double V);
 // Restitution achieved by the clamped law with damping ratio zeta < 1, no gravity.
 double clamped_kelvin_voigt_restitution(double zeta);
+// Undamped power-law contact: duration, maximum penetration, exit speed V.
+SpringContact power_law_contact(double m, double K, double n, double V);
+// B(1/(n+1), 1/2)/(n+1): the power-law contact time is 2 delta_max / V times this.
+double power_law_time_factor(double n);
+// Small-damping restitution loss 1 - e^2 of a Hunt–Crossley contact: (4/3) chi V.
+double hunt_crossley_small_damping_loss(double chi, double V);
 
 // Undamped penalty bounce sequence of the ball drop under Hooke (the exact penalty solution):
 // every contact lasts T_c and returns the impact speed, so T(n) = T1 + (n-1)(T_c + 2V/g).
