@@ -1,5 +1,7 @@
 #include "fit.hpp"
 
+#include "gsl_handles.hpp"
+
 #include <gsl/gsl_fit.h>
 #include <gsl/gsl_statistics_double.h>
 
@@ -9,6 +11,7 @@
 namespace contact {
 
 PowerFit fit_power_law(const std::vector<double>& x, const std::vector<double>& y) {
+  gsl::report_errors_by_return_code();
   if (x.size() != y.size() || x.size() < 2) throw std::invalid_argument("fit_power_law: need two or more (x, y) pairs");
   std::vector<double> lx, ly;
   for (std::size_t i = 0; i < x.size(); ++i) {

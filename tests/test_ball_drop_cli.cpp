@@ -1,57 +1,14 @@
 // The ball_drop executable's contract: bad input -> one line naming the option, the value and
 // the accepted range, exit code 2, no output; success -> every declared file with its columns.
-#include <gtest/gtest.h>
+#include "cli_fixture.hpp"
+
 #include <nlohmann/json.hpp>
-
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
-#include <string>
-#include <sys/wait.h>
-#include <unistd.h>
-
-namespace fs = std::filesystem;
 
 namespace {
 
-struct Outcome {
-  int code;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-class BallDropCli : public ::testing::Test {
+class BallDropCli : public CliTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("ball_drop_cli_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  Outcome run(const std::string& args) const {
-    const std::string cmd = "cd '" + dir_.string() + "' && '" BALL_DROP_EXE "' " + args + " >stdout.txt 2>stderr.txt";
-    const int status = std::system(cmd.c_str());
-    Outcome r{WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir_ / "stdout.txt"), slurp(dir_ / "stderr.txt")};
-    fs::remove(dir_ / "stdout.txt");
-    fs::remove(dir_ / "stderr.txt");
-    return r;
-  }
-  bool dir_is_empty() const { return fs::is_empty(dir_); }
-
-  fs::path dir_;
-};
-
-struct BadInput {
-  std::string args, option, value, accepted;
+  Outcome run(const std::string& args) const { return CliTest::run(BALL_DROP_EXE, args); }
 };
 
 }  // namespace
@@ -88,15 +45,7 @@ TEST_F(BallDropCli, BadInputIsRefusedWithOptionValueAndRangeAndWritesNothing) {
       {"--integrator gsl-rk8pd --linear-solver klu", "--linear-solver", "'klu'", "implicit SUNDIALS methods"},
       {"--jacobian exact", "--jacobian", "'exact'", "analytic, dq"},
   };
-  for (const auto& c : cases) {
-    const Outcome r = run(c.args + " --out results");
-    EXPECT_EQ(r.code, 2) << c.args;
-    EXPECT_NE(r.err.find(c.option), std::string::npos) << c.args << ": " << r.err;
-    EXPECT_NE(r.err.find(c.value), std::string::npos) << c.args << ": " << r.err;
-    EXPECT_NE(r.err.find(c.accepted), std::string::npos) << c.args << ": " << r.err;
-    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << c.args << ": one line, got " << r.err;
-    EXPECT_TRUE(dir_is_empty()) << c.args << " wrote files";
-  }
+  expect_refused(BALL_DROP_EXE, cases);
 }
 
 TEST_F(BallDropCli, OutputThatIsAFileIsRefused) {

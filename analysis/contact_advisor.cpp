@@ -1,0 +1,159 @@
+#include "contact_advisor.hpp"
+
+#include "ball_drop.hpp"
+#include "contact_measurement.hpp"
+#include "game_step.hpp"
+#include "gsl_handles.hpp"
+#include "references.hpp"
+
+#include <fmt/format.h>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_roots.h>
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+namespace contact {
+
+namespace {
+
+using std::numbers::pi;
+
+[[noreturn]] void bad(const std::string& option, double value, const std::string& accepted) {
+  throw std::invalid_argument(fmt::format("{}: value '{:g}' is out of range; accepted {}", option, value, accepted));
+}
+
+// zeta in (0, 1) with e_clamped(zeta) = e, by GSL's Brent solver on [0, 1).
+double clamped_damping_ratio(double e) {
+  gsl::report_errors_by_return_code();
+  if (e >= 1.0) return 0.0;
+  auto f = [](double zeta, void* p) { return clamped_kelvin_voigt_restitution(zeta) - *static_cast<double*>(p); };
+  gsl_function fn{+f, &e};
+  gsl::RootSolver brent(gsl_root_fsolver_alloc(gsl_root_fsolver_brent));
+  gsl_root_fsolver_set(brent.get(), &fn, 0.0, 1.0 - 1e-12);
+  double lo = 0, hi = 1;
+  for (int i = 0; i < 200; ++i) {
+    gsl_root_fsolver_iterate(brent.get());
+    lo = gsl_root_fsolver_x_lower(brent.get());
+    hi = gsl_root_fsolver_x_upper(brent.get());
+    if (gsl_root_test_interval(lo, hi, 1e-15, 1e-15) == GSL_SUCCESS) break;
+  }
+  return 0.5 * (lo + hi);
+}
+
+struct Designed {
+  ContactLaw law;
+  double k_lin, c_lin;
+};
+
+Designed design(const ContactRequest& r) {
+  const double m = r.m, V = r.v;
+  if (r.law == "kelvin-voigt" || r.law == "kelvin-voigt-clamped") {
+    const bool clamped = r.law == "kelvin-voigt-clamped";
+    const double zeta = clamped ? clamped_damping_ratio(r.e) : damping_ratio_for_restitution(r.e);
+    const double s = std::sqrt(1 - zeta * zeta), theta = std::atan2(s, zeta);
+    const double w = r.max_penetration ? V * std::exp(-zeta * theta / s) / *r.max_penetration
+                                       : (clamped ? pi - 2 * std::asin(zeta) : pi) / (*r.duration * s);
+    const double k = m * w * w, c = 2 * zeta * std::sqrt(k * m);
+    return {KelvinVoigt{k, c, clamped}, k, c};
+  }
+  if (r.law == "hooke") {
+    const double k = r.max_penetration ? m * V * V / (*r.max_penetration * *r.max_penetration)
+                                       : m * (pi / *r.duration) * (pi / *r.duration);
+    return {Hooke{k}, k, 0.0};
+  }
+  // Hunt–Crossley family.
+  const double n = r.law == "hertz" ? 1.5 : 1.0;
+  const double chi = damping_factor(r.rule, r.e, V);
+  double K;
+  if (r.radius) {
+    K = hertz_stiffness(*r.radius, effective_modulus(*r.young, *r.poisson, INFINITY, 0.0));
+  } else {
+    const double dmax = r.max_penetration ? *r.max_penetration : *r.duration * V / (2 * power_law_time_factor(n));
+    K = (n + 1) * m * V * V / (2 * std::pow(dmax, n + 1));
+  }
+  const double dmax = power_law_contact(m, K, n, V).max_penetration;
+  return {HuntCrossley{K, n, chi}, n * K * std::pow(dmax, n - 1), K * chi * std::pow(dmax, n)};
+}
+
+// The semi-implicit game loop on the isolated contact, with the spring: the worst energy drift
+// (ledger: E0 - E - dissipated) over eight phases of the step grid against the moment of impact.
+double game_energy_error(const ContactLaw& law, double m, double V, double dt) {
+  double worst = 0;
+  for (int phase = 0; phase < 8; ++phase) {
+    const double h0 = V * dt * (1.0 + phase / 8.0);
+    const BallDrop model({m, 0.0, h0, -V, 1.0, law});
+    const double T = power_law_contact(m, stiffness(law), std::holds_alternative<HuntCrossley>(law) ? std::get<HuntCrossley>(law).n : 1.0, V).duration;
+    const RunResult r = run_game(model, {dt, h0 / V + 4 * T, h0 / V + 4 * T, FixedStepScheme::SemiImplicitEuler, GameResolution::Spring});
+    const auto& s = r.samples.back();
+    worst = std::max(worst, std::abs(r.energy0 - s.energy - s.dissipated) / r.energy0);
+  }
+  return worst;
+}
+
+}  // namespace
+
+std::vector<std::string> advisor_law_names() {
+  return {"kelvin-voigt", "kelvin-voigt-clamped", "hertz", "hunt-crossley-linear", "hooke"};
+}
+
+void validate(const ContactRequest& r) {
+  auto finite = [](double v) { return std::isfinite(v); };
+  if (!(finite(r.m) && r.m > 0)) bad("--m", r.m, "range (0, inf)");
+  if (!(finite(r.v) && r.v > 0)) bad("--v", r.v, "range (0, inf)");
+  if (!(finite(r.e) && r.e >= 0 && r.e <= 1)) bad("--e", r.e, "range [0, 1]");
+  const auto laws = advisor_law_names();
+  if (std::find(laws.begin(), laws.end(), r.law) == laws.end())
+    throw std::invalid_argument(fmt::format("--law: value '{}' is not one of: {}", r.law, fmt::join(laws, ", ")));
+  const bool material = r.radius || r.young || r.poisson;
+  const int given = (r.max_penetration ? 1 : 0) + (r.duration ? 1 : 0) + (material ? 1 : 0);
+  if (given != 1)
+    throw std::invalid_argument("--max-penetration / --duration: give exactly one requirement (or, for hertz, --radius, --young and --poisson)");
+  if (r.max_penetration && !(finite(*r.max_penetration) && *r.max_penetration > 0))
+    bad("--max-penetration", *r.max_penetration, "range (0, inf)");
+  if (r.duration && !(finite(*r.duration) && *r.duration > 0)) bad("--duration", *r.duration, "range (0, inf)");
+  if (material) {
+    if (r.law != "hertz") throw std::invalid_argument("--radius/--young/--poisson: a material defines only the hertz law");
+    if (!(r.radius && r.young && r.poisson)) throw std::invalid_argument("--radius, --young, --poisson: give all three");
+    if (!(finite(*r.radius) && *r.radius > 0)) bad("--radius", *r.radius, "range (0, inf)");
+    if (!(finite(*r.young) && *r.young > 0)) bad("--young", *r.young, "range (0, inf)");
+    if (!(finite(*r.poisson) && *r.poisson > -1 && *r.poisson < 0.5)) bad("--poisson", *r.poisson, "range (-1, 0.5)");
+  }
+  if (r.law == "hooke" && r.e != 1) bad("--e", r.e, "range [1, 1] for hooke, which is undamped");
+  if (r.law == "kelvin-voigt" && r.e == 0) bad("--e", r.e, "range (0, 1] for kelvin-voigt (e = 0 is critical damping: the contact never ends)");
+  if (r.law == "kelvin-voigt-clamped" && r.e < std::exp(-2.0))
+    bad("--e", r.e, fmt::format("range [{:.4f}, 1] for kelvin-voigt-clamped (exp(-2), reached at critical damping)", std::exp(-2.0)));
+  if ((r.law == "hertz" || r.law == "hunt-crossley-linear") && r.e == 0) bad("--e", r.e, "range (0, 1] for the Hunt-Crossley laws");
+  if (!(finite(r.energy_error) && r.energy_error > 0 && r.energy_error < 1)) bad("--energy-error", r.energy_error, "range (0, 1)");
+  if (!(finite(r.engine_step) && r.engine_step > 0)) bad("--engine-step", r.engine_step, "range (0, inf)");
+  if (!(finite(r.g) && r.g > 0)) bad("--g", r.g, "range (0, inf)");
+}
+
+ContactAdvice advise(const ContactRequest& r) {
+  validate(r);
+  const Designed d = design(r);
+  ContactAdvice a;
+  a.law = d.law;
+  a.k_lin = d.k_lin;
+  a.c_lin = d.c_lin;
+  a.omega = std::sqrt(d.k_lin / r.m);
+  a.zeta = d.c_lin / (2 * std::sqrt(d.k_lin * r.m));
+  a.frequency_hz = a.omega / (2 * pi);
+  a.euler_max_dt = a.zeta < 1 ? 2 * a.zeta / a.omega : 2 / (a.omega * (a.zeta + std::sqrt(a.zeta * a.zeta - 1)));
+  a.symplectic_max_dt = 2 * (std::sqrt(a.zeta * a.zeta + 1) - a.zeta) / a.omega;
+  a.game_dt = 2 * r.energy_error / ((2 + r.energy_error) * a.omega);
+  a.ode = to_ode(d.k_lin, d.c_lin, r.engine_step);
+  a.mujoco = to_mujoco(d.k_lin, d.c_lin, r.m);
+  a.mujoco_direct = to_mujoco_direct(d.k_lin, d.c_lin, r.m);
+  a.box2d = to_box2d(d.k_lin, d.c_lin, r.m);
+  a.drake = to_drake(d.k_lin, r.m, r.g);
+  const SpringContact measured = measure_isolated_contact(d.law, r.m, r.v);
+  a.achieved_penetration = measured.max_penetration;
+  a.achieved_duration = measured.duration;
+  a.achieved_restitution = measured.exit_speed / r.v;
+  a.game_energy_error = game_energy_error(d.law, r.m, r.v, a.game_dt);
+  return a;
+}
+
+}  // namespace contact

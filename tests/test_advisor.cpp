@@ -1,0 +1,175 @@
+// The stiffness advisor and the engine conventions.
+#include "contact_advisor.hpp"
+#include "engine_conventions.hpp"
+#include "fixed_step.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+using namespace contact;
+
+// Every translation round-trips (to rounding: a few operations each, except where stated).
+TEST(EngineConventions, EveryTranslationRoundTrips) {
+  for (double k : {1e2, 3e5, 7e9})
+    for (double c : {0.5, 40.0, 2e3})
+      for (double m : {0.01, 1.0, 300.0}) {
+        double k2 = 0, c2 = 0;
+        const double h = 1.0 / 240;
+        from_ode(to_ode(k, c, h), h, k2, c2);
+        EXPECT_NEAR(k2 / k, 1.0, 1e-12);
+        // c = (1 - ERP) / CFM cancels when h k >> c: ERP = 1 - c/(hk + c), so 1 - ERP keeps only
+        // a relative eps (hk + c)/c of accuracy. That is the conditioning, not an error.
+        EXPECT_NEAR(c2 / c, 1.0, 8 * 2.2e-16 * (h * k + c) / c);
+        from_mujoco(to_mujoco(k, c, m), m, k2, c2);
+        EXPECT_NEAR(k2 / k, 1.0, 1e-12);
+        EXPECT_NEAR(c2 / c, 1.0, 1e-12);
+        from_mujoco_direct(to_mujoco_direct(k, c, m), m, k2, c2);
+        EXPECT_NEAR(k2 / k, 1.0, 1e-14);
+        EXPECT_NEAR(c2 / c, 1.0, 1e-14);
+        from_box2d(to_box2d(k, c, m), m, k2, c2);
+        EXPECT_NEAR(k2 / k, 1.0, 1e-12);
+        EXPECT_NEAR(c2 / c, 1.0, 1e-12);
+        EXPECT_NEAR(drake_stiffness(to_drake(k, m, 9.81).penetration_allowance, m, 9.81) / k, 1.0, 1e-14);
+      }
+}
+
+TEST(EngineConventions, KnownValues) {
+  // ERP and CFM of a pure spring (c = 0): ERP = 1, CFM = 1 / (h k).
+  const auto ode = to_ode(1000.0, 0.0, 0.01);
+  EXPECT_DOUBLE_EQ(ode.erp, 1.0);
+  EXPECT_DOUBLE_EQ(ode.cfm, 0.1);
+  // MuJoCo's dampratio and Box2D's damping ratio are both the damping ratio zeta.
+  EXPECT_DOUBLE_EQ(to_mujoco(4.0, 2.0, 1.0).dampratio, 0.5);
+  EXPECT_DOUBLE_EQ(to_box2d(4.0, 2.0, 1.0).damping_ratio, 0.5);
+  // 1 kg on k = (2 pi)^2 N/m rings at 1 Hz.
+  EXPECT_NEAR(to_box2d(4 * std::numbers::pi * std::numbers::pi, 0.0, 1.0).hertz, 1.0, 1e-15);
+  // Drake: 1 kg under 9.81 m/s^2 resting 1 mm deep needs k = 9810 N/m.
+  EXPECT_DOUBLE_EQ(drake_stiffness(1e-3, 1.0, 9.81), 9810.0);
+}
+
+// The advisor's design must meet its requirement. Kelvin–Voigt has exact closed forms (no
+// gravity), so penetration, duration and restitution are met to the simulation's accuracy (1e-6);
+// the Hunt–Crossley design takes K from the undamped power law, and damping makes the contact
+// shallower by O(1 - e): the check reports it, and the test bounds it.
+TEST(Advisor, KelvinVoigtDesignMeetsPenetrationOrDurationAndRestitution) {
+  for (const char* law : {"kelvin-voigt", "kelvin-voigt-clamped"})
+    for (double e : {0.3, 0.8, 0.95}) {
+      ContactRequest r;
+      r.m = 0.5;
+      r.v = 3.0;
+      r.e = e;
+      r.law = law;
+      r.max_penetration = 1e-3;
+      const ContactAdvice a = advise(r);
+      EXPECT_NEAR(a.achieved_penetration / 1e-3, 1.0, 1e-6) << law << " e " << e;
+      EXPECT_NEAR(a.achieved_restitution, e, 1e-6) << law << " e " << e;
+      r.max_penetration.reset();
+      r.duration = 2e-3;
+      const ContactAdvice b = advise(r);
+      EXPECT_NEAR(b.achieved_duration / 2e-3, 1.0, 1e-6) << law << " e " << e;
+      EXPECT_NEAR(b.achieved_restitution, e, 1e-6) << law << " e " << e;
+    }
+}
+
+TEST(Advisor, HertzDesignFromPenetrationOrMaterial) {
+  ContactRequest r;
+  r.m = 0.1;
+  r.v = 2.0;
+  r.e = 0.9;
+  r.law = "hertz";
+  r.max_penetration = 5e-4;
+  const ContactAdvice a = advise(r);
+  EXPECT_LE(a.achieved_penetration, 5e-4);
+  EXPECT_GT(a.achieved_penetration, 5e-4 * (1 - 2 * (1 - r.e)));
+  // Lankarani–Nikravesh misses at second order in (1 - e) (test_contact_law): held to 2 (1-e)^2.
+  EXPECT_NEAR(a.achieved_restitution, 0.9, 2 * 0.1 * 0.1);
+  // A 10 mm steel ball on a rigid flat: K = (4/3) E/(1 - nu^2) sqrt(R).
+  r.max_penetration.reset();
+  r.radius = 0.01;
+  r.young = 210e9;
+  r.poisson = 0.3;
+  const ContactAdvice s = advise(r);
+  EXPECT_NEAR(std::get<HuntCrossley>(s.law).k, 4.0 / 3.0 * 210e9 / 0.91 * 0.1, 1.0);
+}
+
+// The advised semi-implicit Euler step keeps the energy error of a contact within the budget (the
+// bound it comes from is conservative; the simulated error is reported beside it).
+TEST(Advisor, GameStepMeetsTheEnergyBudget) {
+  for (double eps : {0.1, 0.01, 0.001}) {
+    ContactRequest r;
+    r.e = 1.0;
+    r.law = "hooke";
+    r.v = 4.0;
+    r.max_penetration = 2e-3;
+    r.energy_error = eps;
+    const ContactAdvice a = advise(r);
+    EXPECT_LE(a.game_energy_error, eps) << "eps " << eps;
+  }
+}
+
+// The stability limits, on the damped oscillator x'' + 2 zeta w x' + w^2 x = 0 itself: just below
+// each limit the state stays bounded over 10^4 steps, just above it grows without bound.
+TEST(Advisor, StableStepLimitsAreSharp) {
+  ContactRequest r;
+  r.m = 1.0;
+  r.v = 1.0;
+  r.e = 0.5;
+  r.max_penetration = 1e-2;
+  const ContactAdvice a = advise(r);
+  const double w = a.omega, zeta = a.zeta;
+  OdeSystem::Rhs f = [&](double, ConstVectorRef y, VectorRef yd) { yd << y[1], -w * w * y[0] - 2 * zeta * w * y[1]; };
+  const Mask positions = Mask{{true, false}};
+  auto growth = [&](FixedStepScheme scheme, double h) {
+    Vector y{{1.0, 0.0}};
+    FixedStepWork work(2);
+    for (int n = 0; n < 10000 && y.norm() < 1e100; ++n) fixed_step(scheme, f, positions, 0.0, h, y, work);
+    return y.norm();  // stops once clearly divergent, before overflow turns it into NaN
+  };
+  EXPECT_LT(growth(FixedStepScheme::ExplicitEuler, 0.98 * a.euler_max_dt), 10.0);
+  EXPECT_GT(growth(FixedStepScheme::ExplicitEuler, 1.02 * a.euler_max_dt), 1e6);
+  EXPECT_LT(growth(FixedStepScheme::SemiImplicitEuler, 0.98 * a.symplectic_max_dt), 10.0);
+  EXPECT_GT(growth(FixedStepScheme::SemiImplicitEuler, 1.02 * a.symplectic_max_dt), 1e6);
+}
+
+TEST(Advisor, RefusesNonPhysicalRequests) {
+  auto message = [](ContactRequest r) {
+    try {
+      validate(r);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  ContactRequest r;
+  r.max_penetration = 1e-3;
+  EXPECT_EQ(message(r), "accepted");
+  ContactRequest bad = r;
+  bad.v = -1;
+  EXPECT_NE(message(bad).find("--v: value '-1'"), std::string::npos) << message(bad);
+  bad = r;
+  bad.e = 1.2;
+  EXPECT_NE(message(bad).find("--e"), std::string::npos);
+  bad = r;
+  bad.max_penetration = 0.0;
+  EXPECT_NE(message(bad).find("--max-penetration: value '0'"), std::string::npos);
+  bad = r;
+  bad.duration = 1e-3;  // both requirements
+  EXPECT_NE(message(bad).find("exactly one"), std::string::npos);
+  bad = r;
+  bad.max_penetration.reset();
+  bad.law = "hertz";
+  bad.radius = 0.01;
+  bad.young = 2e11;
+  bad.poisson = 0.5;  // incompressible: outside (-1, 0.5)
+  EXPECT_NE(message(bad).find("--poisson: value '0.5' is out of range; accepted range (-1, 0.5)"), std::string::npos) << message(bad);
+  bad = r;
+  bad.law = "hooke";
+  bad.e = 0.8;
+  EXPECT_NE(message(bad).find("undamped"), std::string::npos);
+  bad = r;
+  bad.law = "kelvin-voigt-clamped";
+  bad.e = 0.1;
+  EXPECT_NE(message(bad).find("0.1353"), std::string::npos) << message(bad);
+}
