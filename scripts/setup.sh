@@ -14,6 +14,7 @@ packages=(
   libcli11-dev         # command-line options of the experiments
   nlohmann-json3-dev   # meta.json
   libfmt-dev           # formatting of tables and messages
+  gnuplot-nox          # figures (PNG and PDF, cairo terminals)
 )
 
 missing=()

@@ -1,0 +1,37 @@
+// The contact_laws experiment: its table and figure exist and parse, its Kelvin–Voigt rows hit
+// their targets (closed form: the dashpot formula is exact without gravity), and bad input is
+// refused.
+#include "cli_fixture.hpp"
+
+namespace {
+class ContactLawsCli : public CliTest {};
+}  // namespace
+
+TEST_F(ContactLawsCli, WritesTableAndFigureWithTheDeclaredColumns) {
+  const Outcome r = run(CONTACT_LAWS_EXE, "--points 4 --out laws");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string csv = slurp(dir_ / "laws" / "restitution.csv");
+  EXPECT_EQ(csv.rfind("law,target_e,achieved_e,miss\n", 0), 0u);
+  // 10 laws x 4 targets + header.
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 41);
+  for (const char* f : {"restitution.png", "restitution.pdf", "restitution.gp", "restitution.md", "restitution.tex", "meta.json"})
+    EXPECT_GT(fs::file_size(dir_ / "laws" / f), 100u) << f;
+  EXPECT_EQ(slurp(dir_ / "laws" / "restitution.png").substr(1, 3), "PNG");
+  EXPECT_EQ(slurp(dir_ / "laws" / "restitution.pdf").substr(0, 4), "%PDF");
+  // kelvin-voigt,0.5,<achieved>,<miss>: the miss is at the simulation's accuracy (1e-6).
+  std::istringstream lines(csv);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("kelvin-voigt,", 0) != 0) continue;
+    const double miss = std::stod(line.substr(line.rfind(',') + 1));
+    EXPECT_LT(std::abs(miss), 1e-6) << line;
+  }
+}
+
+TEST_F(ContactLawsCli, BadInputIsRefused) {
+  expect_refused(CONTACT_LAWS_EXE, {
+      {"--v -1", "--v", "'-1'", "(0, inf)"},
+      {"--m 0", "--m", "'0'", "(0, inf)"},
+      {"--depth nan", "--depth", "'nan'", "(0, inf)"},
+      {"--points 1", "--points", "'1'", ">= 2"},
+  });
+}
