@@ -1,0 +1,89 @@
+#include "rigid_body.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace contact::rigid {
+
+namespace {
+
+void require(bool ok, const std::string& what, double value, const std::string& range) {
+  if (!ok) throw std::invalid_argument(fmt::format("{}: value '{:g}' is out of range; accepted range {}", what, value, range));
+}
+
+}  // namespace
+
+RigidBody RigidBody::sphere(std::string name, double mass, double radius, double elasticity) {
+  RigidBody b{std::move(name), Sphere{radius}};
+  require(std::isfinite(mass) && mass > 0, b.name + " mass", mass, "(0, inf)");
+  require(std::isfinite(radius) && radius > 0, b.name + " radius", radius, "(0, inf)");
+  b.inverse_mass = 1.0 / mass;
+  b.inverse_inertia = Mat3::Identity() / (0.4 * mass * radius * radius);
+  b.elasticity = elasticity;
+  return b;
+}
+
+RigidBody RigidBody::cuboid(std::string name, double mass, const Vec3& h, double elasticity) {
+  RigidBody b{std::move(name), Cuboid{h, false}};
+  require(std::isfinite(mass) && mass > 0, b.name + " mass", mass, "(0, inf)");
+  for (int i = 0; i < 3; ++i) require(std::isfinite(h[i]) && h[i] > 0, b.name + " half extent", h[i], "(0, inf)");
+  const Vec3 s = 2 * h;  // full sides
+  b.inverse_mass = 1.0 / mass;
+  b.inverse_inertia = Vec3(12 / (mass * (s[1] * s[1] + s[2] * s[2])), 12 / (mass * (s[0] * s[0] + s[2] * s[2])),
+                           12 / (mass * (s[0] * s[0] + s[1] * s[1])))
+                          .asDiagonal();
+  b.elasticity = elasticity;
+  return b;
+}
+
+RigidBody RigidBody::aabb(std::string name, double mass, const Vec3& h, double elasticity) {
+  RigidBody b = cuboid(std::move(name), mass, h, elasticity);
+  std::get<Cuboid>(b.shape).axis_aligned = true;
+  b.inverse_inertia.setZero();
+  return b;
+}
+
+RigidBody RigidBody::plane(std::string name, const Vec3& normal, double offset, double elasticity) {
+  require(normal.allFinite() && normal.norm() > 0, name + " plane normal length", normal.norm(), "(0, inf)");
+  RigidBody b{std::move(name), Plane{normal.normalized(), offset}};
+  b.elasticity = elasticity;
+  return b;
+}
+
+bool RigidBody::rotates() const {
+  const auto* c = std::get_if<Cuboid>(&shape);
+  return !(c && c->axis_aligned) && !inverse_inertia.isZero(0);
+}
+
+Mat3 RigidBody::world_inverse_inertia() const {
+  if (!rotates()) return Mat3::Zero();
+  const Mat3 R = orientation.toRotationMatrix();
+  return R * inverse_inertia * R.transpose();
+}
+
+double RigidBody::kinetic_energy() const {
+  double E = inverse_mass > 0 ? 0.5 * velocity.squaredNorm() / inverse_mass : 0.0;
+  if (rotates()) E += 0.5 * angular_velocity.dot(world_inverse_inertia().inverse() * angular_velocity);
+  return E;
+}
+
+Vec3 RigidBody::momentum() const { return inverse_mass > 0 ? Vec3(velocity / inverse_mass) : Vec3::Zero(); }
+
+Vec3 RigidBody::angular_momentum(const Vec3& about) const {
+  Vec3 L = (position - about).cross(momentum());
+  if (rotates()) L += world_inverse_inertia().inverse() * angular_velocity;
+  return L;
+}
+
+void RigidBody::validate() const {
+  require(std::isfinite(inverse_mass) && inverse_mass >= 0, name + " inverse mass", inverse_mass, "[0, inf)");
+  require(std::isfinite(elasticity) && elasticity >= 0, name + " elasticity", elasticity, "[0, inf)");
+  const double qn = orientation.coeffs().norm();
+  require(orientation.coeffs().allFinite() && qn > 0, name + " quaternion norm", qn, "(0, inf), finite");
+  require(position.allFinite() && velocity.allFinite() && angular_velocity.allFinite(), name + " state finite", 0.0,
+          "finite values");
+}
+
+}  // namespace contact::rigid

@@ -1,0 +1,112 @@
+#include "rigid_contacts.hpp"
+
+#include <cmath>
+
+namespace contact::rigid {
+
+namespace {
+
+Vec3 lever(const RigidBody& body, const Vec3& point) {
+  return body.rotates() ? Vec3(point - body.position) : Vec3::Zero();
+}
+
+RigidContact make(const std::vector<RigidBody>& bodies, std::size_t a, std::size_t b, const Vec3& point,
+                  const Vec3& normal, double penetration) {
+  return {a, b, point, normal, penetration, lever(bodies[a], point), lever(bodies[b], point)};
+}
+
+RigidContact flip(const std::vector<RigidBody>& bodies, RigidContact c) {
+  return make(bodies, c.b, c.a, c.point, -c.normal, c.penetration);
+}
+
+RigidContact sphere_sphere(const std::vector<RigidBody>& bodies, std::size_t a, std::size_t b) {
+  const double ra = std::get<Sphere>(bodies[a].shape).radius, rb = std::get<Sphere>(bodies[b].shape).radius;
+  const Vec3 d = bodies[b].position - bodies[a].position;
+  const double dist = d.norm();
+  const Vec3 n = dist > 0 ? Vec3(d / dist) : Vec3::UnitZ();
+  const double pen = ra + rb - dist;
+  return make(bodies, a, b, bodies[a].position + n * (ra - 0.5 * pen), n, pen);
+}
+
+// Sphere a against plane b: the normal points from the sphere into the plane's solid side.
+RigidContact sphere_plane(const std::vector<RigidBody>& bodies, std::size_t a, std::size_t b) {
+  const double r = std::get<Sphere>(bodies[a].shape).radius;
+  const Plane& p = std::get<Plane>(bodies[b].shape);
+  const double height = p.normal.dot(bodies[a].position) - p.offset;
+  const double pen = r - height;
+  return make(bodies, a, b, bodies[a].position - p.normal * (r - 0.5 * pen), -p.normal, pen);
+}
+
+// Sphere a against cuboid b, from the box's closest point to the sphere's centre.
+RigidContact sphere_cuboid(const std::vector<RigidBody>& bodies, std::size_t a, std::size_t b) {
+  const RigidBody& box = bodies[b];
+  const Vec3 h = std::get<Cuboid>(box.shape).half_extents;
+  const double r = std::get<Sphere>(bodies[a].shape).radius;
+  const Mat3 R = box.orientation.toRotationMatrix();
+  const Vec3 p = R.transpose() * (bodies[a].position - box.position);  // centre in the box frame
+  const Vec3 q = p.cwiseMax(-h).cwiseMin(h);
+  Vec3 out_of_box;   // box frame, unit, from the box towards the sphere
+  double distance;   // signed: centre outside (> 0) or inside (< 0) the box
+  if ((p - q).squaredNorm() > 0) {
+    distance = (p - q).norm();
+    out_of_box = (p - q) / distance;
+  } else {  // centre inside: leave through the nearest face
+    Eigen::Index axis;
+    (h - p.cwiseAbs()).minCoeff(&axis);
+    distance = -(h[axis] - std::abs(p[axis]));
+    out_of_box = Vec3::Zero();
+    out_of_box[axis] = p[axis] >= 0 ? 1.0 : -1.0;
+    const Vec3 face = p + out_of_box * (-distance);
+    const Vec3 n = -(R * out_of_box);  // from the sphere into the box
+    const double pen = r - distance;
+    return make(bodies, a, b, box.position + R * face, n, pen);
+  }
+  const double pen = r - distance;
+  const Vec3 n = -(R * out_of_box);
+  return make(bodies, a, b, box.position + R * q + (R * out_of_box) * (0.5 * pen), n, pen);
+}
+
+// One candidate per vertex of cuboid a against plane b.
+std::vector<RigidContact> cuboid_plane(const std::vector<RigidBody>& bodies, std::size_t a, std::size_t b) {
+  const Plane& p = std::get<Plane>(bodies[b].shape);
+  std::vector<RigidContact> out;
+  for (const Vec3& v : vertices(bodies[a])) {
+    const double pen = p.offset - p.normal.dot(v);
+    out.push_back(make(bodies, a, b, v + p.normal * (0.5 * pen), -p.normal, pen));
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<Vec3> vertices(const RigidBody& body) {
+  const Vec3 h = std::get<Cuboid>(body.shape).half_extents;
+  const Mat3 R = body.orientation.toRotationMatrix();
+  std::vector<Vec3> out;
+  for (int i = 0; i < 8; ++i) {
+    const Vec3 corner((i & 1) ? h[0] : -h[0], (i & 2) ? h[1] : -h[1], (i & 4) ? h[2] : -h[2]);
+    out.push_back(body.position + R * corner);
+  }
+  return out;
+}
+
+std::vector<RigidContact> contact_candidates(const std::vector<RigidBody>& bodies, std::size_t a, std::size_t b) {
+  const Shape &A = bodies[a].shape, &B = bodies[b].shape;
+  const bool as = std::holds_alternative<Sphere>(A), bs = std::holds_alternative<Sphere>(B);
+  const bool ac = std::holds_alternative<Cuboid>(A), bc = std::holds_alternative<Cuboid>(B);
+  const bool ap = std::holds_alternative<Plane>(A), bp = std::holds_alternative<Plane>(B);
+  if (as && bs) return {sphere_sphere(bodies, a, b)};
+  if (as && bp) return {sphere_plane(bodies, a, b)};
+  if (ap && bs) return {flip(bodies, sphere_plane(bodies, b, a))};
+  if (as && bc) return {sphere_cuboid(bodies, a, b)};
+  if (ac && bs) return {flip(bodies, sphere_cuboid(bodies, b, a))};
+  if (ac && bp) return cuboid_plane(bodies, a, b);
+  if (ap && bc) {
+    auto out = cuboid_plane(bodies, b, a);
+    for (auto& c : out) c = flip(bodies, c);
+    return out;
+  }
+  return {};
+}
+
+}  // namespace contact::rigid

@@ -1,0 +1,34 @@
+#pragma once
+// Contact generation for the pairs the 3D scenes need, with a signed penetration so that the same
+// candidates serve game detection (penetration > 0), penalty forces and root finding on the gap
+// (-penetration) as bodies approach.
+//   sphere-sphere    one candidate, along the line of centres
+//   sphere-plane     one candidate, along the plane's normal
+//   sphere-cuboid    one candidate, from the closest point of the (oriented) box to the centre:
+//                    a face, an edge or a corner
+//   cuboid-plane     eight candidates, one per vertex
+// Convention (the tutorial's): the normal points from body a to body b; resolving moves a along
+// -normal and b along +normal. The contact point is the middle of the overlap; lever arms are
+// point - centre, and zero for bodies that do not rotate (axis-aligned boxes, static bodies).
+#include "rigid_body.hpp"
+
+#include <vector>
+
+namespace contact::rigid {
+
+struct RigidContact {
+  std::size_t a = 0, b = 0;
+  Vec3 point = Vec3::Zero();
+  Vec3 normal = Vec3::UnitZ();
+  double penetration = 0.0;  // > 0 overlapping, < 0 apart by that much
+  Vec3 r_a = Vec3::Zero(), r_b = Vec3::Zero();
+};
+
+// Every candidate between bodies a and b (indices into `bodies`); empty for pairs no scene needs
+// (cuboid-cuboid, plane-plane).
+std::vector<RigidContact> contact_candidates(const std::vector<RigidBody>& bodies, std::size_t a, std::size_t b);
+
+// World positions of a cuboid's eight vertices.
+std::vector<Vec3> vertices(const RigidBody& cuboid);
+
+}  // namespace contact::rigid
