@@ -71,6 +71,7 @@ RunResult run_game(const MechanicalSystem& model, const GameOptions& opt) {
       rec.add_dissipated(h * power);
     }
     stats.rhs_evals += fixed_step(opt.scheme, f, positions, t0, h, y, work);
+    model.normalize(y);
     stats.steps += 1;
     if (!y.allFinite()) {
       return rec.fail(SolverFailure(Status::NonFiniteState, t,

@@ -49,9 +49,11 @@ OdeSystem mechanical_ode(const MechanicalSystem& model, ModesAt modes_at) {
   sys.positions = model.position_mask();
   sys.bandwidth = model.jacobian_bandwidth();
   sys.rhs = [&model, modes_at](double t, ConstVectorRef y, VectorRef yd) { model.rhs(t, y, modes_at(y), yd); };
-  sys.jacobian = [&model, modes_at](double t, ConstVectorRef y, SparseMatrix& J) {
-    model.jacobian(t, y, modes_at(y), J);
-  };
+  if (model.has_jacobian()) {
+    sys.jacobian = [&model, modes_at](double t, ConstVectorRef y, SparseMatrix& J) {
+      model.jacobian(t, y, modes_at(y), J);
+    };
+  }
   // IMEX: the contact forces are what makes the system stiff, so they are the implicit part:
   // f_implicit = f(modes) - f(all free), with the Jacobian likewise.
   auto free = std::make_shared<const ContactModes>(model.all_modes(ContactMode::Free));
@@ -61,12 +63,14 @@ OdeSystem mechanical_ode(const MechanicalSystem& model, ModesAt modes_at) {
     model.rhs(t, y, *free, *buffer);
     yd -= *buffer;
   };
-  sys.implicit_jacobian = [&model, modes_at, free](double t, ConstVectorRef y, SparseMatrix& J) {
-    SparseMatrix J_free;
-    model.jacobian(t, y, modes_at(y), J);
-    model.jacobian(t, y, *free, J_free);
-    J -= J_free;
-  };
+  if (model.has_jacobian()) {
+    sys.implicit_jacobian = [&model, modes_at, free](double t, ConstVectorRef y, SparseMatrix& J) {
+      SparseMatrix J_free;
+      model.jacobian(t, y, modes_at(y), J);
+      model.jacobian(t, y, *free, J_free);
+      J -= J_free;
+    };
+  }
   return sys;
 }
 

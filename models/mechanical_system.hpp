@@ -43,6 +43,10 @@ class MechanicalSystem {
   // SUNDIALS inserts the diagonal into the sparse arrays at every setup, an O(N nnz) shuffle that
   // made KLU quadratic in the chain's length).
   virtual void jacobian(double t, ConstVectorRef y, const ContactModes& modes, SparseMatrix& J) const = 0;
+  // Whether jacobian() is implemented; without it implicit integrators use difference quotients.
+  virtual bool has_jacobian() const { return true; }
+  // Restores invariants of the state a fixed-step method may drift off (unit quaternions).
+  virtual void normalize(VectorRef) const {}
   // The band that holds every non-zero of the Jacobian (default: full).
   virtual Bandwidth jacobian_bandwidth() const {
     const auto n = static_cast<long>(state_size());

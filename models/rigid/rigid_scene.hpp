@@ -1,0 +1,69 @@
+#pragma once
+// A scene of rigid bodies as a MechanicalSystem, so the three paradigms run it unchanged.
+//   state, per body: x (3), q (4: w, x, y, z), v (3), w (3, world frame)      13 numbers
+//   x' = v,  q' = (1/2) (0, w) q,  v' = g + f / m,  w' = I_w^-1 (tau - w x I_w w)  (Euler's
+//   equations in the world frame, I_w = R I R^T); bodies of infinite mass have zero derivatives,
+//   bodies that do not rotate zero angular ones.
+//   contacts: every candidate of every pair (rigid_contacts.hpp), fixed at construction; the gap
+//   is -penetration, its rate the relative normal velocity at the contact point.
+//   penalty: the contact law's force F(delta, delta_dot) pushes b along +n and a along -n at the
+//   contact point, with torques r x f on each.
+//   energy: kinetic + gravitational (-m g.x) + the springs' stored energy.
+// No analytic Jacobian (rotations make it long; implicit integrators use difference quotients,
+// which test_rigid_scene checks). The rotation uses q / |q|; normalize() restores unit
+// quaternions after fixed steps.
+#include "contact_law.hpp"
+#include "mechanical_system.hpp"
+#include "rigid_contacts.hpp"
+
+namespace contact::rigid {
+
+class RigidScene final : public MechanicalSystem {
+ public:
+  RigidScene(std::string name, std::vector<RigidBody> bodies, Vec3 gravity, ContactLaw law);
+
+  static constexpr Eigen::Index kStride = 13;
+  std::vector<RigidBody> bodies_at(ConstVectorRef y) const;
+  void store(const std::vector<RigidBody>& bodies, VectorRef y) const;
+  const std::vector<RigidBody>& bodies() const { return bodies_; }
+  // Which bodies candidate contact i joins.
+  std::pair<std::size_t, std::size_t> pair(std::size_t i) const { return {candidates_[i].a, candidates_[i].b}; }
+
+  std::string name() const override { return name_; }
+  Mask position_mask() const override;
+  std::size_t state_size() const override { return bodies_.size() * kStride; }
+  Vector initial_state() const override;
+  std::vector<std::string> state_labels() const override;
+
+  void rhs(double t, ConstVectorRef y, const ContactModes& modes, VectorRef ydot) const override;
+  bool has_jacobian() const override { return false; }
+  void jacobian(double, ConstVectorRef, const ContactModes&, SparseMatrix&) const override;
+  void normalize(VectorRef y) const override;
+  double energy(ConstVectorRef y) const override;
+
+  std::size_t contact_count() const override { return candidates_.size(); }
+  double gap(std::size_t i, ConstVectorRef y) const override { return -contact(i, y).penetration; }
+  double gap_rate(std::size_t i, ConstVectorRef y) const override;
+  double switching(std::size_t i, ConstVectorRef y) const override;
+  double dissipated_power(std::size_t i, ConstVectorRef y) const override;
+
+  double restitution(std::size_t i) const override;
+  void project(std::size_t i, VectorRef y) const override;
+  void apply_impulse(std::size_t i, double e, VectorRef y) const override;
+  void settle(std::size_t i, VectorRef y) const override;
+
+  RigidContact contact(std::size_t i, ConstVectorRef y) const;
+  RigidContact contact(std::size_t i, const std::vector<RigidBody>& bodies) const;
+
+ private:
+  struct Candidate {
+    std::size_t a, b, k;  // bodies, and which of their candidates (a cuboid vertex)
+  };
+  std::string name_;
+  std::vector<RigidBody> bodies_;
+  Vec3 gravity_;
+  ContactLaw law_;
+  std::vector<Candidate> candidates_;
+};
+
+}  // namespace contact::rigid

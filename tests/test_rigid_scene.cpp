@@ -1,0 +1,117 @@
+// Rigid scenes under the three paradigms.
+#include "event_driven.hpp"
+#include "game_step.hpp"
+#include "penalty.hpp"
+#include "rigid_resolution.hpp"
+#include "rigid_scene.hpp"
+
+#include <gtest/gtest.h>
+
+using namespace contact;
+using namespace contact::rigid;
+
+namespace {
+
+// Cue ball rolling into a resting red ball, no gravity, 1 mm apart.
+RigidScene snooker(double red_mass = 0.17) {
+  RigidBody cue = RigidBody::sphere("cue", 0.17, 0.026, 1.0), red = RigidBody::sphere("red", red_mass, 0.026, 1.0);
+  cue.velocity = Vec3(2.0, 0, 0);
+  red.position = Vec3(0.053, 0, 0);
+  return RigidScene("snooker", {cue, red}, Vec3::Zero(), Hooke{1e6});
+}
+
+Vec3 velocity(const RigidScene& s, const Vector& y, std::size_t body) { return s.bodies_at(y)[body].velocity; }
+
+}  // namespace
+
+// Two equal masses on a linear spring: the relative motion is a harmonic oscillator that leaves
+// with its approach speed reversed, so the velocities are exchanged exactly whatever k. CVODE with
+// difference-quotient Jacobian (the scene has none) at rtol 1e-10: 1e-6 of the speed.
+TEST(RigidScene, PenaltyExchangesEqualMassVelocitiesUnderCvodeWithDifferenceQuotients) {
+  const RigidScene s = snooker();
+  PenaltyOptions o;
+  o.t_end = 0.01;
+  o.sample_dt = 0.01;
+  o.integrator.rtol = 1e-10;
+  o.integrator.atol = 1e-12;
+  const RunResult r = run_penalty(s, o);
+  ASSERT_TRUE(r.ok()) << r.message;
+  ASSERT_EQ(r.contacts.size(), 1u);
+  const Vector& y = r.samples.back().y;
+  EXPECT_NEAR(velocity(s, y, 0).norm(), 0.0, 1e-6 * 2.0);
+  EXPECT_NEAR((velocity(s, y, 1) - Vec3(2, 0, 0)).norm(), 0.0, 1e-6 * 2.0);
+}
+
+TEST(RigidScene, GameAndEventDrivenExchangeEqualMassVelocitiesExactly) {
+  const RigidScene s = snooker();
+  const RunResult game = run_game(s, {1e-4, 0.01, 0.01, FixedStepScheme::SemiImplicitEuler, GameResolution::ProjectionImpulse});
+  EventOptions eo;
+  eo.t_end = 0.01;
+  eo.sample_dt = 0.01;
+  const RunResult event = run_event_driven(s, eo);
+  for (const RunResult* r : {&game, &event}) {
+    ASSERT_TRUE(r->ok()) << r->message;
+    const Vector& y = r->samples.back().y;
+    EXPECT_NEAR(velocity(s, y, 0).norm(), 0.0, 1e-15) << r->method;
+    EXPECT_NEAR((velocity(s, y, 1) - Vec3(2, 0, 0)).norm(), 0.0, 1e-15) << r->method;
+  }
+}
+
+// The planet (mass ratio 1e6) barely moves, by every method: momentum gives it at most
+// 2 (m/M) v of velocity.
+TEST(RigidScene, PlanetDoesNotMove) {
+  const RigidScene s = snooker(0.17e6);
+  PenaltyOptions po;
+  po.t_end = po.sample_dt = 0.01;
+  const std::vector<RunResult> runs = {
+      run_penalty(s, po),
+      run_game(s, {1e-4, 0.01, 0.01, FixedStepScheme::SemiImplicitEuler, GameResolution::ProjectionImpulse}),
+      run_event_driven(s, EventOptions{0.01, 0.01, {}, 1e-7, 0, 1000000})};
+  for (const auto& r : runs) {
+    ASSERT_TRUE(r.ok()) << r.method << ": " << r.message;
+    EXPECT_LE(velocity(s, r.samples.back().y, 1).norm(), 2 * 1e-6 * 2.0 * (1 + 1e-9)) << r.method;
+    EXPECT_LT(velocity(s, r.samples.back().y, 0).x(), 0.0) << r.method << ": the cue ball bounces back";
+  }
+}
+
+// The penalty spring's torque is r x F: with the box at rest, w' = I_w^-1 (r_b x F n).
+TEST(RigidScene, SpringTorqueIsLeverArmCrossForce) {
+  RigidBody box = RigidBody::cuboid("box", 2.0, Vec3(0.3, 0.2, 0.1), 1.0);
+  box.orientation = Quat(Eigen::AngleAxisd(0.4, Vec3(1, 2, 3).normalized()));
+  const Vec3 corner = vertices(box)[3];
+  RigidBody ball = RigidBody::sphere("ball", 0.5, 0.05, 1.0);
+  ball.position = corner + (corner - box.position).normalized() * 0.049;  // 1 mm into the corner
+  const RigidScene s("corner", {ball, box}, Vec3::Zero(), Hooke{1e5});
+  const Vector y = s.initial_state();
+  ASSERT_EQ(s.contact_count(), 1u);
+  const RigidContact c = s.contact(0, y);
+  ASSERT_GT(c.penetration, 0.0);
+  Vector yd(y.size());
+  s.rhs(0, y, {ContactMode::Penalty}, yd);
+  const Vec3 F = 1e5 * c.penetration * c.normal;  // on the box (b)
+  const Vec3 expected = s.bodies()[1].orientation.toRotationMatrix() * s.bodies()[1].inverse_inertia *
+                        s.bodies()[1].orientation.toRotationMatrix().transpose() * c.r_b.cross(F);
+  EXPECT_LT((Vec3(yd.segment<3>(RigidScene::kStride + 10)) - expected).norm(), 1e-12 * expected.norm());
+  EXPECT_LT((Vec3(yd.segment<3>(RigidScene::kStride + 7)) - F / 2.0).norm(), 1e-12 * F.norm());
+}
+
+// A spinning, tumbling box in free flight: the game loop renormalises its quaternion every step;
+// CVODE keeps |q| = 1 to its tolerance (|q|' = 0 exactly for q' = (1/2)(0, w) q).
+TEST(RigidScene, QuaternionsStayUnit) {
+  RigidBody box = RigidBody::cuboid("box", 1.0, Vec3(0.3, 0.2, 0.1), 1.0);
+  box.angular_velocity = Vec3(3, 7, -2);
+  const RigidScene s("tumble", {box}, Vec3::Zero(), Hooke{1e5});
+  const RunResult game = run_game(s, {1e-3, 2.0, 0.1, FixedStepScheme::SemiImplicitEuler, GameResolution::ProjectionImpulse});
+  PenaltyOptions o;
+  o.t_end = 2.0;
+  o.sample_dt = 0.1;
+  o.integrator.rtol = 1e-10;
+  o.integrator.atol = 1e-12;
+  const RunResult ode = run_penalty(s, o);
+  for (const auto& smp : game.samples) EXPECT_NEAR(smp.y.segment<4>(3).norm(), 1.0, 4e-16);
+  for (const auto& smp : ode.samples) EXPECT_NEAR(smp.y.segment<4>(3).norm(), 1.0, 1e-8);
+  // Torque-free: the angular momentum in the world frame stays put (CVODE, to its tolerance).
+  const Vec3 L0 = s.bodies_at(ode.samples.front().y)[0].angular_momentum(Vec3::Zero());
+  const Vec3 L1 = s.bodies_at(ode.samples.back().y)[0].angular_momentum(Vec3::Zero());
+  EXPECT_LT((L1 - L0).norm(), 1e-7 * L0.norm());
+}
