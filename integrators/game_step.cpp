@@ -53,6 +53,10 @@ RunResult run_game(const MechanicalSystem& model, const GameOptions& opt) {
   }
   rec.sample(0.0, y);
 
+  // The tutorial's collision list: frames left per listed contact, -1 when not listed.
+  std::vector<int> frames_left(nc, -1);
+  std::vector<bool> fresh(nc, false);
+  std::vector<CollisionEvent> batch;
   SolverStats stats;
   const auto n_steps = static_cast<long>(std::ceil(opt.t_end / opt.dt - 1e-9));
   double t = 0.0;
@@ -89,6 +93,8 @@ RunResult run_game(const MechanicalSystem& model, const GameOptions& opt) {
       // 2. detect, 3. resolve
       const double d = detect(i, y);
       if (d > 0) {
+        if (frames_left[i] < 0) fresh[i] = true;
+        frames_left[i] = opt.persistence;
         if (!rec.contact_open(i)) rec.contact_begin(i, t0 + crossing(d_prev[i], d) * h, model.gap_rate(i, y));
         rec.observe_penetration(i, -model.gap(i, y));
         if (project) model.project(i, y);
@@ -108,6 +114,18 @@ RunResult run_game(const MechanicalSystem& model, const GameOptions& opt) {
         rec.contact_end(i, end, model.gap_rate(i, y));
       }
       d_prev[i] = d_after;
+    }
+    // 4. notify: one batch, after the whole physics step.
+    batch.clear();
+    for (std::size_t i = 0; i < nc; ++i) {
+      if (frames_left[i] < 0) continue;
+      if (fresh[i]) batch.push_back({CollisionEvent::Kind::Begin, i, n, t});
+      fresh[i] = false;
+      if (--frames_left[i] < 0) batch.push_back({CollisionEvent::Kind::End, i, n, t});
+    }
+    if (!batch.empty()) {
+      rec.notify(batch);
+      if (opt.on_notifications) opt.on_notifications(batch);
     }
     if (t >= rec.next_sample_time() * (1 - 1e-12)) rec.sample(t, y);
   }

@@ -7,6 +7,13 @@
 //                  (the seed's ImpulseResolveCollision), or nothing for the spring;
 //   4. notify      contact begin/end are decided after the step, in one batch.
 //
+// Gameplay notifications follow the tutorial's list: a pair detected in a step is listed with
+// `persistence` frames left; after each step, in one batch, newly listed pairs get Begin, every
+// listed pair loses a frame, and a pair whose frames run out gets End and leaves the list. A
+// callback, if given, is invoked only from that batch, never in the middle of the physics.
+// Unlike the tutorial (whose std::set::insert keeps an existing entry's counter), a pair detected
+// again has its frames refilled, so a long contact is one Begin and one End, not a flicker.
+//
 // The impulse is applied only when the contact approaches (gap rate < 0). The seed applies it
 // unconditionally; on a separating contact that would pull the bodies back together.
 //
@@ -16,6 +23,8 @@
 #include "fixed_step.hpp"
 #include "mechanical_system.hpp"
 #include "run_result.hpp"
+
+#include <functional>
 
 namespace contact {
 
@@ -34,6 +43,8 @@ struct GameOptions {
   double sample_dt = 0.01; // output spacing [s]; rounded to whole steps
   FixedStepScheme scheme = FixedStepScheme::SemiImplicitEuler;
   GameResolution resolution = GameResolution::ProjectionImpulse;
+  int persistence = 1;  // frames a pair stays listed after its last detection
+  std::function<void(const std::vector<CollisionEvent>&)> on_notifications;  // once per step with events
 };
 
 RunResult run_game(const MechanicalSystem& model, const GameOptions& options);

@@ -26,6 +26,9 @@ class RunRecorder {
   void contact_begin(std::size_t i, double t, double v_in);
   void contact_end(std::size_t i, double t, double v_out);
   void observe_penetration(std::size_t i, double penetration);
+  void notify(const std::vector<CollisionEvent>& batch) {
+    result_.notifications.insert(result_.notifications.end(), batch.begin(), batch.end());
+  }
   void apex(std::size_t i, double t, double gap, double energy);
   void apex(std::size_t i, double t, double gap, double energy, double dissipated);
 

@@ -46,6 +46,15 @@ struct Apex {
 // dissipated power as an extra state; impulsive methods add the kinetic energy each impulse
 // removes. What is left, the drift, is numerical: integration error, and for game methods the
 // energy that projection adds or removes.
+// A gameplay notification of the game loop, delivered in one batch after a physics step.
+struct CollisionEvent {
+  enum class Kind { Begin, End };
+  Kind kind;
+  std::size_t contact;  // which potential contact of the model
+  long step;            // the step after which it was delivered
+  double t;             // that step's end time [s]
+};
+
 struct RunResult {
   std::string method;
   std::vector<std::string> state_labels;
@@ -53,6 +62,7 @@ struct RunResult {
   std::vector<Sample> samples;
   std::vector<ContactRecord> contacts;
   std::vector<Apex> apexes;
+  std::vector<CollisionEvent> notifications;  // game loop only
   SolverStats stats;
   Status status = Status::Success;
   double t_reached = 0.0;
