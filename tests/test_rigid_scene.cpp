@@ -1,5 +1,6 @@
 // Rigid scenes under the three paradigms.
 #include "event_driven.hpp"
+#include "fit.hpp"
 #include "game_step.hpp"
 #include "penalty.hpp"
 #include "rigid_resolution.hpp"
@@ -114,4 +115,37 @@ TEST(RigidScene, QuaternionsStayUnit) {
   const Vec3 L0 = s.bodies_at(ode.samples.front().y)[0].angular_momentum(Vec3::Zero());
   const Vec3 L1 = s.bodies_at(ode.samples.back().y)[0].angular_momentum(Vec3::Zero());
   EXPECT_LT((L1 - L0).norm(), 1e-7 * L0.norm());
+}
+
+// Penalty -> impulse as k grows, on the head-on pair with e = 0.8: the Kelvin–Voigt spring gives
+// the impulse's exit velocities exactly (no gravity), so the trajectories differ only by where the
+// balls are after the contact, which lasts T_c ~ pi sqrt(m_eff / k): the red ball's position at
+// the end differs from the impulse run's by O(T_c), i.e. as k^(-1/2) (fitted exponent within 0.05).
+TEST(RigidScene, PenaltyHeadOnConvergesToTheImpulseResultAsKGrows) {
+  auto scene = [](double k) {
+    RigidBody cue = RigidBody::sphere("cue", 0.17, 0.026, 0.8), red = RigidBody::sphere("red", 0.17, 0.026, 1.0);
+    cue.velocity = Vec3(2.0, 0, 0);
+    red.position = Vec3(0.053, 0, 0);
+    return RigidScene("pair", {cue, red}, Vec3::Zero(), [k](double e, double m_eff) {
+      return ContactLaw{kelvin_voigt_for_restitution(k, m_eff, e, false)};
+    });
+  };
+  EventOptions eo;
+  eo.t_end = eo.sample_dt = 0.02;
+  const RunResult impulse = run_event_driven(scene(1e6), eo);
+  const double x_impulse = scene(1e6).bodies_at(impulse.samples.back().y)[1].position.x();
+  std::vector<double> ks, errors;
+  for (double k : {1e4, 1e5, 1e6, 1e7}) {
+    PenaltyOptions o;
+    o.t_end = o.sample_dt = 0.02;
+    o.integrator.rtol = 1e-10;
+    o.integrator.atol = 1e-13;
+    const RunResult r = run_penalty(scene(k), o);
+    ASSERT_TRUE(r.ok()) << r.message;
+    const auto bodies = scene(k).bodies_at(r.samples.back().y);
+    EXPECT_NEAR(bodies[1].velocity.x(), 0.9 * 2.0, 1e-6) << "exit velocity (1+e)/2 v at k = " << k;
+    ks.push_back(k);
+    errors.push_back(std::abs(bodies[1].position.x() - x_impulse));
+  }
+  EXPECT_NEAR(fit_power_law(ks, errors).exponent, -0.5, 0.05);
 }

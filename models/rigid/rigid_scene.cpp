@@ -8,19 +8,24 @@
 
 namespace contact::rigid {
 
-RigidScene::RigidScene(std::string name, std::vector<RigidBody> bodies, Vec3 gravity, ContactLaw law)
-    : name_(std::move(name)), bodies_(std::move(bodies)), gravity_(std::move(gravity)), law_(std::move(law)) {
+RigidScene::RigidScene(std::string name, std::vector<RigidBody> bodies, Vec3 gravity, LawForPair law_for)
+    : name_(std::move(name)), bodies_(std::move(bodies)), gravity_(std::move(gravity)) {
   for (auto& b : bodies_) {
     b.validate();
     b.orientation.normalize();
   }
   for (std::size_t a = 0; a < bodies_.size(); ++a)
     for (std::size_t b = a + 1; b < bodies_.size(); ++b) {
-      if (bodies_[a].inverse_mass == 0 && bodies_[b].inverse_mass == 0) continue;  // two static bodies
+      const double inv = bodies_[a].inverse_mass + bodies_[b].inverse_mass;
+      if (inv == 0) continue;  // two static bodies
+      const ContactLaw law = law_for(pair_restitution(bodies_[a], bodies_[b]), 1.0 / inv);
       const auto list = contact_candidates(bodies_, a, b);
-      for (std::size_t k = 0; k < list.size(); ++k) candidates_.push_back({a, b, k});
+      for (std::size_t k = 0; k < list.size(); ++k) candidates_.push_back({a, b, k, law});
     }
 }
+
+RigidScene::RigidScene(std::string name, std::vector<RigidBody> bodies, Vec3 gravity, ContactLaw law)
+    : RigidScene(std::move(name), std::move(bodies), std::move(gravity), [law](double, double) { return law; }) {}
 
 std::vector<RigidBody> RigidScene::bodies_at(ConstVectorRef y) const {
   std::vector<RigidBody> out = bodies_;
@@ -81,22 +86,28 @@ double RigidScene::gap_rate(std::size_t i, ConstVectorRef y) const {
 double RigidScene::switching(std::size_t i, ConstVectorRef y) const {
   const auto bodies = bodies_at(y);
   const RigidContact c = contact(i, bodies);
-  return contact::switching(law_, c.penetration, -normal_velocity(bodies, c));
+  return contact::switching(candidates_[i].law, c.penetration, -normal_velocity(bodies, c));
 }
 
 double RigidScene::dissipated_power(std::size_t i, ConstVectorRef y) const {
   const auto bodies = bodies_at(y);
   const RigidContact c = contact(i, bodies);
-  return contact::dissipated_power(law_, c.penetration, -normal_velocity(bodies, c));
+  return contact::dissipated_power(candidates_[i].law, c.penetration, -normal_velocity(bodies, c));
 }
 
 void RigidScene::rhs(double, ConstVectorRef y, const ContactModes& modes, VectorRef ydot) const {
   const auto bodies = bodies_at(y);
   std::vector<Vec3> force(bodies.size(), Vec3::Zero()), torque(bodies.size(), Vec3::Zero());
+  std::vector<Vec3> held(bodies.size(), Vec3::Zero());  // resting normals of bodies on static ones
   for (std::size_t i = 0; i < candidates_.size(); ++i) {
+    if (modes[i] == ContactMode::Resting) {
+      const RigidContact c = contact(i, bodies);
+      if (bodies[c.b].inverse_mass == 0) held[c.a] = c.normal;   // a rests on b: cannot move along +n
+      if (bodies[c.a].inverse_mass == 0) held[c.b] = -c.normal;  // b rests on a: cannot move along -n
+    }
     if (modes[i] != ContactMode::Penalty) continue;
     const RigidContact c = contact(i, bodies);
-    const double F = contact::force(law_, c.penetration, -normal_velocity(bodies, c));
+    const double F = contact::force(candidates_[i].law, c.penetration, -normal_velocity(bodies, c));
     const Vec3 f = F * c.normal;  // on b; -f on a
     force[c.b] += f;
     force[c.a] -= f;
@@ -110,6 +121,9 @@ void RigidScene::rhs(double, ConstVectorRef y, const ContactModes& modes, Vector
     auto d = ydot.segment(static_cast<Eigen::Index>(i) * kStride, kStride);
     d.segment<3>(0) = b.velocity;
     d.segment<3>(7) = gravity_ + b.inverse_mass * force[i];
+    // Resting on a static body (event-driven rest): the push into it is held by the support.
+    if (!held[i].isZero(0) && d.segment<3>(7).dot(held[i]) > 0)
+      d.segment<3>(7) -= d.segment<3>(7).dot(held[i]) * held[i];
     if (!b.rotates()) continue;
     // q' = (1/2) (0, w) q for the stored (possibly not quite unit) q.
     const auto s = y.segment(static_cast<Eigen::Index>(i) * kStride, kStride);
@@ -140,7 +154,7 @@ double RigidScene::energy(ConstVectorRef y) const {
     E += b.kinetic_energy();
     if (b.inverse_mass > 0) E -= gravity_.dot(b.position) / b.inverse_mass;
   }
-  for (std::size_t i = 0; i < candidates_.size(); ++i) E += stored_energy(law_, contact(i, bodies).penetration);
+  for (std::size_t i = 0; i < candidates_.size(); ++i) E += stored_energy(candidates_[i].law, contact(i, bodies).penetration);
   return E;
 }
 

@@ -9,6 +9,9 @@
 //   penalty: the contact law's force F(delta, delta_dot) pushes b along +n and a along -n at the
 //   contact point, with torques r x f on each.
 //   energy: kinetic + gravitational (-m g.x) + the springs' stored energy.
+//   resting (event-driven rest): a body resting on a static body loses the part of its
+//   acceleration that pushes into the support, as a support force would take it; resting between
+//   two moving bodies is not modelled (treated as free).
 // No analytic Jacobian (rotations make it long; implicit integrators use difference quotients,
 // which test_rigid_scene checks). The rotation uses q / |q|; normalize() restores unit
 // quaternions after fixed steps.
@@ -16,10 +19,17 @@
 #include "mechanical_system.hpp"
 #include "rigid_contacts.hpp"
 
+#include <functional>
+
 namespace contact::rigid {
 
 class RigidScene final : public MechanicalSystem {
  public:
+  // Each pair's penalty law comes from `law_for(e, m_eff)`: its restitution (the product of
+  // elasticities) and effective mass 1 / (m_a^-1 + m_b^-1).
+  using LawForPair = std::function<ContactLaw(double e, double m_eff)>;
+  RigidScene(std::string name, std::vector<RigidBody> bodies, Vec3 gravity, LawForPair law_for);
+  // Every pair with the same law.
   RigidScene(std::string name, std::vector<RigidBody> bodies, Vec3 gravity, ContactLaw law);
 
   static constexpr Eigen::Index kStride = 13;
@@ -58,11 +68,11 @@ class RigidScene final : public MechanicalSystem {
  private:
   struct Candidate {
     std::size_t a, b, k;  // bodies, and which of their candidates (a cuboid vertex)
+    ContactLaw law;       // the pair's
   };
   std::string name_;
   std::vector<RigidBody> bodies_;
   Vec3 gravity_;
-  ContactLaw law_;
   std::vector<Candidate> candidates_;
 };
 

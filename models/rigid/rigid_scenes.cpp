@@ -1,0 +1,103 @@
+#include "rigid_scenes.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace contact::rigid {
+
+namespace {
+
+constexpr double kGap = 1e-3;  // initial clearance of the moving body [m]
+
+// Each pair's spring: stiffness k, Kelvin–Voigt damping tuned to the pair's restitution and
+// effective mass.
+RigidScene::LawForPair law_for(const SceneParams& p) {
+  return [k = p.k](double e, double m_eff) { return ContactLaw{kelvin_voigt_for_restitution(k, m_eff, e, false)}; };
+}
+
+RigidScene snooker(const SceneParams& p, double other_mass, double other_radius) {
+  RigidBody cue = RigidBody::sphere("cue", p.m, p.radius, p.elasticity);
+  RigidBody red = RigidBody::sphere("red", other_mass, other_radius, 1.0);
+  cue.velocity = Vec3(2.0, 0, 0);
+  red.position = Vec3(p.radius + other_radius + kGap, 0, 0);
+  return RigidScene("snooker", {cue, red}, Vec3::Zero(), law_for(p));
+}
+
+RigidScene spinning_box(const SceneParams& p) {
+  RigidBody box = RigidBody::cuboid("box", 1.0, p.half_extents, 1.0);
+  box.orientation = p.orientation;
+  box.angular_velocity = box.orientation * Vec3(0, 0, 4);  // about the box's own z axis
+  // The sphere waits on the circle the box's vertical edge at (+x, +y) sweeps, ahead of it by
+  // the smallest angle that clears the box by kGap: the edge then strikes it.
+  const Vec3 edge(p.half_extents.x(), p.half_extents.y(), 0);
+  RigidBody ball = RigidBody::sphere("ball", p.m, p.radius, p.elasticity);
+  for (double phi = 0.0; phi < 3.0; phi += 1e-3) {
+    ball.position = box.position + box.orientation * (Quat(Eigen::AngleAxisd(phi, Vec3::UnitZ())) * edge);
+    std::vector<RigidBody> pair{box, ball};
+    if (contact_candidates(pair, 0, 1)[0].penetration <= -kGap) break;
+  }
+  return RigidScene("spinning-box", {box, ball}, Vec3::Zero(), law_for(p));
+}
+
+RigidScene off_centre(const SceneParams& p) {
+  RigidBody box = RigidBody::cuboid("box", 1.0, p.half_extents, 1.0);
+  box.orientation = p.orientation;
+  RigidBody ball = RigidBody::sphere("ball", p.m, p.radius, p.elasticity);
+  const Mat3 R = p.orientation.toRotationMatrix();
+  ball.position = R * Vec3(p.half_extents.x() + p.radius + kGap, 0.6 * p.half_extents.y(), 0);
+  ball.velocity = -2.0 * (R * Vec3::UnitX());
+  return RigidScene("off-centre", {ball, box}, Vec3::Zero(), law_for(p));
+}
+
+RigidScene rubber_steel(const SceneParams& p) {
+  RigidBody rubber = RigidBody::sphere("rubber", p.m, p.radius, 0.9), steel = RigidBody::sphere("steel", p.m, p.radius, 0.4);
+  rubber.position = Vec3(0, 0, 1.0);
+  steel.position = Vec3(1.0, 0, 1.0);
+  return RigidScene("rubber-steel", {rubber, steel, RigidBody::plane("floor", Vec3::UnitZ(), 0.0, 1.0)},
+                    Vec3(0, 0, -9.81), law_for(p));
+}
+
+RigidScene cradle(const SceneParams& p) {
+  std::vector<RigidBody> balls;
+  for (int i = 0; i < 5; ++i) {
+    RigidBody b = RigidBody::sphere(fmt::format("ball{}", i), p.m, p.radius, p.elasticity);
+    b.position = Vec3(2 * p.radius * i + (i > 0 ? kGap : 0.0), 0, 0);
+    balls.push_back(b);
+  }
+  balls[0].velocity = Vec3(1.0, 0, 0);
+  return RigidScene("cradle", balls, Vec3::Zero(), law_for(p));
+}
+
+}  // namespace
+
+const std::vector<SceneInfo>& rigid_scene_registry() {
+  static const std::vector<SceneInfo> scenes = {
+      {"snooker", "cue ball into a resting red ball of equal mass", 0.05,
+       [](const SceneParams& p) { return snooker(p, p.m, p.radius); }},
+      {"planet", "cue ball into a planet 1e6 times heavier", 0.05,
+       [](const SceneParams& p) { return snooker(p, p.m * 1e6, p.radius * 100); }},
+      {"spinning-box", "a spinning box's corner knocks a resting sphere", 0.05, spinning_box},
+      {"off-centre", "a sphere hits a resting cuboid off its centre line", 0.05, off_centre},
+      {"rubber-steel", "a rubber (0.9) and a steel (0.4) ball dropped on the floor", 1.5, rubber_steel},
+      {"cradle", "Newton's cradle: a striker into four touching balls", 0.05, cradle},
+  };
+  return scenes;
+}
+
+std::vector<std::string> rigid_scene_names() {
+  std::vector<std::string> names;
+  for (const auto& s : rigid_scene_registry()) names.push_back(s.name);
+  return names;
+}
+
+const SceneInfo& rigid_scene(const std::string& name) {
+  const auto& all = rigid_scene_registry();
+  const auto it = std::find_if(all.begin(), all.end(), [&](const auto& s) { return s.name == name; });
+  if (it == all.end())
+    throw std::invalid_argument(fmt::format("--scene: value '{}' is not one of: {}", name, fmt::join(rigid_scene_names(), ", ")));
+  return *it;
+}
+
+}  // namespace contact::rigid

@@ -1,0 +1,73 @@
+// The rigid_scenes experiment: the scenes' physics as a reader checks it, by every method, and the
+// command-line contract.
+#include "cli_fixture.hpp"
+
+#include <cmath>
+#include <map>
+
+namespace {
+
+class RigidScenesCli : public CliTest {};
+
+// scene,method,quantity -> value, from observables.csv.
+std::map<std::string, double> observables(const std::string& csv) {
+  std::map<std::string, double> out;
+  std::istringstream in(csv);
+  std::string line;
+  std::getline(in, line);  // header
+  while (std::getline(in, line)) {
+    const auto cut = line.rfind(',');
+    out[line.substr(0, cut)] = line.substr(cut + 1) == "nan" ? std::nan("") : std::stod(line.substr(cut + 1));
+  }
+  return out;
+}
+
+}  // namespace
+
+// Expected values, derived:
+// - snooker, e = 1, equal masses: exchange (penalty: exact for a linear spring between equal
+//   masses, to the solver's tolerance).
+// - planet: momentum gives it at most 2 (m/M) v = 4e-6 m/s; the cue ball returns at -2 m/s.
+// - spinning box: the ball leaves with the same speed by every impulsive/penalty method.
+// - rubber-steel: first apex / release height = e^2 = 0.81 and 0.16 (event-driven: exact flight
+//   between exact impulses; game and penalty within their O(dt) and O(g/(wV)) errors, 1e-2).
+// - cradle by impulses: the last ball leaves at the striker's 1 m/s.
+// - projection alone: the cue ball keeps pushing, the red ball is displaced, nothing bounces.
+TEST_F(RigidScenesCli, ScenesBehaveAsPhysicsSays) {
+  const Outcome r = run(RIGID_SCENES_EXE, "--out scenes");
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto o = observables(slurp(dir_ / "scenes" / "observables.csv"));
+  for (const char* m : {"penalty", "game", "event"}) {
+    const std::string M = m;
+    EXPECT_NEAR(o["snooker," + M + ",cue_vx_mps"], 0.0, 1e-5) << m;
+    EXPECT_NEAR(o["snooker," + M + ",red_vx_mps"], 2.0, 1e-5) << m;
+    EXPECT_LE(o["planet," + M + ",planet_speed_mps"], 4e-6 * (1 + 1e-6)) << m;
+    EXPECT_NEAR(o["planet," + M + ",cue_vx_mps"], -2.0, 1e-5) << m;
+    EXPECT_NEAR(o["spinning-box," + M + ",ball_speed_mps"], o["spinning-box,event,ball_speed_mps"], 1e-2) << m;
+    EXPECT_GT(o["off-centre," + M + ",box_spin_radps"], 1.0) << m << ": an off-centre hit twists the box";
+    EXPECT_NEAR(o["rubber-steel," + M + ",rubber_apex_ratio"], 0.81, 1e-2) << m;
+    EXPECT_NEAR(o["rubber-steel," + M + ",steel_apex_ratio"], 0.16, 1e-2) << m;
+  }
+  EXPECT_GT(o["spinning-box,event,ball_speed_mps"], 0.5) << "spin alone knocks the ball away";
+  EXPECT_NEAR(o["rubber-steel,event,rubber_apex_ratio"], 0.81, 1e-6);
+  EXPECT_NEAR(o["cradle,event,last_vx_mps"], 1.0, 1e-12);
+  EXPECT_NEAR(o["cradle,game,last_vx_mps"], 1.0, 1e-12);
+  EXPECT_NEAR(o["snooker,game-projection,cue_vx_mps"], 2.0, 1e-12) << "projection never changes velocity";
+  // The cue ball pushes the red ball along: each step's overlap 2 dt is split by inverse mass,
+  // so the red ball advances at half the cue's 2 m/s from contact (after the 1 mm gap, 0.5 ms)
+  // to the end (0.05 s): 0.0495 m, to within a step's advance.
+  EXPECT_NEAR(o["snooker,game-projection,red_displacement_m"], 0.5 * 2.0 * (0.05 - 0.0005), 2.0 * 1e-4);
+}
+
+TEST_F(RigidScenesCli, BadInputIsRefused) {
+  expect_refused(RIGID_SCENES_EXE, {
+      {"--m 0", "--m", "'0'", "(0, inf)"},
+      {"--m -1", "--m", "'-1'", "(0, inf)"},
+      {"--radius 0", "--radius", "'0'", "(0, inf)"},
+      {"--half-extents 0.1 0 0.1", "--half-extents", "'0'", "(0, inf)"},
+      {"--elasticity -0.5", "--elasticity", "'-0.5'", "[0, inf)"},
+      {"--quaternion 0 0 0 0", "--quaternion", "'0 0 0 0'", "non-zero"},
+      {"--quaternion 1 nan 0 0", "--quaternion", "'nan'", "(-inf, inf)"},
+      {"--scene pool", "--scene", "'pool'", "snooker"},
+  });
+}
