@@ -3,7 +3,8 @@
 // rubber-steel, cradle. Methods: penalty (Kelvin–Voigt spring as an ODE under CVODE BDF with
 // difference-quotient Jacobian, contact switches root-located), game (semi-implicit Euler with
 // the tutorial's projection + impulse), game-projection (projection alone: the cue ball keeps
-// pushing), event (free flight under CVODE, impulses at located contacts, sequential rule).
+// pushing), event (free flight under CVODE, impulses at located contacts, sequential rule, lowest
+// contact first), event-reversed (the same, highest first: the rule's order-dependence).
 // Outputs in --out (default results/rigid_scenes): runs.{csv,md,tex} (one row per scene and
 // method), observables.csv (scene, method, quantity, value), meta.json.
 // Exit codes: 0 success, 1 solver failure, 2 bad input (option, value, accepted range).
@@ -40,9 +41,14 @@ Observables observe(const std::string& scene, const RigidScene& s, const RunResu
       if (s.pair(a.contact) == with_floor) return a.gap / (1.0 - std::get<Sphere>(bodies[body].shape).radius);
     return std::nan("");
   };
-  if (scene == "snooker")
+  if (scene == "snooker") {
+    // With projection alone the first contact never closes: it pushes from its start to the end.
+    const double pushing = r.contacts.empty() ? 0.0
+                           : r.contacts.front().closed() ? r.contacts.front().duration()
+                                                         : r.t_reached - r.contacts.front().t_begin;
     return {{"cue_vx_mps", bodies[0].velocity.x()}, {"red_vx_mps", bodies[1].velocity.x()},
-            {"red_displacement_m", bodies[1].position.x() - s.bodies()[1].position.x()}};
+            {"red_displacement_m", bodies[1].position.x() - s.bodies()[1].position.x()}, {"contact_duration_s", pushing}};
+  }
   if (scene == "planet") return {{"cue_vx_mps", bodies[0].velocity.x()}, {"planet_speed_mps", bodies[1].velocity.norm()}};
   if (scene == "spinning-box")
     return {{"ball_speed_mps", bodies[1].velocity.norm()}, {"box_spin_radps", bodies[0].angular_velocity.norm()}};
@@ -50,13 +56,16 @@ Observables observe(const std::string& scene, const RigidScene& s, const RunResu
     return {{"box_spin_radps", bodies[1].angular_velocity.norm()}, {"box_speed_mps", bodies[1].velocity.norm()}};
   if (scene == "rubber-steel") return {{"rubber_apex_ratio", first_apex(0)}, {"steel_apex_ratio", first_apex(1)}};
   if (scene == "cradle") return {{"striker_vx_mps", bodies[0].velocity.x()}, {"last_vx_mps", bodies[4].velocity.x()}};
+  if (scene == "wedge")  // symmetric physics would give the two balls equal speeds
+    return {{"upper_speed_mps", bodies[1].velocity.norm()}, {"lower_speed_mps", bodies[2].velocity.norm()},
+            {"striker_vy_mps", bodies[0].velocity.y()}};
   return {};
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string scenes = "all", methods = "penalty,game,game-projection,event", out = "results/rigid_scenes";
+  std::string scenes = "all", methods = "penalty,game,game-projection,event,event-reversed", out = "results/rigid_scenes";
   SceneParams p;
   double dt = 1e-4, rtol = 1e-8, atol = 1e-10;
   std::vector<double> half{p.half_extents.x(), p.half_extents.y(), p.half_extents.z()}, quat{1, 0, 0, 0};
@@ -65,7 +74,7 @@ int main(int argc, char** argv) {
   auto names = rigid_scene_names();
   names.insert(names.begin(), "all");
   app.add_option("--scene", scenes, "scenes, comma-separated or 'all'")->check(cli::one_of(names, true));
-  app.add_option("--method", methods, "methods, comma-separated")->check(cli::one_of({"penalty", "game", "game-projection", "event"}, true));
+  app.add_option("--method", methods, "methods, comma-separated")->check(cli::one_of({"penalty", "game", "game-projection", "event", "event-reversed"}, true));
   app.add_option("--m", p.m, "mass of the moving ball [kg]")->check(cli::positive());
   app.add_option("--radius", p.radius, "its radius [m]")->check(cli::positive());
   app.add_option("--elasticity", p.elasticity, "its elasticity (restitution = product of the pair's)")->check(cli::non_negative());
@@ -116,6 +125,7 @@ int main(int argc, char** argv) {
         o.t_end = o.sample_dt = info.t_end;
         o.integrator.rtol = rtol;
         o.integrator.atol = atol;
+        o.reverse_order = method == "event-reversed";
         r = run_event_driven(scene, o);
       }
       if (!r.ok()) {

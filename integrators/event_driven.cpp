@@ -55,14 +55,16 @@ class Impacts {
 
   // Contact `first` closed at t. Impulses are resolved one contact at a time (the sequential
   // rule): after each, every contact that still touches (gap <= 0) and approaches is resolved
-  // next, lowest index first, until none does. A row of touching balls thus passes an impulse
+  // next, lowest index first (highest with reverse_order), until none does. A row of touching balls thus passes an impulse
   // down the chain within one instant, as in Newton's cradle. The result depends on the order
   // when contacts share a body; experiments measure that rather than hide it.
   void resolve_from(std::size_t first, double t, VectorRef y) {
     resolve(first, t, y);
     for (bool again = true; again;) {
       again = false;
-      for (std::size_t j = 0; j < model_.contact_count(); ++j) {
+      const std::size_t n = model_.contact_count();
+      for (std::size_t k = 0; k < n; ++k) {
+        const std::size_t j = opt_.reverse_order ? n - 1 - k : k;
         if (!resting(j) && model_.gap(j, y) <= 0 && model_.gap_rate(j, y) < 0) {
           resolve(j, t, y);
           again = true;
@@ -104,7 +106,8 @@ RunResult run_event_driven(const MechanicalSystem& model, const EventOptions& op
   drive.root_directions.assign(2 * nc, -1);
   drive.on_roots = [&](double t, Vector& y, const std::vector<int>& roots) {
     bool impact = false;
-    for (std::size_t i = 0; i < nc; ++i) {
+    for (std::size_t k = 0; k < nc; ++k) {
+      const std::size_t i = opt.reverse_order ? nc - 1 - k : k;
       if (roots[2 * i + 1] != 0) rec.apex(i, t, model.gap(i, y), model.energy(y));
       if (roots[2 * i] != 0 && !impact) {
         impacts.resolve_from(i, t, y);

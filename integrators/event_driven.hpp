@@ -29,6 +29,7 @@ struct EventOptions {
   double rest_speed = 1e-7;      // [m/s]
   double min_event_spacing = 0;  // [s]
   long max_events = 1000000;
+  bool reverse_order = false;    // sequential rule: highest contact index first instead of lowest
 };
 
 // Flight by a numerical integrator.

@@ -57,6 +57,15 @@ TEST_F(RigidScenesCli, ScenesBehaveAsPhysicsSays) {
   // so the red ball advances at half the cue's 2 m/s from contact (after the 1 mm gap, 0.5 ms)
   // to the end (0.05 s): 0.0495 m, to within a step's advance.
   EXPECT_NEAR(o["snooker,game-projection,red_displacement_m"], 0.5 * 2.0 * (0.05 - 0.0005), 2.0 * 1e-4);
+  EXPECT_NEAR(o["snooker,game-projection,contact_duration_s"], 0.05 - 0.0005, 2e-4) << "it pushes to the end";
+  // The sequential rule's order-dependence, measured: two simultaneous contacts. Penalty springs
+  // act together and keep the symmetry; sequential impulses break it, and resolving in the other
+  // order mirrors the outcome exactly.
+  EXPECT_NEAR(o["wedge,penalty,upper_speed_mps"], o["wedge,penalty,lower_speed_mps"], 1e-6);
+  EXPECT_NEAR(o["wedge,penalty,striker_vy_mps"], 0.0, 1e-6);
+  EXPECT_GT(o["wedge,event,upper_speed_mps"] - o["wedge,event,lower_speed_mps"], 0.1);
+  EXPECT_NEAR(o["wedge,event,upper_speed_mps"], o["wedge,event-reversed,lower_speed_mps"], 1e-12);
+  EXPECT_NEAR(o["wedge,event,striker_vy_mps"], -o["wedge,event-reversed,striker_vy_mps"], 1e-12);
 }
 
 TEST_F(RigidScenesCli, BadInputIsRefused) {

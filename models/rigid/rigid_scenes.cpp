@@ -70,6 +70,18 @@ RigidScene cradle(const SceneParams& p) {
   return RigidScene("cradle", balls, Vec3::Zero(), law_for(p));
 }
 
+// The striker reaches two balls at +-30 degrees off its path at the same instant: simultaneous
+// contacts, which the sequential impulse rule resolves one after the other.
+RigidScene wedge(const SceneParams& p) {
+  RigidBody striker = RigidBody::sphere("striker", p.m, p.radius, p.elasticity);
+  striker.velocity = Vec3(1.0, 0, 0);
+  const double d = 2 * p.radius + kGap, c = std::sqrt(3.0) / 2;
+  RigidBody upper = RigidBody::sphere("upper", p.m, p.radius, 1.0), lower = RigidBody::sphere("lower", p.m, p.radius, 1.0);
+  upper.position = Vec3(d * c, d * 0.5, 0);
+  lower.position = Vec3(d * c, -d * 0.5, 0);
+  return RigidScene("wedge", {striker, upper, lower}, Vec3::Zero(), law_for(p));
+}
+
 }  // namespace
 
 const std::vector<SceneInfo>& rigid_scene_registry() {
@@ -82,6 +94,7 @@ const std::vector<SceneInfo>& rigid_scene_registry() {
       {"off-centre", "a sphere hits a resting cuboid off its centre line", 0.05, off_centre},
       {"rubber-steel", "a rubber (0.9) and a steel (0.4) ball dropped on the floor", 1.5, rubber_steel},
       {"cradle", "Newton's cradle: a striker into four touching balls", 0.05, cradle},
+      {"wedge", "a striker meets two balls at once, symmetric about its path (order-dependence)", 0.05, wedge},
   };
   return scenes;
 }

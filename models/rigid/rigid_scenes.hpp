@@ -6,6 +6,7 @@
 //   off-centre     a sphere hits a resting cuboid off its centre line (the cuboid twists)
 //   rubber-steel   a rubber and a steel ball dropped on the floor (e = product of elasticities)
 //   cradle         Newton's cradle: a striker into four touching balls
+//   wedge          a striker meets two balls at once (the sequential rule's order-dependence)
 // Parameters: the moving ball's mass, radius and elasticity, the cuboid's half extents and
 // orientation, and the penalty stiffness (Kelvin–Voigt damping tuned to the scene's nominal e).
 #include "rigid_scene.hpp"
