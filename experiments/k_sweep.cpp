@@ -1,0 +1,166 @@
+// k_sweep — what the spring constant k does to a penalty contact, and what it costs.
+// The ball drop (m = 1 kg, g = 9.81 m/s^2, h0 = 1 m) under CVODE BDF (rtol 1e-10, atol 1e-12,
+// contact switches root-located) for k = 1e2 ... 1e10 N/m, --per-decade points per decade, with
+// three laws: Hooke (undamped), Kelvin–Voigt tuned to e = --e (unclamped and clamped). For the
+// first contact: maximum penetration, duration, restitution, the energy left at the first apex,
+// and CVODE's cost per contact (steps, right-hand sides, Jacobians, Newton iterations, failed
+// steps); the largest stable explicit and semi-implicit Euler steps for that contact (linearised:
+// 2 zeta / w and 2 (sqrt(zeta^2 + 1) - zeta) / w, analysis/contact_advisor.hpp); beside them the
+// closed forms (Hooke with gravity, exact; Kelvin–Voigt without gravity) and the exponents of
+// penetration and duration against k fitted by least squares in log-log (GSL) over k >= 1e4,
+// where gravity's share g / (w V) is below 2 %.
+// Outputs in --out (default results/k_sweep): k_sweep.{csv,md,tex}, exponents.{csv,md,tex},
+// penetration.{png,pdf,gp}, duration.{png,pdf,gp}, cost.{png,pdf,gp}, stable_dt.{png,pdf,gp},
+// meta.json. Exit codes: 0, 1 solver failure, 2 bad input.
+#include "ball_drop.hpp"
+#include "cli.hpp"
+#include "figure.hpp"
+#include "fit.hpp"
+#include "metrics.hpp"
+#include "output.hpp"
+#include "penalty.hpp"
+#include "progress.hpp"
+#include "references.hpp"
+#include "table.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <map>
+
+using namespace contact;
+
+namespace {
+
+struct Law {
+  std::string name;
+  ContactLaw (*make)(double k, double m, double e);
+};
+
+const std::vector<Law> kLaws = {
+    {"hooke", [](double k, double, double) { return ContactLaw{Hooke{k}}; }},
+    {"kelvin-voigt", [](double k, double m, double e) { return ContactLaw{kelvin_voigt_for_restitution(k, m, e, false)}; }},
+    {"kelvin-voigt-clamped", [](double k, double m, double e) { return ContactLaw{kelvin_voigt_for_restitution(k, m, e, true)}; }},
+};
+
+// A gnuplot log-log figure of column `y` (and its closed form `y_ref` where given) against k,
+// one curve per law; the data are the k_sweep CSV.
+Figure loglog(const std::string& name, const std::string& ylabel, int ycol, int ref_col) {
+  std::string plot = fmt::format(
+      "set logscale xy\nset format x '10^{{%L}}'\nset xlabel 'k [N/m]'\nset ylabel '{}'\nset format y '10^{{%L}}'\nset key bottom left\nset grid\nplot ", ylabel);
+  for (std::size_t i = 0; i < kLaws.size(); ++i) {
+    if (i) plot += ", ";
+    plot += fmt::format("'data.csv' using ($2 == {} ? $1 : 1/0):{} with points pt {} title '{}'", i, ycol, 5 + 2 * static_cast<int>(i), kLaws[i].name);
+    if (ref_col > 0) plot += fmt::format(", '' using ($2 == {} ? $1 : 1/0):{} with lines dt 2 title '{} closed form'", i, ref_col, kLaws[i].name);
+  }
+  return {name, "", plot};
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  double e = 0.8, k_min = 1e2, k_max = 1e10;
+  long per_decade = 3;
+  std::string out = "results/k_sweep";
+  CLI::App app{"The effect of the spring constant on a penalty contact: penetration, duration, restitution, energy, cost and stable steps.", "k_sweep"};
+  app.option_defaults()->always_capture_default();
+  app.add_option("--e", e, "target restitution of the Kelvin-Voigt laws")->check(cli::real_in(0, 1, true, false));
+  app.add_option("--k-min", k_min, "smallest k [N/m]")->check(cli::positive());
+  app.add_option("--k-max", k_max, "largest k [N/m]")->check(cli::positive());
+  app.add_option("--per-decade", per_decade, "points per decade of k")->check(cli::integer_at_least(1));
+  app.add_option("--out", out, "output directory");
+  if (const int code = cli::parse(app, argc, argv); code >= 0) return code;
+  if (!(k_max >= k_min)) {
+    std::cerr << fmt::format("k_sweep: --k-max: value '{:g}' is below --k-min = {:g}; accepted range [k-min, inf)\n", k_max, k_min);
+    return cli::kExitBadInput;
+  }
+  if (const auto err = check_output_dir(out); !err.empty()) {
+    std::cerr << "k_sweep: " << err << "\n";
+    return cli::kExitBadInput;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const double m = 1.0, g = 9.81, h0 = 1.0, V = std::sqrt(2 * g * h0);
+  const long n = std::max(1L, std::lround(std::log10(k_max / k_min) * static_cast<double>(per_decade)));
+
+  Table table({"k_N_per_m", "law", "penetration_m", "closed_form_penetration_m", "duration_s", "closed_form_duration_s",
+               "restitution", "energy_after_first_bounce_rel", "steps_per_contact", "rhs_per_contact", "jac_per_contact",
+               "newton_per_contact", "failed_steps", "euler_max_dt_s", "symplectic_max_dt_s"});
+  std::string data;  // for the figures: k, law index, the numeric columns in table order
+  Progress progress("k_sweep", kLaws.size() * static_cast<std::size_t>(n + 1));
+  std::map<std::string, std::vector<double>> fit_k, fit_pen, fit_dur;
+  for (std::size_t li = 0; li < kLaws.size(); ++li) {
+    for (long j = 0; j <= n; ++j) {
+      const double k = k_min * std::pow(k_max / k_min, static_cast<double>(j) / static_cast<double>(std::max(1L, n)));
+      progress.step(fmt::format("{} k = {:.3g}", kLaws[li].name, k));
+      const ContactLaw law = kLaws[li].make(k, m, e);
+      PenaltyOptions o;
+      o.t_end = 1.6;  // the first contact (0.45 s, lasting up to 0.37 s at k = 1e2) and the first apex
+      o.sample_dt = 1.6;
+      o.integrator.rtol = 1e-10;
+      o.integrator.atol = 1e-12;
+      o.integrator.max_steps = 1000000;
+      const RunResult r = run_penalty(BallDrop({m, g, h0, 0.0, e, law}), o);
+      if (!r.ok() || r.contacts.empty() || !r.contacts[0].closed() || r.apexes.empty()) {
+        std::cerr << fmt::format("k_sweep: {} at k = {:g}: {} {}\n", kLaws[li].name, k, to_string(r.status), r.message);
+        return cli::kExitFailure;
+      }
+      const auto& c = r.contacts[0];
+      const double contacts = static_cast<double>(r.contacts.size());
+      // Closed forms: Hooke exactly (with gravity); Kelvin–Voigt in the gravity-free limit;
+      // the clamped law shares the unclamped penetration (the clamp acts after the maximum).
+      const double zeta = li == 0 ? 0.0 : damping_ratio_for_restitution(e);
+      const SpringContact ref = li == 0 ? hooke_contact(m, k, V, g) : kelvin_voigt_contact(m, k, zeta, V);
+      const double ref_duration = li == 2 ? (std::numbers::pi - 2 * std::asin(zeta)) / (std::sqrt(k / m) * std::sqrt(1 - zeta * zeta))
+                                          : ref.duration;
+      const double w = std::sqrt(k / m);
+      const double euler_dt = 2 * zeta / w, symplectic_dt = 2 * (std::sqrt(zeta * zeta + 1) - zeta) / w;
+      const double energy_left = r.apexes[0].energy / r.energy0;
+      const auto& st = r.stats;
+      const auto per = [&](long count) { return static_cast<double>(count) / contacts; };
+      table.add_row({k, kLaws[li].name, c.max_penetration, ref.max_penetration, c.duration(), ref_duration, c.restitution(),
+                     energy_left, per(st.steps), per(st.rhs_evals), per(st.jac_evals), per(st.newton_iters), st.failed_steps,
+                     euler_dt, symplectic_dt});
+      data += fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", k, li, c.max_penetration, ref.max_penetration, c.duration(),
+                          ref_duration, per(st.steps), per(st.rhs_evals), euler_dt > 0 ? euler_dt : NAN, symplectic_dt, c.restitution());
+      if (k >= 1e4) {
+        fit_k[kLaws[li].name].push_back(k);
+        fit_pen[kLaws[li].name].push_back(c.max_penetration);
+        fit_dur[kLaws[li].name].push_back(c.duration());
+      }
+    }
+  }
+  Table exponents({"law", "penetration_exponent", "penetration_exponent_sd", "duration_exponent", "duration_exponent_sd", "expected"});
+  for (const auto& law : kLaws) {
+    if (fit_k[law.name].size() < 2) continue;
+    const PowerFit p = fit_power_law(fit_k[law.name], fit_pen[law.name]), d = fit_power_law(fit_k[law.name], fit_dur[law.name]);
+    exponents.add_row({law.name, p.exponent, p.exponent_sd, d.exponent, d.exponent_sd, std::string("-1/2 (V sqrt(m/k), pi sqrt(m/k))")});
+  }
+  OutputSet files;
+  files.add_table("k_sweep", table);
+  files.add_table("exponents", exponents);
+  try {
+    // data.csv columns: 1 k, 2 law, 3 pen, 4 pen ref, 5 dur, 6 dur ref, 7 steps/contact, 8 rhs/contact, 9 euler dt, 10 symplectic dt, 11 e
+    for (Figure f : {loglog("penetration", "maximum penetration [m]", 3, 4), loglog("duration", "contact duration [s]", 5, 6),
+                     loglog("cost", "CVODE right-hand sides per contact", 8, 0), loglog("stable_dt", "largest stable semi-implicit Euler step [s]", 10, 0)}) {
+      f.data = data;
+      render(f, files);
+    }
+  } catch (const std::exception& ex) {
+    std::cerr << "k_sweep: " << ex.what() << "\n";
+    return cli::kExitFailure;
+  }
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  files.add("meta.json", run_metadata(app, argc, argv, wall).dump(2) + "\n");
+  fmt::print("k sweep: ball drop, m = {:g} kg, h0 = {:g} m, e = {:g}, CVODE BDF rtol 1e-10\n\n{}\nFitted exponents (k >= 1e4):\n\n{}",
+             m, h0, e, table.to_markdown(), exponents.to_markdown());
+  try {
+    files.write(out);
+  } catch (const std::exception& ex) {
+    std::cerr << "k_sweep: " << ex.what() << "\n";
+    return cli::kExitFailure;
+  }
+  fmt::print("\nwrote {} files to {} ({:.2f} s)\n", files.files().size(), out, wall);
+  return 0;
+}

@@ -1,0 +1,60 @@
+// The k_sweep experiment: declared outputs, its closed-form numbers checked, bad input refused.
+#include "cli_fixture.hpp"
+
+#include <cmath>
+
+namespace {
+
+class KSweepCli : public CliTest {};
+
+std::vector<std::vector<std::string>> rows(const std::string& csv) {
+  std::vector<std::vector<std::string>> out;
+  std::istringstream in(csv);
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> cells;
+    std::istringstream l(line);
+    for (std::string cell; std::getline(l, cell, ',');) cells.push_back(cell);
+    out.push_back(cells);
+  }
+  return out;
+}
+
+}  // namespace
+
+// The Hooke rows have an exact closed form with gravity (references.hpp): penetration and
+// duration to the run's accuracy (rtol 1e-10 over ~100 steps: 1e-6 relative). The fitted
+// exponents over k >= 1e4 are -1/2 up to gravity's O(g/(wV)) share: within 0.005.
+TEST_F(KSweepCli, ReportsClosedFormNumbersAndExponents) {
+  const Outcome r = run(K_SWEEP_EXE, "--k-min 1e3 --k-max 1e7 --per-decade 1 --out ks");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto table = rows(slurp(dir_ / "ks" / "k_sweep.csv"));
+  ASSERT_EQ(table.front()[0], "k_N_per_m");
+  ASSERT_EQ(table.size(), 1 + 3 * 5u);
+  int hooke = 0;
+  for (std::size_t i = 1; i < table.size(); ++i) {
+    if (table[i][1] != "hooke") continue;
+    ++hooke;
+    EXPECT_NEAR(std::stod(table[i][2]) / std::stod(table[i][3]), 1.0, 1e-6) << "penetration at k = " << table[i][0];
+    EXPECT_NEAR(std::stod(table[i][4]) / std::stod(table[i][5]), 1.0, 1e-6) << "duration at k = " << table[i][0];
+    EXPECT_NEAR(std::stod(table[i][6]), 1.0, 1e-6) << "undamped restitution";
+  }
+  EXPECT_EQ(hooke, 5);
+  const auto exps = rows(slurp(dir_ / "ks" / "exponents.csv"));
+  ASSERT_EQ(exps.size(), 4u);
+  for (std::size_t i = 1; i < exps.size(); ++i) {
+    EXPECT_NEAR(std::stod(exps[i][1]), -0.5, 0.005) << exps[i][0];
+    EXPECT_NEAR(std::stod(exps[i][3]), -0.5, 0.005) << exps[i][0];
+  }
+  for (const char* f : {"penetration.png", "penetration.pdf", "duration.png", "cost.png", "stable_dt.png", "meta.json", "k_sweep.md", "k_sweep.tex"})
+    EXPECT_TRUE(fs::exists(dir_ / "ks" / f)) << f;
+}
+
+TEST_F(KSweepCli, BadInputIsRefused) {
+  expect_refused(K_SWEEP_EXE, {
+      {"--k-min 0", "--k-min", "'0'", "(0, inf)"},
+      {"--k-max -1e5", "--k-max", "'-1e5'", "(0, inf)"},
+      {"--k-min 1e6 --k-max 1e3", "--k-max", "'1000'", "k-min"},
+      {"--e 0", "--e", "'0'", "(0, 1]"},
+      {"--per-decade 0", "--per-decade", "'0'", ">= 1"},
+  });
+}
