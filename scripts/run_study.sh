@@ -20,6 +20,8 @@ build/experiments/rigid_scenes --out "$results/rigid_scenes"
 echo
 build/experiments/k_sweep --out "$results/k_sweep"
 echo
+build/experiments/stability_map --out "$results/stability_map"
+echo
 # A worked question: 1 kg at 5 m/s, e = 0.8, at most 1 mm of penetration.
 build/experiments/contact_advisor --m 1 --v 5 --e 0.8 --max-penetration 1e-3 --out "$results/contact_advisor"
 echo

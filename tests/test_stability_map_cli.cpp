@@ -1,0 +1,57 @@
+// The stability_map experiment against its analytic references.
+#include "cli_fixture.hpp"
+
+#include <cmath>
+#include <map>
+
+namespace {
+
+class StabilityMapCli : public CliTest {};
+
+}  // namespace
+
+// - Collapse: in units of 1/w (time) and V/w (length) the contact is the same for every k when
+//   w dt and the entry phase (half a step) are the same, so the restitution depends on w dt only:
+//   equal across k to rounding (1e-9).
+// - Semi-implicit Euler below w dt = 2 keeps the energy within the modified-energy band, e^2 in
+//   [(1 - x/2)/(1 + x/2), (1 + x/2)/(1 - x/2)] (test_fixed_step), and gains above it.
+// - Explicit Euler multiplies the energy by 1 + x^2 > 1 every step in contact: it always gains.
+TEST_F(StabilityMapCli, RestitutionFollowsTheAnalyticReferences) {
+  const Outcome r = run(STABILITY_MAP_EXE, "--points 12 --out map");
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::istringstream in(slurp(dir_ / "map" / "stability.csv"));
+  std::string line;
+  std::getline(in, line);
+  ASSERT_EQ(line, "k_N_per_m,scheme,omega_dt,dt_s,restitution,energy_ratio,reference_bound");
+  std::map<std::pair<std::string, std::string>, std::vector<double>> by_wdt;  // (scheme, wdt) -> e per k
+  int rows = 0;
+  while (std::getline(in, line)) {
+    std::vector<std::string> c;
+    std::istringstream l(line);
+    for (std::string cell; std::getline(l, cell, ',');) c.push_back(cell);
+    const double x = std::stod(c[2]), e = std::stod(c[4]);
+    by_wdt[{c[1], c[2]}].push_back(e);
+    ++rows;
+    if (c[1] == "explicit-euler") {
+      EXPECT_GT(e, 1.0) << "explicit Euler gains at w dt = " << x;
+    } else if (x < 2) {
+      EXPECT_LE(e * e, (1 + x / 2) / (1 - x / 2) * (1 + 1e-9)) << x;
+      EXPECT_GE(e * e, (1 - x / 2) / (1 + x / 2) * (1 - 1e-9)) << x;
+    } else {
+      EXPECT_GT(e, 1.0) << "semi-implicit Euler unstable at w dt = " << x;
+    }
+  }
+  EXPECT_EQ(rows, 3 * 2 * 12);
+  for (const auto& [key, es] : by_wdt) {
+    ASSERT_EQ(es.size(), 3u);
+    for (double e : es) EXPECT_NEAR(e / es.front(), 1.0, 1e-9) << key.first << " w dt " << key.second;
+  }
+  EXPECT_TRUE(fs::exists(dir_ / "map" / "restitution.png"));
+}
+
+TEST_F(StabilityMapCli, BadInputIsRefused) {
+  expect_refused(STABILITY_MAP_EXE, {
+      {"--points 1", "--points", "'1'", ">= 2"},
+      {"--wdt-max 0.001", "--wdt-max", "'0.001'", "(0.01, 100]"},
+  });
+}
