@@ -256,14 +256,5 @@ int main(int argc, char** argv) {
   OutputSet out;
   const int code = o.sweep ? run_sweep(o, out) : run_single(o, out);
   if (code != 0) return code;
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  out.add("meta.json", run_metadata(app, argc, argv, wall).dump(2) + "\n");
-  try {
-    out.write(o.out);
-  } catch (const std::exception& ex) {
-    std::cerr << "ball_drop: " << ex.what() << "\n";
-    return cli::kExitFailure;
-  }
-  fmt::print("\nwrote {} files to {} ({:.2f} s)\n", out.files().size(), o.out, wall);
-  return 0;
+  return write_outputs(out, app, argc, argv, start, o.out);
 }

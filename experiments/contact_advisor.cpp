@@ -101,18 +101,8 @@ int main(int argc, char** argv) {
   row("requested_restitution", r.e, "", "");
   row("achieved_restitution", a.achieved_restitution, "", "simulated");
   row("game_energy_error", a.game_energy_error, "", "simulated at game_dt, worst of 8 step phases");
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-
   fmt::print("Contact advice: m = {:g} kg, v = {:g} m/s, e = {:g}, law {}\n\n{}", r.m, r.v, r.e, r.law, t.to_markdown(6));
   OutputSet files;
   files.add_table("advice", t);
-  files.add("meta.json", run_metadata(app, argc, argv, wall).dump(2) + "\n");
-  try {
-    files.write(out);
-  } catch (const std::exception& e) {
-    std::cerr << "contact_advisor: " << e.what() << "\n";
-    return cli::kExitFailure;
-  }
-  fmt::print("\nwrote {} files to {}\n", files.files().size(), out);
-  return 0;
+  return write_outputs(files, app, argc, argv, start, out);
 }

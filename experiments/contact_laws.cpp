@@ -97,15 +97,6 @@ int main(int argc, char** argv) {
     std::cerr << "contact_laws: " << ex.what() << "\n";
     return cli::kExitFailure;
   }
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  files.add("meta.json", run_metadata(app, argc, argv, wall).dump(2) + "\n");
   fmt::print("Restitution achieved against the target (m = {:g} kg, v = {:g} m/s, no gravity)\n\n{}", m, v, table.to_markdown());
-  try {
-    files.write(out);
-  } catch (const std::exception& ex) {
-    std::cerr << "contact_laws: " << ex.what() << "\n";
-    return cli::kExitFailure;
-  }
-  fmt::print("\nwrote {} files to {} ({:.2f} s)\n", files.files().size(), out, wall);
-  return 0;
+  return write_outputs(files, app, argc, argv, start, out);
 }

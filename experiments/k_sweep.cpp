@@ -151,16 +151,7 @@ int main(int argc, char** argv) {
     std::cerr << "k_sweep: " << ex.what() << "\n";
     return cli::kExitFailure;
   }
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  files.add("meta.json", run_metadata(app, argc, argv, wall).dump(2) + "\n");
   fmt::print("k sweep: ball drop, m = {:g} kg, h0 = {:g} m, e = {:g}, CVODE BDF rtol 1e-10\n\n{}\nFitted exponents (k >= 1e4):\n\n{}",
              m, h0, e, table.to_markdown(), exponents.to_markdown());
-  try {
-    files.write(out);
-  } catch (const std::exception& ex) {
-    std::cerr << "k_sweep: " << ex.what() << "\n";
-    return cli::kExitFailure;
-  }
-  fmt::print("\nwrote {} files to {} ({:.2f} s)\n", files.files().size(), out, wall);
-  return 0;
+  return write_outputs(files, app, argc, argv, start, out);
 }

@@ -76,6 +76,20 @@ nlohmann::json run_metadata(const CLI::App& app, int argc, char** argv, double w
   };
 }
 
+int write_outputs(OutputSet& files, const CLI::App& app, int argc, char** argv,
+                  std::chrono::steady_clock::time_point start, const fs::path& dir) {
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  files.add("meta.json", run_metadata(app, argc, argv, wall).dump(2) + "\n");
+  try {
+    files.write(dir);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "{}: {}\n", app.get_name(), e.what());
+    return 1;
+  }
+  fmt::print("\nwrote {} files to {} ({:.2f} s)\n", files.files().size(), dir.string(), wall);
+  return 0;
+}
+
 std::string check_output_dir(const fs::path& dir) {
   std::error_code ec;
   if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -35,5 +36,10 @@ nlohmann::json library_versions();
 
 // Checks before running that --out can be created as a directory; returns an error line or "".
 std::string check_output_dir(const std::filesystem::path& dir);
+
+// The end every experiment shares: adds meta.json (wall time since `start`), writes everything to
+// `dir`, prints where. Returns the exit code: 0, or 1 (with the reason on stderr) if writing failed.
+int write_outputs(OutputSet& files, const CLI::App& app, int argc, char** argv,
+                  std::chrono::steady_clock::time_point start, const std::filesystem::path& dir);
 
 }  // namespace contact

@@ -142,17 +142,8 @@ int main(int argc, char** argv) {
   fmt::print("Rigid scenes (k = {:g} N/m, game dt = {:g} s, rtol = {:g})\n\n{}\n{}", p.k, dt, rtol, runs.to_markdown(),
              observables.to_markdown());
   if (failures > 0) return cli::kExitFailure;
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   OutputSet files;
   files.add_table("runs", runs);
   files.add("observables.csv", observables.to_csv());
-  files.add("meta.json", run_metadata(app, argc, argv, wall).dump(2) + "\n");
-  try {
-    files.write(out);
-  } catch (const std::exception& e) {
-    std::cerr << "rigid_scenes: " << e.what() << "\n";
-    return cli::kExitFailure;
-  }
-  fmt::print("\nwrote {} files to {} ({:.2f} s)\n", files.files().size(), out, wall);
-  return 0;
+  return write_outputs(files, app, argc, argv, start, out);
 }

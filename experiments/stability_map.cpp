@@ -90,15 +90,6 @@ int main(int argc, char** argv) {
     std::cerr << "stability_map: " << ex.what() << "\n";
     return cli::kExitFailure;
   }
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  files.add("meta.json", run_metadata(app, argc, argv, wall).dump(2) + "\n");
   fmt::print("Stability map: spring contact under game integration (Hooke, m = 1 kg, 1 m/s)\n\n{}", table.to_markdown());
-  try {
-    files.write(out);
-  } catch (const std::exception& ex) {
-    std::cerr << "stability_map: " << ex.what() << "\n";
-    return cli::kExitFailure;
-  }
-  fmt::print("\nwrote {} files to {} ({:.2f} s)\n", files.files().size(), out, wall);
-  return 0;
+  return write_outputs(files, app, argc, argv, start, out);
 }
