@@ -22,6 +22,10 @@ build/experiments/k_sweep --out "$results/k_sweep"
 echo
 build/experiments/stability_map --out "$results/stability_map"
 echo
+build/experiments/convergence_k --out "$results/convergence_k"
+echo
+build/experiments/zeno --out "$results/zeno"
+echo
 # A worked question: 1 kg at 5 m/s, e = 0.8, at most 1 mm of penetration.
 build/experiments/contact_advisor --m 1 --v 5 --e 0.8 --max-penetration 1e-3 --out "$results/contact_advisor"
 echo

@@ -1,0 +1,74 @@
+// convergence_k and zeno: their numbers against the closed forms they have.
+#include "cli_fixture.hpp"
+
+#include <cmath>
+#include <map>
+
+namespace {
+
+class ConvergenceExperimentsCli : public CliTest {};
+
+// rows of a CSV as cells, keyed by the first cell.
+std::map<std::string, std::vector<std::string>> by_first(const std::string& csv) {
+  std::map<std::string, std::vector<std::string>> out;
+  std::istringstream in(csv);
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> c;
+    std::istringstream l(line);
+    for (std::string cell; std::getline(l, cell, ',');) c.push_back(cell);
+    out[c.front()] = c;
+  }
+  return out;
+}
+
+}  // namespace
+
+// The penalty bounce times and apex heights close on the rigid ones as k^(-1/2) (contact time
+// pi sqrt(m/k); gravity's O(g/(wV)) shift of restitution): fitted exponents within 0.01, and the
+// local order between the last two rows within 0.005 (the O(1/k) corrections have faded).
+TEST_F(ConvergenceExperimentsCli, ConvergenceKFindsTheHalfOrder) {
+  const Outcome r = run(CONVERGENCE_K_EXE, "--k-min 1e4 --k-max 1e8 --out ck");
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto rates = by_first(slurp(dir_ / "ck" / "rates.csv"));
+  EXPECT_NEAR(std::stod(rates["impact_time_error"][1]), -0.5, 0.01);
+  EXPECT_NEAR(std::stod(rates["apex_height_error"][1]), -0.5, 0.01);
+  auto rows = by_first(slurp(dir_ / "ck" / "convergence_k.csv"));
+  const auto& last = rows["100000000"];
+  EXPECT_NEAR(std::stod(last[2]), -0.5, 0.005);
+  EXPECT_NEAR(std::stod(last[4]), -0.5, 0.005);
+  EXPECT_TRUE(fs::exists(dir_ / "ck" / "errors.png"));
+}
+
+// Zeno: the event-driven runs stop within the rest criterion's reach of t_inf (bounces slower than
+// the 1e-3 m/s criterion last at most 2e-3/(g(1-e)) = 1e-3 s in all, plus one 1 ms sample); the
+// exact flight makes ceil(log(1e-7/V)/log e) = 79 impacts before its 1e-7 m/s guard; the penalty
+// and game-spring balls settle at the static deflection -m g / k; nothing falls through the
+// floor deeper than the first contact's penetration (V sqrt(m/k) = 0.014 m at k = 1e5).
+TEST_F(ConvergenceExperimentsCli, ZenoStopsAtTheAccumulationAndNothingFallsThrough) {
+  const Outcome r = run(ZENO_EXE, "--out zn");
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto rows = by_first(slurp(dir_ / "zn" / "zeno.csv"));
+  const double t_inf = std::sqrt(2 / 9.81) * 1.8 / 0.2;
+  for (const char* m : {"event-exact", "event-ode"}) {
+    const double rest = std::stod(rows[m][3]);
+    EXPECT_LE(rest, t_inf + 1e-3) << m;
+    EXPECT_GE(rest, t_inf - 2.1e-3) << m;
+    EXPECT_EQ(std::stod(rows[m][5]), 0.0) << m << " rests on the floor";
+  }
+  EXPECT_EQ(rows["event-exact"][2], "79");
+  for (const char* m : {"penalty", "game-symplectic-spring"})
+    EXPECT_NEAR(std::stod(rows[m][5]), -9.81 / 1e5, 1e-7) << m << " ends at the static deflection";
+  for (const char* m : {"event-exact", "event-ode", "penalty", "game-symplectic", "game-symplectic-spring"})
+    EXPECT_GE(std::stod(rows[m][7]), -std::sqrt(2 * 9.81) * std::sqrt(1 / 1e5)) << m;
+}
+
+TEST_F(ConvergenceExperimentsCli, BadInputIsRefused) {
+  expect_refused(CONVERGENCE_K_EXE, {
+      {"--k-min 1e6 --k-max 1e6", "--k-max", "'1e+06'", "(k-min, inf)"},
+      {"--bounces 0", "--bounces", "'0'", ">= 1"},
+  });
+  expect_refused(ZENO_EXE, {
+      {"--e 1", "--e", "'1'", "(0, 1)"},
+      {"--t-end -6", "--t-end", "'-6'", "(0, inf)"},
+  });
+}
