@@ -28,6 +28,19 @@ inline std::string slurp(const fs::path& p) {
   return s.str();
 }
 
+// The cells of each line of a CSV text (no quoting: the experiments' numeric tables).
+inline std::vector<std::vector<std::string>> csv_rows(const std::string& csv) {
+  std::vector<std::vector<std::string>> out;
+  std::istringstream in(csv);
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> cells;
+    std::istringstream l(line);
+    for (std::string cell; std::getline(l, cell, ',');) cells.push_back(cell);
+    out.push_back(cells);
+  }
+  return out;
+}
+
 class CliTest : public ::testing::Test {
  protected:
   void SetUp() override {

@@ -8,16 +8,10 @@ namespace {
 
 class ConvergenceExperimentsCli : public CliTest {};
 
-// rows of a CSV as cells, keyed by the first cell.
+// The rows of a CSV keyed by their first cell.
 std::map<std::string, std::vector<std::string>> by_first(const std::string& csv) {
   std::map<std::string, std::vector<std::string>> out;
-  std::istringstream in(csv);
-  for (std::string line; std::getline(in, line);) {
-    std::vector<std::string> c;
-    std::istringstream l(line);
-    for (std::string cell; std::getline(l, cell, ',');) c.push_back(cell);
-    out[c.front()] = c;
-  }
+  for (auto& cells : csv_rows(csv)) out[cells.front()] = cells;
   return out;
 }
 

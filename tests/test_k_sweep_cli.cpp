@@ -7,18 +7,6 @@ namespace {
 
 class KSweepCli : public CliTest {};
 
-std::vector<std::vector<std::string>> rows(const std::string& csv) {
-  std::vector<std::vector<std::string>> out;
-  std::istringstream in(csv);
-  for (std::string line; std::getline(in, line);) {
-    std::vector<std::string> cells;
-    std::istringstream l(line);
-    for (std::string cell; std::getline(l, cell, ',');) cells.push_back(cell);
-    out.push_back(cells);
-  }
-  return out;
-}
-
 }  // namespace
 
 // The Hooke rows have an exact closed form with gravity (references.hpp): penetration and
@@ -27,7 +15,7 @@ std::vector<std::vector<std::string>> rows(const std::string& csv) {
 TEST_F(KSweepCli, ReportsClosedFormNumbersAndExponents) {
   const Outcome r = run(K_SWEEP_EXE, "--k-min 1e3 --k-max 1e7 --per-decade 1 --out ks");
   ASSERT_EQ(r.code, 0) << r.err;
-  const auto table = rows(slurp(dir_ / "ks" / "k_sweep.csv"));
+  const auto table = csv_rows(slurp(dir_ / "ks" / "k_sweep.csv"));
   ASSERT_EQ(table.front()[0], "k_N_per_m");
   ASSERT_EQ(table.size(), 1 + 3 * 5u);
   int hooke = 0;
@@ -39,7 +27,7 @@ TEST_F(KSweepCli, ReportsClosedFormNumbersAndExponents) {
     EXPECT_NEAR(std::stod(table[i][6]), 1.0, 1e-6) << "undamped restitution";
   }
   EXPECT_EQ(hooke, 5);
-  const auto exps = rows(slurp(dir_ / "ks" / "exponents.csv"));
+  const auto exps = csv_rows(slurp(dir_ / "ks" / "exponents.csv"));
   ASSERT_EQ(exps.size(), 4u);
   for (std::size_t i = 1; i < exps.size(); ++i) {
     EXPECT_NEAR(std::stod(exps[i][1]), -0.5, 0.005) << exps[i][0];

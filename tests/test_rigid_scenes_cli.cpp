@@ -12,12 +12,10 @@ class RigidScenesCli : public CliTest {};
 // scene,method,quantity -> value, from observables.csv.
 std::map<std::string, double> observables(const std::string& csv) {
   std::map<std::string, double> out;
-  std::istringstream in(csv);
-  std::string line;
-  std::getline(in, line);  // header
-  while (std::getline(in, line)) {
-    const auto cut = line.rfind(',');
-    out[line.substr(0, cut)] = line.substr(cut + 1) == "nan" ? std::nan("") : std::stod(line.substr(cut + 1));
+  const auto rows = csv_rows(csv);
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    const auto& c = rows[i];
+    out[c[0] + "," + c[1] + "," + c[2]] = c[3] == "nan" ? std::nan("") : std::stod(c[3]);
   }
   return out;
 }
