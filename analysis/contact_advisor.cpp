@@ -84,7 +84,7 @@ double game_energy_error(const ContactLaw& law, double m, double V, double dt) {
   for (int phase = 0; phase < 8; ++phase) {
     const double h0 = V * dt * (1.0 + phase / 8.0);
     const BallDrop model({m, 0.0, h0, -V, 1.0, law});
-    const double T = power_law_contact(m, stiffness(law), std::holds_alternative<HuntCrossley>(law) ? std::get<HuntCrossley>(law).n : 1.0, V).duration;
+    const double T = power_law_contact(m, stiffness(law), exponent(law), V).duration;
     const RunResult r = run_game(model, {dt, h0 / V + 4 * T, h0 / V + 4 * T, FixedStepScheme::SemiImplicitEuler, GameResolution::Spring});
     const auto& s = r.samples.back();
     worst = std::max(worst, std::abs(r.energy0 - s.energy - s.dissipated) / r.energy0);

@@ -13,15 +13,14 @@ namespace contact {
 SpringContact measure_isolated_contact(const ContactLaw& law, double m, double V, double rtol) {
   // Start just above the floor so the flight in is negligible but non-zero. The time limit covers
   // the slowest contact the laws here produce: the power law's duration estimate times 100.
-  const double k = stiffness(law);
-  const double n = std::holds_alternative<HuntCrossley>(law) ? std::get<HuntCrossley>(law).n : 1.0;
-  const double t_contact = power_law_contact(m, k, n, V).duration;
+  const SpringContact undamped = power_law_contact(m, stiffness(law), exponent(law), V);
+  const double t_contact = undamped.duration;
   const double h0 = 1e-3 * V * t_contact;
   PenaltyOptions o;
   o.t_end = h0 / V + 100 * t_contact;
   o.sample_dt = o.t_end;
   o.integrator.rtol = rtol;
-  o.integrator.atol = rtol * 1e-3 * power_law_contact(m, k, n, V).max_penetration;
+  o.integrator.atol = rtol * 1e-3 * undamped.max_penetration;
   o.integrator.max_steps = 1000000;
   const RunResult r = run_penalty(BallDrop({m, 0.0, h0, -V, 1.0, law}), o);
   if (!r.ok()) throw std::runtime_error(fmt::format("contact simulation failed: {}", r.message));

@@ -33,12 +33,17 @@ using Observables = std::vector<std::pair<std::string, double>>;
 // The numbers a reader checks for each scene, read off the end of a run.
 Observables observe(const std::string& scene, const RigidScene& s, const RunResult& r) {
   const auto bodies = s.bodies_at(r.samples.back().y);
-  // The first apex of a ball's contact with the floor (the scene's last body), over its release
-  // height above the floor contact: the bounce's e^2.
+  // The first apex of a ball's contact with the floor (the scene's last body), over the gap it was
+  // released from: the bounce's e^2.
   auto first_apex = [&](std::size_t body) {
     const std::pair<std::size_t, std::size_t> with_floor{body, bodies.size() - 1};
-    for (const auto& a : r.apexes)
-      if (s.pair(a.contact) == with_floor) return a.gap / (1.0 - std::get<Sphere>(bodies[body].shape).radius);
+    const Vector y0 = s.initial_state();
+    for (std::size_t i = 0; i < s.contact_count(); ++i) {
+      if (s.pair(i) != with_floor) continue;
+      const double released = s.gap(i, y0);
+      for (const auto& a : r.apexes)
+        if (a.contact == i) return a.gap / released;
+    }
     return std::nan("");
   };
   if (scene == "snooker") {

@@ -71,7 +71,6 @@ SteppingIntegrator::Outcome SteppingIntegrator::advance(double t_out) {
 namespace {
 
 struct RootProblem {
-  SteppingIntegrator* self;
   std::function<double(double)> g;
 };
 
@@ -98,7 +97,7 @@ bool SteppingIntegrator::locate_root(double t_hi, ConstVectorRef y_hi, Outcome& 
   for (std::size_t i = 0; i < n; ++i) {
     const auto k = static_cast<Eigen::Index>(i);
     if (!allowed(i, crossing(g_[k], g_hi_[k]))) continue;
-    RootProblem problem{this, [&, k](double t) {
+    RootProblem problem{[&, k](double t) {
                           dense(t, y);
                           eval_roots(t, y, g);
                           return g[k];

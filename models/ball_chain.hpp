@@ -1,9 +1,9 @@
 #pragma once
-// N-ball chain (Newton's cradle generalised): N equal balls of mass m [kg] and radius r [m] on a
-// line, no gravity. Ball 0, the striker, starts a distance `approach` [m] from ball 1 moving at
+// N-ball chain (Newton's cradle generalised): N equal balls of mass m [kg] on a line, no
+// gravity. Only the gaps between them enter the dynamics, so the balls' size does not appear. Ball 0, the striker, starts a distance `approach` [m] from ball 1 moving at
 // v0 [m/s] towards it; balls 1..N-1 rest with `spacing` [m] between neighbours (0: touching).
-// Positions are displacements u_b from rest positions X_b = b (2r + spacing), so that
-//   gap_i = X_{i+1} - X_i - 2r + u_{i+1} - u_i = spacing + u_{i+1} - u_i
+// Positions are displacements u_b from the rest positions (balls `spacing` apart), so that
+//   gap_i = spacing + u_{i+1} - u_i
 // is exactly zero for touching balls: with absolute positions, rounding in x_{i+1} - x_i - 2r
 // left "touching" gaps of +-1e-17 m (1e-13 m a thousand metres down a long chain), each a
 // spurious contact switch and a restart of the integrator.
@@ -22,7 +22,6 @@ namespace contact {
 struct BallChainParams {
   std::size_t n = 5;        // number of balls (>= 2)
   double m = 0.1;           // mass of each ball [kg]
-  double r = 0.01;          // radius [m]
   double v0 = 1.0;          // striker velocity [m/s]
   double approach = 0.01;   // striker's initial distance to ball 1 [m]
   double spacing = 0.0;     // gap between the resting balls [m]

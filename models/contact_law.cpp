@@ -38,6 +38,11 @@ double stiffness(const ContactLaw& law) {
   return std::visit([](const auto& l) { return l.k; }, law);
 }
 
+double exponent(const ContactLaw& law) {
+  const auto* hc = std::get_if<HuntCrossley>(&law);
+  return hc ? hc->n : 1.0;
+}
+
 std::string describe(const ContactLaw& law) {
   struct Describe {
     std::string operator()(const Hooke& h) const { return fmt::format("hooke k={:g} N/m", h.k); }

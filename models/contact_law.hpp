@@ -121,6 +121,8 @@ double switching(const ContactLaw& law, double d, double dd);
 double stored_energy(const ContactLaw& law, double d);
 double dissipated_power(const ContactLaw& law, double d, double dd);
 double stiffness(const ContactLaw& law);
+// The power of delta in the elastic force: n for Hunt–Crossley laws, 1 for the linear ones.
+double exponent(const ContactLaw& law);
 std::string describe(const ContactLaw& law);
 
 }  // namespace contact

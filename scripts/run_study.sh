@@ -14,18 +14,10 @@ build/experiments/ball_drop --out "$results/ball_drop"
 echo
 build/experiments/ball_drop --sweep --out "$results/ball_drop_sweep"
 echo
-build/experiments/contact_laws --out "$results/contact_laws"
-echo
-build/experiments/rigid_scenes --out "$results/rigid_scenes"
-echo
-build/experiments/k_sweep --out "$results/k_sweep"
-echo
-build/experiments/stability_map --out "$results/stability_map"
-echo
-build/experiments/convergence_k --out "$results/convergence_k"
-echo
-build/experiments/zeno --out "$results/zeno"
-echo
+for experiment in contact_laws rigid_scenes k_sweep stability_map convergence_k zeno; do
+  build/experiments/$experiment --out "$results/$experiment"
+  echo
+done
 # A worked question: 1 kg at 5 m/s, e = 0.8, at most 1 mm of penetration.
 build/experiments/contact_advisor --m 1 --v 5 --e 0.8 --max-penetration 1e-3 --out "$results/contact_advisor"
 echo
