@@ -25,6 +25,16 @@ PowerFit fit_power_law(const std::vector<double>& x, const std::vector<double>& 
   return {c1, std::exp(c0), std::sqrt(cov11), tss > 0 ? 1.0 - sumsq / tss : 1.0};
 }
 
+LineFit fit_line(const std::vector<double>& x, const std::vector<double>& y) {
+  gsl::report_errors_by_return_code();
+  if (x.size() != y.size() || x.size() < 2) throw std::invalid_argument("fit_line: need two or more (x, y) pairs");
+  for (std::size_t i = 0; i < x.size(); ++i)
+    if (!std::isfinite(x[i]) || !std::isfinite(y[i])) throw std::invalid_argument("fit_line: x and y must be finite");
+  double c0, c1, cov00, cov01, cov11, sumsq;
+  gsl_fit_linear(x.data(), 1, y.data(), 1, x.size(), &c0, &c1, &cov00, &cov01, &cov11, &sumsq);
+  return {c1, c0, std::sqrt(cov11)};
+}
+
 }  // namespace contact
 
 #include <gsl/gsl_version.h>

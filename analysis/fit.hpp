@@ -14,6 +14,15 @@ struct PowerFit {
 // Requires at least two points with x > 0 and y > 0; throws std::invalid_argument otherwise.
 PowerFit fit_power_law(const std::vector<double>& x, const std::vector<double>& y);
 
+// Ordinary least squares y ~ intercept + slope x (GSL), e.g. an energy drift rate.
+struct LineFit {
+  double slope;
+  double intercept;
+  double slope_sd;  // standard error of the slope from the fit's covariance
+};
+// Requires at least two pairs of finite values; throws std::invalid_argument otherwise.
+LineFit fit_line(const std::vector<double>& x, const std::vector<double>& y);
+
 }  // namespace contact
 
 namespace contact {

@@ -9,12 +9,10 @@
 // method), observables.csv (scene, method, quantity, value), meta.json.
 // Exit codes: 0 success, 1 solver failure, 2 bad input (option, value, accepted range).
 #include "cli.hpp"
-#include "event_driven.hpp"
-#include "game_step.hpp"
 #include "metrics.hpp"
 #include "output.hpp"
-#include "penalty.hpp"
 #include "progress.hpp"
+#include "rigid_methods.hpp"
 #include "rigid_scenes.hpp"
 #include "table.hpp"
 
@@ -79,7 +77,7 @@ int main(int argc, char** argv) {
   auto names = rigid_scene_names();
   names.insert(names.begin(), "all");
   app.add_option("--scene", scenes, "scenes, comma-separated or 'all'")->check(cli::one_of(names, true));
-  app.add_option("--method", methods, "methods, comma-separated")->check(cli::one_of({"penalty", "game", "game-projection", "event", "event-reversed"}, true));
+  app.add_option("--method", methods, "methods, comma-separated")->check(cli::one_of(rigid_method_names(), true));
   app.add_option("--m", p.m, "mass of the moving ball [kg]")->check(cli::positive());
   app.add_option("--radius", p.radius, "its radius [m]")->check(cli::positive());
   app.add_option("--elasticity", p.elasticity, "its elasticity (restitution = product of the pair's)")->check(cli::non_negative());
@@ -115,24 +113,7 @@ int main(int argc, char** argv) {
     const RigidScene scene = info.make(p);
     for (const auto& method : method_list) {
       progress.step(name + " " + method);
-      RunResult r;
-      if (method == "penalty") {
-        PenaltyOptions o;
-        o.t_end = o.sample_dt = info.t_end;
-        o.integrator.rtol = rtol;
-        o.integrator.atol = atol;
-        r = run_penalty(scene, o);
-      } else if (method == "game" || method == "game-projection") {
-        r = run_game(scene, {dt, info.t_end, info.t_end, FixedStepScheme::SemiImplicitEuler,
-                             method == "game" ? GameResolution::ProjectionImpulse : GameResolution::Projection});
-      } else {
-        EventOptions o;
-        o.t_end = o.sample_dt = info.t_end;
-        o.integrator.rtol = rtol;
-        o.integrator.atol = atol;
-        o.reverse_order = method == "event-reversed";
-        r = run_event_driven(scene, o);
-      }
+      const RunResult r = run_rigid(scene, method, {info.t_end, info.t_end, dt, rtol, atol});
       if (!r.ok()) {
         ++failures;
         std::cerr << fmt::format("rigid_scenes: {} {} failed: {} at t = {:.9g} s: {}\n", name, method, to_string(r.status), r.t_reached, r.message);

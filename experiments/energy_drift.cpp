@@ -1,0 +1,188 @@
+// energy_drift — how much energy each method invents or destroys over long runs.
+// Ball drop with e = 1 (Hooke spring k = --k for the penalty methods, m = 1 kg, h0 = 1 m) for
+// --bounces bounces of the rigid solution, and every rigid-body scene (the pair's Kelvin–Voigt
+// spring, impulses and dashpots booked by the energy ledger). Each method runs at every step in
+// --dts (fixed-step) or tolerance in --rtols (adaptive, atol = rtol / 100).
+// Energy error: (E + dissipated - E0) / |E0| at every sample, so physical loss is not counted
+// and > 0 means the method invents energy. The drift rate is the least-squares slope (GSL) of
+// that error against time; the verdict is "gains" or "loses" when the final error exceeds 1e-10
+// in size, else "conserves".
+// Outputs in --out (default results/energy_drift): drift.{csv,md,tex}, ball_energy.{png,pdf,gp}
+// (|error| against t for the ball), rigid_energy.{png,pdf,gp} (largest |error| per scene at the first
+// --rigid-dts and last --rigid-rtols),
+// meta.json. Exit codes: 0, 1 solver failure, 2 bad input.
+#include "ball_drop_methods.hpp"
+#include "cli.hpp"
+#include "figure.hpp"
+#include "fit.hpp"
+#include "metrics.hpp"
+#include "output.hpp"
+#include "progress.hpp"
+#include "rigid_methods.hpp"
+#include "rigid_scenes.hpp"
+#include "table.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <iostream>
+#include <map>
+#include <memory>
+
+using namespace contact;
+
+namespace {
+
+constexpr double kConserved = 1e-10;  // |final error| below this counts as conserving
+
+struct DriftRow {
+  double final_error, max_error, rate, rate_sd;
+  std::string verdict;
+  std::string series;  // "t,|error|" lines for the figure
+};
+
+DriftRow drift_of(const RunResult& r) {
+  std::vector<double> t, err;
+  DriftRow row{0, 0, 0, 0, "", ""};
+  const auto drifts = energy_drifts(r);
+  for (std::size_t i = 0; i < drifts.size(); ++i) {
+    t.push_back(r.samples[i].t);
+    err.push_back(0.0 - drifts[i]);  // not -drifts[i]: no "-0" in the tables
+    row.max_error = std::max(row.max_error, std::abs(err.back()));
+    row.series += fmt::format("{},{}\n", t.back(), std::max(std::abs(err.back()), 1e-17));
+  }
+  const LineFit fit = fit_line(t, err);
+  row.final_error = err.back();
+  row.rate = fit.slope;
+  row.rate_sd = fit.slope_sd;
+  row.verdict = std::abs(row.final_error) < kConserved ? "conserves" : row.final_error > 0 ? "gains" : "loses";
+  return row;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  double k = 1e5;
+  long bounces = 100;
+  std::vector<double> dts{1e-3, 1e-4}, rtols{1e-4, 1e-6, 1e-8}, rigid_dts{1e-4, 1e-5}, rigid_rtols{1e-6, 1e-8};
+  std::string scenes = "all", out = "results/energy_drift";
+  CLI::App app{"Energy drift of every method over long undamped ball drops and the rigid-body scenes.", "energy_drift"};
+  app.option_defaults()->always_capture_default();
+  app.add_option("--k", k, "penalty stiffness of the ball [N/m]")->check(cli::positive());
+  app.add_option("--bounces", bounces, "bounces of the rigid ball solution to run")->check(cli::integer_at_least(1));
+  app.add_option("--dts", dts, "ball game steps [s], comma-separated")->delimiter(',')->check(cli::positive());
+  app.add_option("--rtols", rtols, "ball relative tolerances, comma-separated")->delimiter(',')->check(cli::real_in(0, 1, true, true));
+  app.add_option("--rigid-dts", rigid_dts, "rigid-scene game steps [s]")->delimiter(',')->check(cli::positive());
+  app.add_option("--rigid-rtols", rigid_rtols, "rigid-scene relative tolerances")->delimiter(',')->check(cli::real_in(0, 1, true, true));
+  auto names = rigid::rigid_scene_names();
+  names.insert(names.begin(), "all");
+  names.emplace_back("none");
+  app.add_option("--scene", scenes, "rigid scenes, comma-separated, 'all' or 'none'")->check(cli::one_of(names, true));
+  app.add_option("--out", out, "output directory");
+  if (const int code = cli::parse(app, argc, argv); code >= 0) return code;
+  if (const auto err = check_output_dir(out); !err.empty()) {
+    std::cerr << "energy_drift: " << err << "\n";
+    return cli::kExitBadInput;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const double m = 1.0, g = 9.81, h0 = 1.0, t0 = std::sqrt(2 * h0 / g);
+
+  // The runs: (system, method, setting name, setting value, how to run it).
+  struct Job {
+    std::string system, method, setting;
+    double value;
+    std::function<RunResult()> run;
+  };
+  std::vector<Job> jobs;
+  BallDropSettings ball;
+  ball.model = {m, g, h0, 0.0, 1.0, Hooke{k}};
+  ball.t_end = 2.0 * static_cast<double>(bounces) * t0;  // the 100th impact is at 199 t0
+  ball.sample_dt = ball.t_end / 2000;
+  ball.integrator.max_steps = 10000000;
+  for (const std::string method : {"game-euler", "game-symplectic", "game-euler-spring", "game-symplectic-spring"})
+    for (double dt : dts) jobs.push_back({"ball", method, "dt", dt, [=]() mutable { ball.dt = dt; return run_ball_drop(method, ball); }});
+  for (const std::string method : {"penalty", "event-ode"})
+    for (double rtol : rtols)
+      jobs.push_back({"ball", method, "rtol", rtol, [=]() mutable {
+                        ball.integrator.rtol = rtol;
+                        ball.integrator.atol = rtol / 100;
+                        return run_ball_drop(method, ball);
+                      }});
+  jobs.push_back({"ball", "event-exact", "exact", 0.0, [=] { return run_ball_drop("event-exact", ball); }});
+  const auto scene_list = scenes == "all" ? rigid::rigid_scene_names() : scenes == "none" ? std::vector<std::string>{} : cli::split_list(scenes);
+  for (const auto& name : scene_list) {
+    const rigid::SceneInfo& info = rigid::rigid_scene(name);
+    auto scene = std::make_shared<rigid::RigidScene>(info.make({}));
+    const RigidRunSettings base{info.t_end, info.t_end / 200, 1e-4, 1e-8, 1e-10};
+    for (const auto& method : rigid_method_names()) {
+      const bool fixed = method.rfind("game", 0) == 0;
+      for (double v : fixed ? rigid_dts : rigid_rtols)
+        jobs.push_back({name, method, fixed ? "dt" : "rtol", v, [=] {
+                          RigidRunSettings s = base;
+                          (fixed ? s.dt : s.rtol) = v;
+                          s.atol = s.rtol / 100;
+                          return run_rigid(*scene, method, s);
+                        }});
+    }
+  }
+
+  Table table({"system", "method", "setting", "value", "contacts", "final_energy_error_rel", "max_abs_energy_error_rel",
+               "drift_rate_per_s", "drift_rate_sd", "verdict", "rhs_evals"});
+  std::string ball_data, ball_plot, rigid_data;
+  std::map<std::string, std::vector<std::pair<std::string, double>>> rigid_default;  // method -> (scene, max error)
+  int ball_series = 0;
+  Progress progress("energy_drift", jobs.size());
+  for (const auto& job : jobs) {
+    progress.step(fmt::format("{} {} {}={:g}", job.system, job.method, job.setting, job.value));
+    const RunResult r = job.run();
+    if (!r.ok()) {
+      std::cerr << fmt::format("energy_drift: {} {} {} = {:g}: {} at t = {:.9g} s: {}\n", job.system, job.method, job.setting,
+                               job.value, to_string(r.status), r.t_reached, r.message);
+      return cli::kExitFailure;
+    }
+    const DriftRow d = drift_of(r);
+    table.add_row({job.system, job.method, job.setting, job.value, static_cast<long>(r.contacts.size()), d.final_error,
+                   d.max_error, d.rate, d.rate_sd, d.verdict, r.stats.rhs_evals});
+    // The figure shows each ball method at its coarsest setting and the exact reference.
+    const bool coarsest = job.setting == "exact" || job.value == (job.setting == "dt" ? dts.front() : rtols.front());
+    if (job.system == "ball" && coarsest) {
+      ball_data += d.series + "\n\n";
+      const std::string setting = job.setting == "exact" ? "" : fmt::format(" {}={:g}", job.setting, job.value);
+      ball_plot += fmt::format("{}'data.csv' index {} using 1:2 with lines title '{}{} ({})'", ball_series ? ", " : "", ball_series,
+                               job.method, setting, d.verdict);
+      ++ball_series;
+    }
+    const bool rigid_default_setting = job.value == (job.setting == "dt" ? rigid_dts.front() : rigid_rtols.back());
+    if (job.system != "ball" && rigid_default_setting) rigid_default[job.method].emplace_back(job.system, d.max_error);
+  }
+  int block = 0;
+  std::string rigid_plot;
+  for (const auto& [method, values] : rigid_default) {
+    for (std::size_t i = 0; i < values.size(); ++i) rigid_data += fmt::format("{},{},{}\n", i, values[i].first, std::max(values[i].second, 1e-17));
+    rigid_data += "\n\n";
+    rigid_plot += fmt::format("{}'data.csv' index {} using 1:3:xtic(2) with linespoints title '{}'", block ? ", " : "", block, method);
+    ++block;
+  }
+  OutputSet files;
+  files.add_table("drift", table);
+  try {
+    render({"ball_energy", ball_data,
+            fmt::format("set logscale y\nset format y '10^{{%L}}'\nset xlabel 't [s]'\nset ylabel '|E + dissipated - E_0| / E_0'\n"
+                        "set key outside below\nset grid\nset yrange [1e-17:*]\nplot {}",
+                        ball_plot)},
+           files);
+    if (!rigid_data.empty())
+      render({"rigid_energy", rigid_data,
+              fmt::format("set logscale y\nset format y '10^{{%L}}'\nset ylabel 'max |energy error| (dt = {:g}, rtol = {:g})'\n"
+                          "set xtics rotate by -30\nset key outside below\nset grid\nset yrange [1e-17:*]\nset offsets 0.3, 0.3, 0, 0\nplot {}",
+                          rigid_dts.front(), rigid_rtols.back(), rigid_plot)},
+             files);
+  } catch (const std::exception& ex) {
+    std::cerr << "energy_drift: " << ex.what() << "\n";
+    return cli::kExitFailure;
+  }
+  fmt::print("Energy drift (ball: e = 1, k = {:g} N/m, {} bounces; rigid scenes)\n\n{}", k, bounces, table.to_markdown());
+  return write_outputs(files, app, argc, argv, start, out);
+}
