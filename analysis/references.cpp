@@ -67,4 +67,15 @@ double hooke_impact_time(double m, double k, double h0, double v0, double g, std
   return rigid.T1 + static_cast<double>(n - 1) * cycle;
 }
 
+BallState hooke_ball_state(double m, double k, double h0, double v0, double g, double t) {
+  const RigidBounces rigid(h0, v0, g, 1.0);
+  if (t < rigid.T1) return {h0 + v0 * t - 0.5 * g * t * t, v0 - g * t};
+  const double V = rigid.V, w = std::sqrt(k / m), s = g / (w * w);
+  const double tc = hooke_contact(m, k, V, g).duration;
+  const double tau = std::fmod(t - rigid.T1, tc + 2.0 * V / g);
+  if (tau < tc) return {-s + s * std::cos(w * tau) - V / w * std::sin(w * tau), -s * w * std::sin(w * tau) - V * std::cos(w * tau)};
+  const double f = tau - tc;  // flight after leaving at speed V
+  return {V * f - 0.5 * g * f * f, V - g * f};
+}
+
 }  // namespace contact

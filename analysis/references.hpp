@@ -81,4 +81,12 @@ double hunt_crossley_small_damping_loss(double chi, double V);
 // every contact lasts T_c and returns the impact speed, so T(n) = T1 + (n-1)(T_c + 2V/g).
 double hooke_impact_time(double m, double k, double h0, double v0, double g, std::size_t n);
 
+// The exact penalty solution itself: height x and velocity v of the ball at time t >= 0. Flight
+// is a parabola; in contact x'' = -(k/m) x - g from x = 0, v = -V, i.e.
+// x = -g/w^2 + (g/w^2) cos(w tau) - (V/w) sin(w tau); the cycle repeats every T_c + 2V/g.
+struct BallState {
+  double x, v;
+};
+BallState hooke_ball_state(double m, double k, double h0, double v0, double g, double t);
+
 }  // namespace contact

@@ -37,7 +37,7 @@ class GslIntegrator final : public SteppingIntegrator {
     const double h0 = o.dt > 0 ? o.dt : 1e-6;
     driver_.reset(gsl_odeiv2_driver_alloc_y_new(&gsl_sys_, type_, h0, o.atol, o.rtol));
     if (!driver_) throw SolverFailure(Status::SolverError, t0, "gsl_odeiv2_driver_alloc_y_new failed");
-    if (o.max_step > 0) gsl_odeiv2_driver_set_hmax(driver_.get(), o.max_step);
+    max_step_ = o.max_step;
     h_ = h0;
     if (!multistep_) dense_step_.reset(gsl_odeiv2_step_alloc(type_, n_));
   }
@@ -92,6 +92,12 @@ class GslIntegrator final : public SteppingIntegrator {
     double t = ta_;
     yb_ = ya_;
     auto* d = driver_.get();
+    // evolve_apply ignores the driver's hmax, so the limit is enforced here: no step beyond
+    // ta + max_step, and no proposed step longer than it.
+    if (max_step_ > 0) {
+      t_limit = std::min(t_limit, ta_ + max_step_);
+      h_ = std::min(h_, max_step_);
+    }
     const int status = fixed_dt_ > 0
                            // No control object: at a fixed step the error test must not reject.
                            ? gsl_odeiv2_evolve_apply_fixed_step(d->e, nullptr, d->s, &gsl_sys_, &t, fixed_dt_, yb_.data())
@@ -111,8 +117,8 @@ class GslIntegrator final : public SteppingIntegrator {
       y = ya_;
       gsl_odeiv2_step_reset(dense_step_.get());
       Vector yerr(y.size());
-      gsl_odeiv2_step_apply(dense_step_.get(), ta_, h, y.data(), yerr.data(), nullptr, nullptr, &gsl_sys_);
-      return;
+      if (gsl_odeiv2_step_apply(dense_step_.get(), ta_, h, y.data(), yerr.data(), nullptr, nullptr, &gsl_sys_) == GSL_SUCCESS) return;
+      ++dense_fallbacks_;  // e.g. bsimp's extrapolation did not converge: y is not a solution
     }
     // Cubic Hermite on [ta, tb] from the end values and slopes.
     if (!have_f_b_) {
@@ -136,8 +142,8 @@ class GslIntegrator final : public SteppingIntegrator {
   gsl_odeiv2_system gsl_sys_{};
   gsl::Driver driver_;
   gsl::Step dense_step_;
-  double h_ = 0;
-  long failed_ = 0, jac_evals_ = 0;
+  double h_ = 0, max_step_ = 0;
+  long failed_ = 0, jac_evals_ = 0, dense_fallbacks_ = 0;
   SparseMatrix J_;
   Vector f_a_, f_b_, fd_;
   bool have_f_b_ = false;

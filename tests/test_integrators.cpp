@@ -173,6 +173,21 @@ TEST_P(AdaptiveTolerance, GlobalErrorFollowsTheTolerance) {
   EXPECT_LE(p, 1.1) << name;
 }
 
+// max_step is a hard limit: the free parabola (which every method of order >= 2 would cross in a
+// few long steps) over 1 s with max_step = 0.01 s takes at least 100 steps.
+TEST_P(AdaptiveTolerance, MaxStepIsHonoured) {
+  const std::string name = GetParam();
+  const BallDrop ball({1.0, 9.81, 100.0, 0.0, 1.0, Hooke{1.0}});
+  IntegratorOptions o;
+  o.method = name;
+  o.rtol = 1e-3;
+  o.atol = 1e-3;
+  o.max_step = 0.01;
+  auto integrator = make_integrator(o, free_ode(ball), 0.0, ball.initial_state());
+  integrator->advance(1.0);
+  EXPECT_GE(integrator->stats().steps, 100) << name;
+}
+
 INSTANTIATE_TEST_SUITE_P(EveryAdaptiveIntegrator, AdaptiveTolerance,
                          ::testing::ValuesIn(names_where([](const IntegratorInfo& i) { return i.adaptive; })),
                          [](const auto& p) { std::string s = p.param; std::replace(s.begin(), s.end(), '-', '_'); return s; });

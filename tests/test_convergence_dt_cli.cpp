@@ -1,0 +1,54 @@
+// convergence_dt: the order drop through the force's kink and its recovery with located switches.
+#include "cli_fixture.hpp"
+
+#include <cmath>
+#include <map>
+
+namespace {
+
+class ConvergenceDtCli : public CliTest {
+ protected:
+  std::map<std::string, std::vector<std::string>> orders() const {
+    std::map<std::string, std::vector<std::string>> out;
+    for (auto& cells : csv_rows(slurp(dir_ / "cd" / "orders.csv"))) out[cells[0]] = cells;
+    return out;
+  }
+  // The error of the finest fixed step (or tightest tolerance) of an integrator.
+  double finest(const std::string& table, const std::string& integrator, const std::string& events) const {
+    double err = std::nan("");
+    for (auto& cells : csv_rows(slurp(dir_ / "cd" / (table + ".csv"))))
+      if (cells[0] == integrator && cells[1] == events) err = std::stod(cells[3]);
+    return err;
+  }
+};
+
+}  // namespace
+
+TEST_F(ConvergenceDtCli, LocatedSwitchesRestoreTheOrderTheKinkTakes) {
+  const Outcome r = run(CONVERGENCE_DT_EXE, "--integrators euler,semi-implicit-euler,velocity-verlet,rk4,gsl-rkf45,cvode-bdf --out cd");
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto o = orders();
+  // Located: every switch is a step end, the solution is smooth inside each step, and the method
+  // shows its order (fitted over the finest rows; 0.3 covers the pre-asymptotic spread).
+  for (const char* name : {"euler", "semi-implicit-euler", "velocity-verlet", "rk4", "gsl-rkf45"})
+    EXPECT_GE(std::stod(o[name][3]), std::stod(o[name][1]) - 0.3) << name;
+  // Unlocated: F = k max(-x, 0) has a kink, so the acceleration has a jump in slope and a step
+  // across it errs by O(dt^2) in v. For rk4 at the finest step (w dt = 0.003) that leaves the
+  // error ~ 1/(w dt)^2 ~ 1e5 times the located one; 100x is asserted.
+  EXPECT_GT(finest("fixed_step", "rk4", "unlocated"), 100 * finest("fixed_step", "rk4", "located"));
+  EXPECT_GT(finest("fixed_step", "gsl-rkf45", "unlocated"), 100 * finest("fixed_step", "gsl-rkf45", "located"));
+  // CVODE with located switches meets its tolerance: the error at rtol 1e-10 is within 1000 rtol
+  // (the global error of a few hundred steps, each controlled to rtol).
+  EXPECT_LT(finest("adaptive", "cvode-bdf", "located"), 1000 * 1e-10);
+  EXPECT_TRUE(fs::exists(dir_ / "cd" / "fixed_step_errors.png"));
+  EXPECT_TRUE(fs::exists(dir_ / "cd" / "adaptive_errors.pdf"));
+}
+
+TEST_F(ConvergenceDtCli, BadInputIsRefused) {
+  expect_refused(CONVERGENCE_DT_EXE, {
+      {"--dt-max 2", "--dt-max", "'2'", "(0, t-final)"},
+      {"--halvings 0", "--halvings", "'0'", ">= 1"},
+      {"--integrators rk5", "--integrators", "'rk5'", "rk4"},
+      {"--tol-min 1e-20", "--tol-min", "'1e-20'", "[1e-14, 0.0001]"},
+  });
+}
