@@ -78,4 +78,21 @@ BallState hooke_ball_state(double m, double k, double h0, double v0, double g, d
   return {V * f - 0.5 * g * f * f, V - g * f};
 }
 
+BallState rigid_ball_state(double h0, double v0, double g, double e, double t) {
+  const RigidBounces rigid(h0, v0, g, e);
+  if (t < rigid.T1) return {h0 + v0 * t - 0.5 * g * t * t, v0 - g * t};
+  if (t >= rigid.zeno_time()) return {0.0, 0.0};
+  double start = rigid.T1, speed = e * rigid.V;  // the current leg: leaves the floor at `start`
+  if (e == 1.0) {
+    start += std::floor((t - rigid.T1) / (2.0 * rigid.V / g)) * (2.0 * rigid.V / g);
+  } else {
+    while (t >= start + 2.0 * speed / g) {
+      start += 2.0 * speed / g;
+      speed *= e;
+    }
+  }
+  const double f = t - start;
+  return {speed * f - 0.5 * g * f * f, speed - g * f};
+}
+
 }  // namespace contact

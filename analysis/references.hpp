@@ -88,5 +88,8 @@ struct BallState {
   double x, v;
 };
 BallState hooke_ball_state(double m, double k, double h0, double v0, double g, double t);
+// The rigid (impulse) solution with restitution e at time t: parabolas between the impacts
+// T(n), each leaving the floor at e^n V. For e < 1 the ball rests on the floor after t_inf.
+BallState rigid_ball_state(double h0, double v0, double g, double e, double t);
 
 }  // namespace contact

@@ -158,3 +158,19 @@ TEST(EventDriven, LedgerBooksEachImpulseLossExactly) {
     }
   }
 }
+
+// The closed-form rigid trajectory (work_precision's reference) is the exact-flight solution at
+// every sample (to rounding in the impact times, a few ulps times V), for elastic and lossy balls.
+TEST(EventDriven, ExactFlightFollowsTheClosedFormTrajectory) {
+  for (double e : {1.0, 0.8}) {
+    const BallDrop model = ball(e);
+    const RunResult r = run_event_driven(model, model, options(3.5));
+    ASSERT_TRUE(r.ok());
+    const double V = std::sqrt(2 * 9.81);
+    for (const auto& s : r.samples) {
+      const BallState ref = rigid_ball_state(1.0, 0.0, 9.81, e, s.t);
+      EXPECT_NEAR(s.y[0], ref.x, 1e-12) << "e = " << e << ", t = " << s.t;
+      EXPECT_NEAR(s.y[1], ref.v, 1e-12 * V) << "e = " << e << ", t = " << s.t;
+    }
+  }
+}
