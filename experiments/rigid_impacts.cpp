@@ -1,0 +1,145 @@
+// rigid_impacts — conservation errors of every method on the 3D scenes, per step and tolerance.
+// Scenes (models/rigid/rigid_scenes.hpp) whose bodies all have finite mass, so that the totals
+// are conserved: snooker, planet, spinning-box, off-centre, cradle, wedge (rubber-steel is
+// left out: the floor takes momentum). Methods (experiments/rigid_methods.hpp) at each game step
+// in --dts and each CVODE tolerance in --rtols (atol = rtol / 100).
+// Errors at the end of the run, against the start:
+//   momentum          |sum p(T) - sum p(0)| / sqrt(2 M E0), M the total mass, E0 the initial
+//                     kinetic energy (a scale that stays positive when the momenta cancel)
+//   angular momentum  |sum L(T) - sum L(0)| / sum (|p_i(0)| max(|x_i(0)|, r) + |I_i w_i(0)|), about
+//                     the origin, with lever arms of at least the ball radius r = 26 mm (so a
+//                     head-on scene, whose L is zero, still has a scale)
+//   energy            (E + dissipated - E0) / E0 (the ledger's numerical part)
+// Outputs in --out (default results/rigid_impacts): conservation.{csv,md,tex},
+// conservation.{png,pdf,gp} (largest error over the scenes against step or tolerance),
+// meta.json. Exit codes: 0, 1 solver failure, 2 bad input.
+#include "cli.hpp"
+#include "figure.hpp"
+#include "output.hpp"
+#include "progress.hpp"
+#include "rigid_methods.hpp"
+#include "rigid_scenes.hpp"
+#include "table.hpp"
+
+#include <fmt/format.h>
+
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <map>
+
+using namespace contact;
+using namespace contact::rigid;
+
+namespace {
+
+constexpr double kFloor = 1e-17;  // errors drawn on a log axis
+
+struct Totals {
+  Vec3 p = Vec3::Zero(), L = Vec3::Zero();
+};
+
+Totals totals(const std::vector<RigidBody>& bodies) {
+  Totals t;
+  for (const auto& b : bodies) {
+    t.p += b.momentum();
+    t.L += b.angular_momentum(Vec3::Zero());
+  }
+  return t;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<double> dts{1e-4, 1e-5, 1e-6}, rtols{1e-6, 1e-8, 1e-10};
+  std::string scenes = "snooker,planet,spinning-box,off-centre,cradle,wedge", out = "results/rigid_impacts";
+  CLI::App app{"Momentum, angular momentum and energy errors of every method on the 3D scenes.", "rigid_impacts"};
+  app.option_defaults()->always_capture_default();
+  app.add_option("--dts", dts, "game steps [s], comma-separated")->delimiter(',')->check(cli::positive());
+  app.add_option("--rtols", rtols, "CVODE relative tolerances, comma-separated")->delimiter(',')->check(cli::real_in(0, 1, true, true));
+  auto names = rigid_scene_names();
+  std::erase(names, "rubber-steel");
+  app.add_option("--scene", scenes, "scenes, comma-separated (all finite masses)")->check(cli::one_of(names, true));
+  app.add_option("--out", out, "output directory");
+  if (const int code = cli::parse(app, argc, argv); code >= 0) return code;
+  if (const auto err = check_output_dir(out); !err.empty()) {
+    std::cerr << "rigid_impacts: " << err << "\n";
+    return cli::kExitBadInput;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const double lever = SceneParams{}.radius;
+  const auto scene_list = cli::split_list(scenes);
+  const auto methods = rigid_method_names();
+  std::size_t total = 0;
+  for (const auto& method : methods) total += scene_list.size() * (method.rfind("game", 0) == 0 ? dts.size() : rtols.size());
+
+  Table table({"scene", "method", "setting", "value", "momentum_error_rel", "angular_momentum_error_rel", "energy_error_rel", "contacts",
+               "rhs_evals"});
+  // method -> setting value -> largest error over the scenes (momentum, angular momentum, energy)
+  std::map<std::string, std::map<double, std::array<double, 3>>> worst;
+  Progress progress("rigid_impacts", total);
+  for (const auto& name : scene_list) {
+    const SceneInfo& info = rigid_scene(name);
+    const RigidScene scene = info.make({});
+    const Totals before = totals(scene.bodies());
+    double mass = 0, L_scale = 0;
+    for (const auto& b : scene.bodies()) {
+      mass += b.inverse_mass > 0 ? 1 / b.inverse_mass : 0.0;
+      L_scale += b.momentum().norm() * std::max(b.position.norm(), lever) + (b.angular_momentum(b.position)).norm();
+    }
+    // The momentum that would carry the initial kinetic energy with the scene's total mass: a scale
+    // that is not zero when the bodies' momenta cancel (the box spinning in place).
+    const double p_scale = std::sqrt(2 * mass * scene.energy(scene.initial_state()));
+    for (const auto& method : methods) {
+      const bool fixed = method.rfind("game", 0) == 0;
+      for (double v : fixed ? dts : rtols) {
+        progress.step(fmt::format("{} {} {:g}", name, method, v));
+        RigidRunSettings s{info.t_end, info.t_end, 1e-4, 1e-8, 1e-10};
+        (fixed ? s.dt : s.rtol) = v;
+        s.atol = s.rtol / 100;
+        const RunResult r = run_rigid(scene, method, s);
+        if (!r.ok()) {
+          std::cerr << fmt::format("rigid_impacts: {} {} ({} = {:g}): {} at t = {:.9g} s: {}\n", name, method, fixed ? "dt" : "rtol", v,
+                                   to_string(r.status), r.t_reached, r.message);
+          return cli::kExitFailure;
+        }
+        const Totals after = totals(scene.bodies_at(r.samples.back().y));
+        const std::array<double, 3> err = {(after.p - before.p).norm() / p_scale, (after.L - before.L).norm() / L_scale,
+                                           (r.samples.back().energy + r.samples.back().dissipated - r.energy0) / r.energy0};
+        table.add_row({name, method, std::string(fixed ? "dt" : "rtol"), v, err[0], err[1], err[2], static_cast<long>(r.contacts.size()),
+                       r.stats.rhs_evals});
+        auto& w = worst[method][v];
+        for (int i = 0; i < 3; ++i) w[i] = std::max(w[i], std::abs(err[i]));
+      }
+    }
+  }
+  // Three panels side by side: each error against step (game) or tolerance (the others).
+  std::string data, plot = "set multiplot layout 1,3\n";
+  std::vector<std::string> blocks;
+  for (const auto& [method, by_value] : worst) {
+    for (const auto& [v, w] : by_value) data += fmt::format("{},{},{},{}\n", v, std::max(w[0], kFloor), std::max(w[1], kFloor), std::max(w[2], kFloor));
+    data += "\n\n";
+    blocks.push_back(method);
+  }
+  const char* titles[] = {"momentum", "angular momentum", "energy"};
+  for (int q = 0; q < 3; ++q) {
+    plot += fmt::format("set title '{}'\nset logscale xy\nset format x '10^{{%L}}'\nset format y '10^{{%L}}'\nset xlabel 'dt [s] or rtol'\n"
+                        "set grid\nset yrange [1e-17:*]\n{}\nplot ",
+                        titles[q], q == 0 ? "set key top left font ',8'" : "unset key");
+    for (std::size_t b = 0; b < blocks.size(); ++b)
+      plot += fmt::format("{}'data.csv' index {} using 1:{} with linespoints title '{}'", b ? ", " : "", b, q + 2, blocks[b]);
+    plot += "\n";
+  }
+  plot += "unset multiplot";
+  OutputSet files;
+  files.add_table("conservation", table);
+  try {
+    render({"conservation", data, "set size ratio 1\n" + plot}, files);
+  } catch (const std::exception& ex) {
+    std::cerr << "rigid_impacts: " << ex.what() << "\n";
+    return cli::kExitFailure;
+  }
+  fmt::print("Conservation errors on the 3D scenes\n\n{}", table.to_markdown(3));
+  return write_outputs(files, app, argc, argv, start, out);
+}
