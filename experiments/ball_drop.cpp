@@ -10,10 +10,12 @@
 // Defaults: m = 1 kg, g = 9.81 m/s^2, h0 = 1 m, e = 0.8, k = 1e5 N/m, Kelvin–Voigt law tuned to e,
 // t in [0, 3] s, dt = 1 ms, rtol = 1e-8, atol = 1e-10.
 // Outputs in --out (default results/ball_drop): comparison.{csv,md,tex}, contacts.csv,
-// apexes.csv, samples.csv, stats.csv, meta.json; with --sweep, sweep.{csv,md,tex} and meta.json.
+// apexes.csv, samples.csv, stats.csv, heights.{png,pdf,gp}, meta.json; with --sweep,
+// sweep.{csv,md,tex}, penetration.{png,pdf,gp} (first penetration against k) and meta.json.
 // Exit codes: 0 success, 1 solver failure (status, time reached and message on stderr), 2 bad input.
 #include "ball_drop_methods.hpp"
 #include "cli.hpp"
+#include "figure.hpp"
 #include "metrics.hpp"
 #include "output.hpp"
 #include "progress.hpp"
@@ -25,6 +27,7 @@
 #include <chrono>
 #include <cmath>
 #include <iostream>
+#include <map>
 
 using namespace contact;
 
@@ -132,9 +135,14 @@ int run_single(const Options& o, OutputSet& out) {
   const auto methods = chosen_methods(o);
   Progress progress("ball_drop", methods.size());
   int failures = 0;
+  std::string height_data, height_plot;
   for (const auto& name : methods) {
     progress.step(name);
     const RunResult r = run_ball_drop(name, settings_for(o, o.k));
+    for (const auto& smp : r.samples) height_data += fmt::format("{},{}\n", smp.t, smp.y[0]);
+    height_data += "\n\n";
+    height_plot += fmt::format("{}'data.csv' index {} using 1:2 with lines title '{}'", height_plot.empty() ? "" : ", ",
+                               &name - methods.data(), name);
     if (!r.ok()) {
       ++failures;
       std::cerr << fmt::format("ball_drop: {} failed: {} at t = {:.9g} s: {}\n", name,
@@ -157,6 +165,7 @@ int run_single(const Options& o, OutputSet& out) {
   out.add("apexes.csv", apexes.to_csv());
   out.add("samples.csv", samples.to_csv());
   out.add("stats.csv", stats.to_csv());
+  render({"heights", height_data, "set xlabel 't [s]'\nset ylabel 'height [m]'\nset key outside below\nset grid\nplot " + height_plot}, out);
   return 0;
 }
 
@@ -178,6 +187,7 @@ int run_sweep(const Options& o, OutputSet& out) {
     if (!m.uses_stiffness) runs.emplace_back(std::nan(""), m);
 
   Progress progress("ball_drop sweep", runs.size());
+  std::map<std::string, std::string> penetration;  // method -> "k,first penetration,closed form" lines
   for (const auto& [k, m] : runs) {
     progress.step(fmt::format("k = {:g}, {}", k, m.name));
     const RunResult r = run_ball_drop(m.name, settings_for(o, std::isnan(k) ? o.k : k));
@@ -188,6 +198,21 @@ int run_sweep(const Options& o, OutputSet& out) {
                                  ref.max_penetration, ref.duration};
     for (auto& c : metric_cells(r)) row.push_back(std::move(c));
     sweep.add_row(std::move(row));
+    if (!std::isnan(k) && !r.contacts.empty())
+      penetration[m.name] += fmt::format("{},{},{}\n", k, r.contacts.front().max_penetration, ref.max_penetration);
+  }
+  std::string data, plot;
+  int block = 0;
+  for (const auto& [name, rows] : penetration) {
+    data += rows + "\n\n";
+    plot += fmt::format("'data.csv' index {} using 1:2 with points title '{}', ", block++, name);
+  }
+  if (!penetration.empty()) {
+    plot += "'data.csv' index 0 using 1:3 with lines lc black title 'closed form'";
+    render({"penetration", data,
+            "set logscale xy\nset format x '10^{%L}'\nset format y '10^{%L}'\nset xlabel 'k [N/m]'\n"
+            "set ylabel 'first penetration [m]'\nset key bottom left\nset grid\nplot " + plot},
+           out);
   }
   fmt::print("Ball drop, k sweep: law {}, e = {:g}, dt = {:g} s, rtol = {:g}, atol = {:g}, t_end = {:g} s\n\n",
              o.law, o.e, o.dt, o.rtol, o.atol, o.t_end);
@@ -254,7 +279,13 @@ int main(int argc, char** argv) {
 
   const auto start = std::chrono::steady_clock::now();
   OutputSet out;
-  const int code = o.sweep ? run_sweep(o, out) : run_single(o, out);
+  int code = 0;
+  try {
+    code = o.sweep ? run_sweep(o, out) : run_single(o, out);
+  } catch (const std::exception& ex) {  // the figures: gnuplot missing or failing
+    std::cerr << "ball_drop: " << ex.what() << "\n";
+    return cli::kExitFailure;
+  }
   if (code != 0) return code;
   return write_outputs(out, app, argc, argv, start, o.out);
 }

@@ -6,9 +6,11 @@
 // pushing), event (free flight under CVODE, impulses at located contacts, sequential rule, lowest
 // contact first), event-reversed (the same, highest first: the rule's order-dependence).
 // Outputs in --out (default results/rigid_scenes): runs.{csv,md,tex} (one row per scene and
-// method), observables.csv (scene, method, quantity, value), meta.json.
+// method), observables.csv (scene, method, quantity, value), penetration.{png,pdf,gp} (largest
+// penetration per scene and method), meta.json.
 // Exit codes: 0 success, 1 solver failure, 2 bad input (option, value, accepted range).
 #include "cli.hpp"
+#include "figure.hpp"
 #include "metrics.hpp"
 #include "output.hpp"
 #include "progress.hpp"
@@ -20,6 +22,7 @@
 
 #include <chrono>
 #include <iostream>
+#include <map>
 
 using namespace contact;
 using namespace contact::rigid;
@@ -108,6 +111,7 @@ int main(int argc, char** argv) {
   const auto method_list = cli::split_list(methods);
   Progress progress("rigid_scenes", scene_list.size() * method_list.size());
   int failures = 0;
+  std::map<std::string, std::string> penetration;  // method -> "scene index,scene,max penetration" lines
   for (const auto& name : scene_list) {
     const SceneInfo& info = rigid_scene(name);
     const RigidScene scene = info.make(p);
@@ -120,6 +124,7 @@ int main(int argc, char** argv) {
         continue;
       }
       const RunMetrics m = compute_metrics(r);
+      penetration[method] += fmt::format("{},{},{}\n", &name - scene_list.data(), name, std::max(m.max_penetration, 1e-12));
       runs.add_row({name, method, std::string(to_string(r.status)), static_cast<long>(m.contacts), m.max_penetration,
                     m.max_energy_drift, r.stats.rhs_evals, r.stats.wall_time_s});
       for (const auto& [quantity, value] : observe(name, scene, r)) observables.add_row({name, method, quantity, value});
@@ -131,5 +136,21 @@ int main(int argc, char** argv) {
   OutputSet files;
   files.add_table("runs", runs);
   files.add("observables.csv", observables.to_csv());
+  std::string data, plot;
+  int block = 0;
+  for (const auto& [method, rows] : penetration) {
+    data += rows + "\n\n";
+    plot += fmt::format("{}'data.csv' index {} using 1:3:xtic(2) with points pt {} ps 1.5 title '{}'", block ? ", " : "", block, block + 4, method);
+    ++block;
+  }
+  try {
+    render({"penetration", data,
+            "set logscale y\nset format y '10^{%L}'\nset ylabel 'largest penetration [m] (none: 10^{-12})'\nset xtics rotate by -30\n"
+            "set offsets 0.3, 0.3, 0, 0\nset key outside below\nset grid\nplot " + plot},
+           files);
+  } catch (const std::exception& ex) {
+    std::cerr << "rigid_scenes: " << ex.what() << "\n";
+    return cli::kExitFailure;
+  }
   return write_outputs(files, app, argc, argv, start, out);
 }
