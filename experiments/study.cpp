@@ -1,0 +1,102 @@
+// study — runs every experiment of the study (experiments/study.json) into one results folder,
+// checks that each left every output it declares (CSV columns included), and writes index.md
+// (a link and a sentence per table and figure) and study.json (what ran, how long it took).
+// --tiny runs the smoke-test arguments instead of the defaults.
+// Exit codes: 0, 1 an experiment failed or left an output missing, 2 bad input.
+#include "cli.hpp"
+#include "output.hpp"
+#include "study_manifest.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sys/wait.h>
+#include <thread>
+
+using namespace contact;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string shell_quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string out = "results", manifest_path = CONTACT_ODE_STUDY_MANIFEST, only;
+  bool tiny = false;
+  CLI::App app{"Runs every experiment of the study into one folder and writes its index.md.", "study"};
+  app.option_defaults()->always_capture_default();
+  app.add_option("--out", out, "results folder");
+  app.add_option("--manifest", manifest_path, "the study's manifest")->check(CLI::ExistingFile);
+  app.add_flag("--tiny", tiny, "run the smoke-test settings (seconds, for tests)");
+  app.add_option("--only", only, "run only these experiments, comma-separated");
+  if (const int code = cli::parse(app, argc, argv); code >= 0) return code;
+  StudyManifest manifest;
+  try {
+    manifest = load_study_manifest(manifest_path);
+  } catch (const std::exception& ex) {
+    std::cerr << "study: --manifest: " << ex.what() << "\n";
+    return cli::kExitBadInput;
+  }
+  std::vector<std::string> names;
+  for (const auto& e : manifest.experiments) names.push_back(e.name);
+  const auto only_list = cli::split_list(only);
+  for (const auto& name : only_list)
+    if (std::find(names.begin(), names.end(), name) == names.end()) {
+      std::cerr << fmt::format("study: --only: value '{}' is not an experiment; accepted: {}\n", name, fmt::join(names, ", "));
+      return cli::kExitBadInput;
+    }
+  if (const auto err = check_output_dir(out); !err.empty()) {
+    std::cerr << "study: " << err << "\n";
+    return cli::kExitBadInput;
+  }
+  const fs::path bin = fs::read_symlink("/proc/self/exe").parent_path();
+  const auto start = std::chrono::steady_clock::now();
+  nlohmann::json record = {{"tiny", tiny}, {"experiments", nlohmann::json::array()}};
+  int failures = 0;
+  for (const auto& e : manifest.experiments) {
+    if (!only_list.empty() && std::find(only_list.begin(), only_list.end(), e.name) == only_list.end()) continue;
+    const fs::path dir = fs::path(out) / e.name;
+    fs::remove_all(dir);  // stale outputs of an earlier run must not pass the check
+    std::string cmd = shell_quote((bin / e.exe).string());
+    for (const auto& a : tiny ? e.tiny : e.args) cmd += " " + shell_quote(a);
+    cmd += " --out " + shell_quote(dir.string());
+    fmt::print("\n== {} ==\n", e.name);
+    std::fflush(stdout);
+    const auto t0 = std::chrono::steady_clock::now();
+    const int status = std::system(cmd.c_str());
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::vector<std::string> problems = code == 0 ? check_outputs(e, dir) : std::vector<std::string>{fmt::format("exit code {}", code)};
+    for (const auto& p : problems) std::cerr << fmt::format("study: {}: {}\n", e.name, p);
+    failures += problems.empty() ? 0 : 1;
+    record["experiments"].push_back({{"name", e.name}, {"command", cmd}, {"wall_time_s", seconds}, {"ok", problems.empty()}});
+  }
+  const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  record["wall_time_s"] = total;
+  record["cores"] = std::thread::hardware_concurrency();
+  if (failures > 0) {
+    std::cerr << fmt::format("study: {} experiment(s) failed; index.md not written\n", failures);
+    return cli::kExitFailure;
+  }
+  OutputSet files;
+  files.add("index.md", study_index(manifest, record, out));
+  files.add("study.json", record.dump(2) + "\n");
+  try {
+    files.write(out);
+  } catch (const std::exception& ex) {
+    std::cerr << "study: " << ex.what() << "\n";
+    return cli::kExitFailure;
+  }
+  fmt::print("\nstudy: {} experiments in {:.1f} s; index in {}\n", record["experiments"].size(), total, (fs::path(out) / "index.md").string());
+  return 0;
+}

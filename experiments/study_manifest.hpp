@@ -1,0 +1,44 @@
+#pragma once
+// The study's manifest (experiments/study.json): every experiment, its arguments (the study's and
+// the smoke test's), and every output it must leave, with a CSV's required columns and one
+// sentence for the index. One source for the study runner, its index and the smoke test.
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace contact {
+
+struct StudyOutput {
+  std::string file;                  // relative to the experiment's folder
+  std::vector<std::string> columns;  // CSV: columns the header must contain
+  std::string about;                 // one sentence for index.md
+};
+
+struct StudyExperiment {
+  std::string name;  // its folder under the results
+  std::string exe;   // the executable, next to `study`
+  std::vector<std::string> args, tiny;
+  std::string summary;
+  std::vector<StudyOutput> outputs;
+};
+
+struct StudyManifest {
+  std::string title;
+  std::vector<StudyExperiment> experiments;
+};
+
+// Throws std::runtime_error naming the file and what is wrong with it.
+StudyManifest load_study_manifest(const std::filesystem::path& path);
+
+// What is wrong with an experiment's folder: a declared output missing or empty, a CSV whose
+// header lacks a declared column or whose rows differ in width from it, a PNG or PDF without its
+// signature, a meta.json that does not parse. Empty when all is well.
+std::vector<std::string> check_outputs(const StudyExperiment& experiment, const std::filesystem::path& dir);
+
+// results/index.md: per experiment its summary and a link with one sentence per output (tables
+// to their Markdown rendering when `results` holds one, with the CSV beside), and the run's record.
+std::string study_index(const StudyManifest& manifest, const nlohmann::json& record, const std::filesystem::path& results);
+
+}  // namespace contact

@@ -1,0 +1,51 @@
+// The study runner and the smoke test of every experiment: each, run with its tiny settings,
+// leaves every output its manifest entry declares, CSVs with their declared columns, figures as
+// PNG and PDF; index.md links them all.
+#include "cli_fixture.hpp"
+#include "study_manifest.hpp"
+
+using namespace contact;
+
+namespace {
+class StudyCli : public CliTest {};
+}  // namespace
+
+TEST_F(StudyCli, EveryExperimentLeavesItsDeclaredOutputsAndTheIndexLinksThem) {
+  const StudyManifest manifest = load_study_manifest(STUDY_MANIFEST);
+  ASSERT_GE(manifest.experiments.size(), 14u);
+  const Outcome r = run(STUDY_EXE, "--tiny --out s");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string index = slurp(dir_ / "s" / "index.md");
+  for (const auto& e : manifest.experiments) {
+    EXPECT_TRUE(fs::is_directory(dir_ / "s" / e.name)) << e.name;
+    const auto problems = check_outputs(e, dir_ / "s" / e.name);
+    EXPECT_TRUE(problems.empty()) << e.name << ": " << (problems.empty() ? "" : problems.front());
+    for (const auto& o : e.outputs) EXPECT_NE(index.find("(" + e.name + "/" + o.file + ")"), std::string::npos) << e.name << "/" << o.file;
+  }
+  EXPECT_TRUE(nlohmann::json::accept(slurp(dir_ / "s" / "study.json")));
+}
+
+// The check is not vacuous: a missing column, a short row, a figure without its PDF and a missing
+// file are each reported.
+TEST_F(StudyCli, OutputCheckReportsEveryKindOfDefect) {
+  StudyExperiment e{"x", "x", {}, {}, "", {{"t.csv", {"a", "b"}, ""}, {"f.png", {}, ""}, {"gone.csv", {}, ""}}};
+  std::ofstream(dir_ / "t.csv") << "a,c\n1\n";
+  std::ofstream(dir_ / "f.png") << "\x89PNG\r\n\x1a\n....";
+  std::ofstream(dir_ / "meta.json") << "{}";
+  const auto problems = check_outputs(e, dir_);
+  auto reported = [&](const std::string& what) {
+    return std::any_of(problems.begin(), problems.end(), [&](const std::string& p) { return p.find(what) != std::string::npos; });
+  };
+  EXPECT_TRUE(reported("column 'b' missing"));
+  EXPECT_TRUE(reported("row 1 has fewer cells"));
+  EXPECT_TRUE(reported("f.png: no PDF"));
+  EXPECT_TRUE(reported("gone.csv: missing"));
+  EXPECT_EQ(problems.size(), 4u);
+}
+
+TEST_F(StudyCli, BadInputIsRefused) {
+  expect_refused(STUDY_EXE, {
+      {"--only ball_drop,moon", "--only", "'moon'", "ball_drop"},
+      {"--manifest nowhere.json", "--manifest", "nowhere.json", "exist"},
+  });
+}
