@@ -15,6 +15,7 @@ packages=(
   nlohmann-json3-dev   # meta.json
   libfmt-dev           # formatting of tables and messages
   gnuplot-nox          # figures (PNG and PDF, cairo terminals)
+  latexmk texlive-latex-base texlive-latex-recommended texlive-fonts-recommended  # the paper
 )
 
 missing=()

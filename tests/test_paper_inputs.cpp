@@ -1,0 +1,39 @@
+// The paper reads only what the experiments produce: every table it \inputs is the LaTeX
+// rendering of a CSV some experiment declares in the study's manifest, every figure the PDF of a
+// declared PNG, and the quoted numbers come from paper_numbers' numbers.tex. And paper/ holds no
+// generated file. (Whether it builds is the paper_builds test, where LaTeX is installed.)
+#include "cli_fixture.hpp"
+#include "study_manifest.hpp"
+
+#include <regex>
+#include <set>
+
+using namespace contact;
+
+TEST(PaperInputs, EveryInputIsADeclaredExperimentOutput) {
+  const StudyManifest manifest = load_study_manifest(STUDY_MANIFEST);
+  std::set<std::string> declared;
+  for (const auto& e : manifest.experiments)
+    for (const auto& o : e.outputs) declared.insert(e.name + "/" + o.file);
+  const std::string tex = slurp(fs::path(PAPER_DIR) / "paper.tex");
+  // \input{x}, \widetable{x}, \fig{x} or \fig[width]{x}, \includegraphics[...]{x}
+  const std::regex use(R"(\\(input|widetable|fig|includegraphics)(\[[^\]]*\])?\{([^}#]+)\})");
+  std::size_t tables = 0, figures = 0;
+  for (std::sregex_iterator it(tex.begin(), tex.end(), use), end; it != end; ++it) {
+    const std::string path = (*it)[3];
+    if (path == "numbers.tex") continue;  // written by paper_numbers from the results
+    const fs::path p(path);
+    ASSERT_TRUE(p.extension() == ".tex" || p.extension() == ".pdf") << path;
+    const std::string source = fs::path(p).replace_extension(p.extension() == ".tex" ? ".csv" : ".png").string();
+    EXPECT_TRUE(declared.count(source)) << path << " is not the rendering of a declared output (" << source << ")";
+    (p.extension() == ".tex" ? tables : figures) += 1;
+  }
+  EXPECT_GE(tables, 5u);
+  EXPECT_GE(figures, 10u);
+}
+
+TEST(PaperInputs, PaperFolderHoldsOnlySources) {
+  const std::set<std::string> sources = {"paper.tex", "references.bib", "CMakeLists.txt"};
+  for (const auto& entry : fs::directory_iterator(PAPER_DIR))
+    EXPECT_TRUE(sources.count(entry.path().filename().string())) << entry.path() << " is not a source of the paper";
+}
