@@ -24,16 +24,18 @@ if ! latexmk -pdf -interaction=nonstopmode -halt-on-error -file-line-error -outd
 fi
 
 log="$out/paper.log"
-problems=$(grep -E "LaTeX Warning: (Reference|Citation)[^\n]*undefined|There were undefined references|LaTeX Warning: File .* not found|No file .*\.tex" "$log" || true)
-problems+=$(grep -E "Warning--I didn't find a database entry|^Warning--" "$out/paper.blg" 2>/dev/null || true)
-if [ -n "$problems" ]; then
-  echo "$problems" >&2
-  echo "build_paper: the paper has undefined references, citations or missing inputs" >&2
+# TeX wraps its log at 79 columns, so messages are searched with the line breaks removed.
+flat=$(tr -d '\n' < "$log")
+problems=$(grep -oE "LaTeX Warning: (Reference|Citation) [^ ]+|There were undefined references|LaTeX Warning: File [^ ]+ not found|No file [^ ]+\.tex" <<<"$flat" || true)
+bib=$(grep -E "^Warning--" "$out/paper.blg" 2>/dev/null || true)
+if [ -n "$problems$bib" ]; then
+  printf '%s\n' "$problems" "$bib" >&2
+  echo "build_paper: the paper has undefined references, citations or missing inputs; log in $log" >&2
   exit 1
 fi
-pages=$(grep -oE "Output written on .* \(([0-9]+) pages" "$log" | grep -oE "[0-9]+ pages" | grep -oE "[0-9]+")
-if [ "$pages" -lt 8 ] || [ "$pages" -gt 15 ]; then
-  echo "build_paper: the paper has $pages pages; a paper of 8 to 15 is expected" >&2
+pages=$(grep -oE "Output written on [^(]*\([0-9]+ pages?" <<<"$flat" | grep -oE "[0-9]+ pages?$" | grep -oE "[0-9]+" || true)
+if [ -z "$pages" ] || [ "$pages" -lt 8 ] || [ "$pages" -gt 15 ]; then
+  echo "build_paper: the paper has ${pages:-no} pages; a paper of 8 to 15 is expected (log in $log)" >&2
   exit 1
 fi
 echo "build_paper: $out/paper.pdf ($pages pages)"
