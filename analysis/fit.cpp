@@ -25,6 +25,24 @@ PowerFit fit_power_law(const std::vector<double>& x, const std::vector<double>& 
   return {c1, std::exp(c0), std::sqrt(cov11), tss > 0 ? 1.0 - sumsq / tss : 1.0};
 }
 
+double observed_order(double h_prev, double err_prev, double h, double err) {
+  return std::log(err_prev / err) / std::log(h_prev / h);
+}
+
+double fitted_order(const std::vector<double>& h, const std::vector<double>& err, double floor, std::size_t rows) {
+  std::vector<double> x, y;
+  for (std::size_t i = 0; i < h.size() && i < err.size(); ++i)
+    if (err[i] > floor) {
+      x.push_back(h[i]);
+      y.push_back(err[i]);
+    }
+  if (x.size() > rows) {
+    x.erase(x.begin(), x.end() - static_cast<std::ptrdiff_t>(rows));
+    y.erase(y.begin(), y.end() - static_cast<std::ptrdiff_t>(rows));
+  }
+  return x.size() >= 2 ? fit_power_law(x, y).exponent : std::nan("");
+}
+
 LineFit fit_line(const std::vector<double>& x, const std::vector<double>& y) {
   gsl::report_errors_by_return_code();
   if (x.size() != y.size() || x.size() < 2) throw std::invalid_argument("fit_line: need two or more (x, y) pairs");

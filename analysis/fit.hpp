@@ -1,5 +1,6 @@
 #pragma once
 // Least-squares fits in log-log space (GSL): y ~ C x^p gives the observed order or exponent p.
+#include <cstddef>
 #include <vector>
 
 namespace contact {
@@ -13,6 +14,15 @@ struct PowerFit {
 
 // Requires at least two points with x > 0 and y > 0; throws std::invalid_argument otherwise.
 PowerFit fit_power_law(const std::vector<double>& x, const std::vector<double>& y);
+
+// Observed order between two rows of a convergence table, (h_prev, err_prev) and (h, err):
+// log(err_prev / err) / log(h_prev / h), where h is a step, a tolerance or 1/k.
+double observed_order(double h_prev, double err_prev, double h, double err);
+
+// The order fitted (fit_power_law) over the last `rows` points with err > floor: the finest rows
+// of a table ordered coarse to fine, inside the asymptotic range and above rounding. NaN when
+// fewer than two remain.
+double fitted_order(const std::vector<double>& h, const std::vector<double>& err, double floor, std::size_t rows);
 
 // Ordinary least squares y ~ intercept + slope x (GSL), e.g. an energy drift rate.
 struct LineFit {

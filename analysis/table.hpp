@@ -27,4 +27,7 @@ class Table {
   std::vector<std::vector<Cell>> rows_;
 };
 
+// The cells of one line of Table::to_csv(): the inverse of its quoting ("a, b" and "" escapes).
+std::vector<std::string> split_csv_line(const std::string& line);
+
 }  // namespace contact

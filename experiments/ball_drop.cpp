@@ -135,14 +135,13 @@ int run_single(const Options& o, OutputSet& out) {
   const auto methods = chosen_methods(o);
   Progress progress("ball_drop", methods.size());
   int failures = 0;
-  std::string height_data, height_plot;
+  Series heights;
   for (const auto& name : methods) {
     progress.step(name);
     const RunResult r = run_ball_drop(name, settings_for(o, o.k));
-    for (const auto& smp : r.samples) height_data += fmt::format("{},{}\n", smp.t, smp.y[0]);
-    height_data += "\n\n";
-    height_plot += fmt::format("{}'data.csv' index {} using 1:2 with lines title '{}'", height_plot.empty() ? "" : ", ",
-                               &name - methods.data(), name);
+    std::string rows;
+    for (const auto& smp : r.samples) rows += fmt::format("{},{}\n", smp.t, smp.y[0]);
+    heights.add(rows, fmt::format("using 1:2 with lines title '{}'", name));
     if (!r.ok()) {
       ++failures;
       std::cerr << fmt::format("ball_drop: {} failed: {} at t = {:.9g} s: {}\n", name,
@@ -165,7 +164,7 @@ int run_single(const Options& o, OutputSet& out) {
   out.add("apexes.csv", apexes.to_csv());
   out.add("samples.csv", samples.to_csv());
   out.add("stats.csv", stats.to_csv());
-  render({"heights", height_data, "set xlabel 't [s]'\nset ylabel 'height [m]'\nset key outside below\nset grid\nplot " + height_plot}, out);
+  render({"heights", heights.data(), "set xlabel 't [s]'\nset ylabel 'height [m]'\nset key outside below\nset grid\nplot " + heights.plot()}, out);
   return 0;
 }
 
@@ -201,19 +200,14 @@ int run_sweep(const Options& o, OutputSet& out) {
     if (!std::isnan(k) && !r.contacts.empty())
       penetration[m.name] += fmt::format("{},{},{}\n", k, r.contacts.front().max_penetration, ref.max_penetration);
   }
-  std::string data, plot;
-  int block = 0;
-  for (const auto& [name, rows] : penetration) {
-    data += rows + "\n\n";
-    plot += fmt::format("'data.csv' index {} using 1:2 with points title '{}', ", block++, name);
-  }
-  if (!penetration.empty()) {
-    plot += "'data.csv' index 0 using 1:3 with lines lc black title 'closed form'";
-    render({"penetration", data,
+  Series series;
+  for (const auto& [name, rows] : penetration) series.add(rows, fmt::format("using 1:2 with points title '{}'", name));
+  if (!series.empty())
+    render({"penetration", series.data(),
             "set logscale xy\nset format x '10^{%L}'\nset format y '10^{%L}'\nset xlabel 'k [N/m]'\n"
-            "set ylabel 'first penetration [m]'\nset key bottom left\nset grid\nplot " + plot},
+            "set ylabel 'first penetration [m]'\nset key bottom left\nset grid\nplot " +
+                series.plot() + ", 'data.csv' index 0 using 1:3 with lines lc black title 'closed form'"},
            out);
-  }
   fmt::print("Ball drop, k sweep: law {}, e = {:g}, dt = {:g} s, rtol = {:g}, atol = {:g}, t_end = {:g} s\n\n",
              o.law, o.e, o.dt, o.rtol, o.atol, o.t_end);
   fmt::print("{}\n{}", sweep.to_markdown(), references(o));

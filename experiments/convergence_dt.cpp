@@ -26,6 +26,7 @@
 #include "penalty.hpp"
 #include "progress.hpp"
 #include "references.hpp"
+#include "sweep_setting.hpp"
 #include "table.hpp"
 
 #include <fmt/format.h>
@@ -47,20 +48,13 @@ struct Point {
   long rhs_evals;
 };
 
-// Least-squares order over the finest kFitRows points above the round-off floor (the asymptotic
-// range); NaN when fewer than two.
-double fitted_order(const std::vector<Point>& points) {
-  std::vector<double> x, y;
-  for (const auto& p : points)
-    if (p.error > kRoundOff) {
-      x.push_back(p.step);
-      y.push_back(p.error);
-    }
-  if (x.size() > kFitRows) {
-    x.erase(x.begin(), x.end() - kFitRows);
-    y.erase(y.begin(), y.end() - kFitRows);
+double fitted(const std::vector<Point>& points) {
+  std::vector<double> h, err;
+  for (const auto& p : points) {
+    h.push_back(p.step);
+    err.push_back(p.error);
   }
-  return x.size() >= 2 ? fit_power_law(x, y).exponent : std::nan("");
+  return fitted_order(h, err, kRoundOff, kFitRows);
 }
 
 }  // namespace
@@ -125,12 +119,7 @@ int main(int argc, char** argv) {
     o.locate_switches = job.located;
     o.integrator.method = job.integrator;
     o.integrator.max_steps = 10000000;
-    if (job.fixed) {
-      o.integrator.dt = job.step;
-    } else {
-      o.integrator.rtol = job.step;
-      o.integrator.atol = job.step / 100;
-    }
+    o.integrator = with_setting(o.integrator, job.fixed, job.step);
     const RunResult r = run_penalty(model, o);
     if (!r.ok()) {
       std::cerr << fmt::format("convergence_dt: {} ({} {:g}): {} at t = {:.9g} s: {}\n", job.integrator, job.fixed ? "dt" : "rtol",
@@ -140,7 +129,7 @@ int main(int argc, char** argv) {
     const auto& y = r.samples.back().y;
     const double err = std::max(std::abs(y[0] - exact.x) / h0, std::abs(y[1] - exact.v) / V);
     auto& points = (job.fixed ? fixed_points : adaptive_points)[{job.integrator, job.located}];
-    const double order = points.empty() ? std::nan("") : std::log(points.back().error / err) / std::log(points.back().step / job.step);
+    const double order = points.empty() ? std::nan("") : observed_order(points.back().step, points.back().error, job.step, err);
     points.push_back({job.step, err, r.stats.rhs_evals});
     (job.fixed ? fixed : adaptive)
         .add_row({job.integrator, std::string(job.located ? "located" : "unlocated"), job.step, err, order, r.stats.rhs_evals});
@@ -150,7 +139,7 @@ int main(int argc, char** argv) {
                 "tol_exponent_located", "rhs_evals_tightest_unlocated", "rhs_evals_tightest_located"});
   auto order_of = [](const auto& map, const std::string& name, bool located) {
     const auto it = map.find({name, located});
-    return it == map.end() ? std::nan("") : fitted_order(it->second);
+    return it == map.end() ? std::nan("") : fitted(it->second);
   };
   auto tightest_cost = [&](const std::string& name, bool located) {
     const auto it = adaptive_points.find({name, located});
@@ -163,19 +152,20 @@ int main(int argc, char** argv) {
 
   // One figure per sweep: located solid, unlocated dashed, one colour per integrator.
   auto figure = [](const std::string& name, const std::string& xlabel, const auto& points) {
-    std::string data, plot;
-    int block = 0;
+    Series series;
+    int colour = 0;
     for (const auto& [key, pts] : points) {
-      for (const auto& p : pts) data += fmt::format("{},{}\n", p.step, p.error);
-      data += "\n\n";
-      plot += fmt::format("{}'data.csv' index {} using 1:2 with linespoints lc {} dt {} title '{}{}'", block ? ", " : "", block,
-                          block / 2 + 1, key.second ? 1 : 2, key.first, key.second ? " (located)" : "");
-      ++block;
+      std::string rows;
+      for (const auto& p : pts) rows += fmt::format("{},{}\n", p.step, p.error);
+      // Keys come in (name, unlocated), (name, located) pairs: one colour per integrator.
+      colour += key.second ? 0 : 1;
+      series.add(rows, fmt::format("using 1:2 with linespoints lc {} dt {} title '{}{}'", colour, key.second ? 1 : 2, key.first,
+                                   key.second ? " (located)" : ""));
     }
-    return Figure{name, data,
+    return Figure{name, series.data(),
                   fmt::format("set logscale xy\nset format x '10^{{%L}}'\nset format y '10^{{%L}}'\nset xlabel '{}'\n"
                               "set ylabel 'error at t_{{final}}'\nset key outside right font ',8'\nset grid\nplot {}",
-                              xlabel, plot)};
+                              xlabel, series.plot())};
   };
   OutputSet files;
   files.add_table("fixed_step", fixed);

@@ -87,8 +87,8 @@ int main(int argc, char** argv) {
       te = std::max(te, std::abs(r.contacts[b].t_begin - rigid.contacts[b].t_begin));
       ae = std::max(ae, std::abs(r.apexes[b].gap - rigid.apexes[b].gap) / h0);
     }
-    const double order_t = ks.empty() ? std::nan("") : std::log(te / time_err.back()) / std::log(k / ks.back());
-    const double order_a = ks.empty() ? std::nan("") : std::log(ae / apex_err.back()) / std::log(k / ks.back());
+    const double order_t = ks.empty() ? std::nan("") : observed_order(ks.back(), time_err.back(), k, te);
+    const double order_a = ks.empty() ? std::nan("") : observed_order(ks.back(), apex_err.back(), k, ae);
     ks.push_back(k);
     time_err.push_back(te);
     apex_err.push_back(ae);

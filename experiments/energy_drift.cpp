@@ -20,6 +20,7 @@
 #include "progress.hpp"
 #include "rigid_methods.hpp"
 #include "rigid_scenes.hpp"
+#include "sweep_setting.hpp"
 #include "table.hpp"
 
 #include <fmt/format.h>
@@ -36,22 +37,23 @@ using namespace contact;
 namespace {
 
 constexpr double kConserved = 1e-10;  // |final error| below this counts as conserving
+constexpr double kLogFloor = 1e-17;   // zero errors are drawn here on the log axes
 
 struct DriftRow {
-  double final_error, max_error, rate, rate_sd;
+  double final_error, rate, rate_sd;
   std::string verdict;
   std::string series;  // "t,|error|" lines for the figure
 };
 
+// The ledger's numerical part, as a gain: (E + dissipated - E0) / |E0| = -energy_drifts().
 DriftRow drift_of(const RunResult& r) {
   std::vector<double> t, err;
-  DriftRow row{0, 0, 0, 0, "", ""};
+  DriftRow row{0, 0, 0, "", ""};
   const auto drifts = energy_drifts(r);
   for (std::size_t i = 0; i < drifts.size(); ++i) {
     t.push_back(r.samples[i].t);
     err.push_back(0.0 - drifts[i]);  // not -drifts[i]: no "-0" in the tables
-    row.max_error = std::max(row.max_error, std::abs(err.back()));
-    row.series += fmt::format("{},{}\n", t.back(), std::max(std::abs(err.back()), 1e-17));
+    row.series += fmt::format("{},{}\n", t.back(), std::max(std::abs(err.back()), kLogFloor));
   }
   const LineFit fit = fit_line(t, err);
   row.final_error = err.back();
@@ -98,7 +100,7 @@ int main(int argc, char** argv) {
   std::vector<Job> jobs;
   BallDropSettings ball;
   ball.model = {m, g, h0, 0.0, 1.0, Hooke{k}};
-  ball.t_end = 2.0 * static_cast<double>(bounces) * t0;  // the 100th impact is at 199 t0
+  ball.t_end = 2.0 * static_cast<double>(bounces) * t0;  // the n-th rigid impact is at (2n - 1) t0
   ball.sample_dt = ball.t_end / 2000;
   ball.integrator.max_steps = 10000000;
   for (const std::string method : {"game-euler", "game-symplectic", "game-euler-spring", "game-symplectic-spring"})
@@ -106,8 +108,7 @@ int main(int argc, char** argv) {
   for (const std::string method : {"penalty", "event-ode"})
     for (double rtol : rtols)
       jobs.push_back({"ball", method, "rtol", rtol, [=]() mutable {
-                        ball.integrator.rtol = rtol;
-                        ball.integrator.atol = rtol / 100;
+                        ball.integrator = with_setting(ball.integrator, false, rtol);
                         return run_ball_drop(method, ball);
                       }});
   jobs.push_back({"ball", "event-exact", "exact", 0.0, [=] { return run_ball_drop("event-exact", ball); }});
@@ -117,22 +118,16 @@ int main(int argc, char** argv) {
     auto scene = std::make_shared<rigid::RigidScene>(info.make({}));
     const RigidRunSettings base{info.t_end, info.t_end / 200, 1e-4, 1e-8, 1e-10};
     for (const auto& method : rigid_method_names()) {
-      const bool fixed = method.rfind("game", 0) == 0;
+      const bool fixed = is_fixed_step(method);
       for (double v : fixed ? rigid_dts : rigid_rtols)
-        jobs.push_back({name, method, fixed ? "dt" : "rtol", v, [=] {
-                          RigidRunSettings s = base;
-                          (fixed ? s.dt : s.rtol) = v;
-                          s.atol = s.rtol / 100;
-                          return run_rigid(*scene, method, s);
-                        }});
+        jobs.push_back({name, method, fixed ? "dt" : "rtol", v, [=] { return run_rigid(*scene, method, with_setting(base, method, v)); }});
     }
   }
 
   Table table({"system", "method", "setting", "value", "contacts", "final_energy_error_rel", "max_abs_energy_error_rel",
                "drift_rate_per_s", "drift_rate_sd", "verdict", "rhs_evals"});
-  std::string ball_data, ball_plot, rigid_data;
+  Series ball_figure;
   std::map<std::string, std::vector<std::pair<std::string, double>>> rigid_default;  // method -> (scene, max error)
-  int ball_series = 0;
   Progress progress("energy_drift", jobs.size());
   for (const auto& job : jobs) {
     progress.step(fmt::format("{} {} {}={:g}", job.system, job.method, job.setting, job.value));
@@ -143,41 +138,37 @@ int main(int argc, char** argv) {
       return cli::kExitFailure;
     }
     const DriftRow d = drift_of(r);
+    const double max_error = compute_metrics(r).max_energy_drift;
     table.add_row({job.system, job.method, job.setting, job.value, static_cast<long>(r.contacts.size()), d.final_error,
-                   d.max_error, d.rate, d.rate_sd, d.verdict, r.stats.rhs_evals});
-    // The figure shows each ball method at its coarsest setting and the exact reference.
-    const bool coarsest = job.setting == "exact" || job.value == (job.setting == "dt" ? dts.front() : rtols.front());
-    if (job.system == "ball" && coarsest) {
-      ball_data += d.series + "\n\n";
+                   max_error, d.rate, d.rate_sd, d.verdict, r.stats.rhs_evals});
+    // The ball figure shows each method at its first setting (the coarsest by default).
+    const bool first = job.setting == "exact" || job.value == (job.setting == "dt" ? dts.front() : rtols.front());
+    if (job.system == "ball" && first) {
       const std::string setting = job.setting == "exact" ? "" : fmt::format(" {}={:g}", job.setting, job.value);
-      ball_plot += fmt::format("{}'data.csv' index {} using 1:2 with lines title '{}{} ({})'", ball_series ? ", " : "", ball_series,
-                               job.method, setting, d.verdict);
-      ++ball_series;
+      ball_figure.add(d.series, fmt::format("using 1:2 with lines title '{}{} ({})'", job.method, setting, d.verdict));
     }
     const bool rigid_default_setting = job.value == (job.setting == "dt" ? rigid_dts.front() : rigid_rtols.back());
-    if (job.system != "ball" && rigid_default_setting) rigid_default[job.method].emplace_back(job.system, d.max_error);
+    if (job.system != "ball" && rigid_default_setting) rigid_default[job.method].emplace_back(job.system, max_error);
   }
-  int block = 0;
-  std::string rigid_plot;
+  Series rigid_figure;
   for (const auto& [method, values] : rigid_default) {
-    for (std::size_t i = 0; i < values.size(); ++i) rigid_data += fmt::format("{},{},{}\n", i, values[i].first, std::max(values[i].second, 1e-17));
-    rigid_data += "\n\n";
-    rigid_plot += fmt::format("{}'data.csv' index {} using 1:3:xtic(2) with linespoints title '{}'", block ? ", " : "", block, method);
-    ++block;
+    std::string rows;
+    for (std::size_t i = 0; i < values.size(); ++i) rows += fmt::format("{},{},{}\n", i, values[i].first, std::max(values[i].second, kLogFloor));
+    rigid_figure.add(rows, fmt::format("using 1:3:xtic(2) with linespoints title '{}'", method));
   }
   OutputSet files;
   files.add_table("drift", table);
   try {
-    render({"ball_energy", ball_data,
+    render({"ball_energy", ball_figure.data(),
             fmt::format("set logscale y\nset format y '10^{{%L}}'\nset xlabel 't [s]'\nset ylabel '|E + dissipated - E_0| / E_0'\n"
-                        "set key outside below\nset grid\nset yrange [1e-17:*]\nplot {}",
-                        ball_plot)},
+                        "set key outside below\nset grid\nset yrange [{:g}:*]\nplot {}",
+                        kLogFloor, ball_figure.plot())},
            files);
-    if (!rigid_data.empty())
-      render({"rigid_energy", rigid_data,
+    if (!rigid_figure.empty())
+      render({"rigid_energy", rigid_figure.data(),
               fmt::format("set logscale y\nset format y '10^{{%L}}'\nset ylabel 'max |energy error| (dt = {:g}, rtol = {:g})'\n"
-                          "set xtics rotate by -30\nset key outside below\nset grid\nset yrange [1e-17:*]\nset offsets 0.3, 0.3, 0, 0\nplot {}",
-                          rigid_dts.front(), rigid_rtols.back(), rigid_plot)},
+                          "set xtics rotate by -30\nset key outside below\nset grid\nset yrange [{:g}:*]\nset offsets 0.3, 0.3, 0, 0\nplot {}",
+                          rigid_dts.front(), rigid_rtols.back(), kLogFloor, rigid_figure.plot())},
              files);
   } catch (const std::exception& ex) {
     std::cerr << "energy_drift: " << ex.what() << "\n";

@@ -24,6 +24,12 @@ std::string read_file(const fs::path& p) {
 
 }  // namespace
 
+void Series::add(const std::string& rows, const std::string& clause) {
+  data_ += rows + "\n\n";
+  plot_ += fmt::format("{}'data.csv' index {} {}", count_ ? ", " : "", count_, clause);
+  ++count_;
+}
+
 void render(const Figure& f, OutputSet& out) {
   const fs::path dir = fs::temp_directory_path() / fmt::format("contact_figure_{}_{}", ::getpid(), f.name);
   fs::create_directories(dir);

@@ -15,6 +15,21 @@ struct Figure {
   std::string script;  // gnuplot commands after the terminal and output lines; plots 'data.csv'
 };
 
+// Several series in one data file, one gnuplot index block each: add() appends a block of CSV
+// rows and the clause that draws it ("using 1:2 with lines title 'x'"); plot() is the
+// comma-separated list of "'data.csv' index i <clause>" to put after "plot ".
+class Series {
+ public:
+  void add(const std::string& rows, const std::string& clause);
+  const std::string& data() const { return data_; }
+  const std::string& plot() const { return plot_; }
+  bool empty() const { return count_ == 0; }
+
+ private:
+  std::string data_, plot_;
+  int count_ = 0;
+};
+
 // Renders the figure into `out` (NAME.png, NAME.pdf, and the script NAME.gp for reuse). Throws
 // std::runtime_error with gnuplot's message if it fails or is missing.
 void render(const Figure& figure, OutputSet& out);

@@ -22,17 +22,23 @@
 #include "game_step.hpp"
 #include "output.hpp"
 #include "penalty.hpp"
+#include "metrics.hpp"
 #include "progress.hpp"
+#include "references.hpp"
 #include "table.hpp"
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iostream>
-#include <map>
 
 using namespace contact;
+
+namespace {
+constexpr double kZeroSpacing = 1e-9;  // touching balls, drawn here on the log axis [m]
+}  // namespace
 
 int main(int argc, char** argv) {
   double k = 1e6, dt = 1e-6;
@@ -56,15 +62,18 @@ int main(int argc, char** argv) {
   const double hertz_k = hertz_stiffness(radius / 2, effective_modulus(200e9, 0.3, 200e9, 0.3));
   const std::vector<std::string> methods = {"event", "game", "penalty-linear", "penalty-hertz"};
   const auto n = static_cast<std::size_t>(balls);
+  // The longest binary contact (effective mass m/2, at the striker's speed): the pulse needs a few
+  // of them per ball to cross the row, so 10 per ball leaves every contact open again at the end.
+  const double contact_time = std::max(hooke_contact(m / 2, k, v0, 0.0).duration, power_law_contact(m / 2, hertz_k, 1.5, v0).duration);
 
   std::vector<std::string> columns = {"method", "spacing_m"};
   for (std::size_t b = 0; b < n; ++b) columns.push_back(fmt::format("v{}_mps", b));
   for (const char* c : {"last_ball_energy_share", "energy_error_rel", "contacts", "rhs_evals"}) columns.emplace_back(c);
   Table table(columns);
-  std::map<std::string, std::string> share_data;  // method -> "spacing,share" lines
-  std::string velocity_data;
+  Series share_figure, velocities;
   Progress progress("newton_cradle", methods.size() * spacings.size());
   for (const auto& method : methods) {
+    std::string shares;  // "spacing,share" lines
     for (double spacing : spacings) {
       progress.step(fmt::format("{} spacing {:g}", method, spacing));
       BallChainParams p;
@@ -75,8 +84,7 @@ int main(int argc, char** argv) {
       p.spacing = spacing;
       p.law = method == "penalty-hertz" ? ContactLaw{HuntCrossley{hertz_k, 1.5, 0.0}} : ContactLaw{Hooke{k}};
       const BallChain chain(p);
-      // Long enough for the pulse to cross every gap and every contact to open again.
-      const double t_end = (approach + static_cast<double>(n) * spacing) / v0 + 0.02;
+      const double t_end = (approach + static_cast<double>(n) * spacing) / v0 + 10.0 * static_cast<double>(n) * contact_time;
       RunResult r;
       if (method == "event") {
         EventOptions o;
@@ -97,43 +105,42 @@ int main(int argc, char** argv) {
                                  r.t_reached, r.message);
         return cli::kExitFailure;
       }
+      // The velocities are final only once every contact has opened again.
+      if (std::any_of(r.contacts.begin(), r.contacts.end(), [](const ContactRecord& c) { return !c.closed(); })) {
+        std::cerr << fmt::format("newton_cradle: {} (spacing {:g} m): a contact is still open at t = {:g} s\n", method, spacing, t_end);
+        return cli::kExitFailure;
+      }
       const Vector& y = r.samples.back().y;
       const double e0 = 0.5 * m * v0 * v0;
       const double last = y[static_cast<Eigen::Index>(2 * n - 1)];
       const double share = 0.5 * m * last * last / e0;
       std::vector<Table::Cell> row = {method, spacing};
       for (std::size_t b = 0; b < n; ++b) row.emplace_back(y[static_cast<Eigen::Index>(2 * b + 1)]);
-      row.insert(row.end(), {share, (r.samples.back().energy + r.samples.back().dissipated - r.energy0) / r.energy0,
-                             static_cast<long>(r.contacts.size()), r.stats.rhs_evals});
+      row.insert(row.end(), {share, 0.0 - energy_drifts(r).back(), static_cast<long>(r.contacts.size()), r.stats.rhs_evals});
       table.add_row(row);
-      share_data[method] += fmt::format("{},{}\n", std::max(spacing, 1e-9), share);
+      shares += fmt::format("{},{}\n", std::max(spacing, kZeroSpacing), share);
       if (spacing == spacings.front()) {
-        for (std::size_t b = 0; b < n; ++b) velocity_data += fmt::format("{},{}\n", b, y[static_cast<Eigen::Index>(2 * b + 1)]);
-        velocity_data += "\n\n";
+        std::string rows;
+        for (std::size_t b = 0; b < n; ++b) rows += fmt::format("{},{}\n", b, y[static_cast<Eigen::Index>(2 * b + 1)]);
+        // Bars of the methods side by side around each ball's index.
+        const double offset = 0.15 * (static_cast<double>(&method - methods.data()) - 0.5 * static_cast<double>(methods.size() - 1));
+        velocities.add(rows, fmt::format("using ($1 + {}):2 with impulses lw 6 title '{}'", offset, method));
       }
     }
-  }
-  std::string share_plot, share_rows, velocity_plot;
-  int block = 0;
-  for (const auto& method : methods) {
-    share_rows += share_data[method] + "\n\n";
-    share_plot += fmt::format("{}'data.csv' index {} using 1:2 with linespoints title '{}'", block ? ", " : "", block, method);
-    velocity_plot += fmt::format("{}'data.csv' index {} using ($1 + {}):2 with impulses lw 6 title '{}'", block ? ", " : "", block,
-                                 0.15 * (block - 1.5), method);
-    ++block;
+    share_figure.add(shares, fmt::format("using 1:2 with linespoints title '{}'", method));
   }
   OutputSet files;
   files.add_table("velocities", table);
   try {
-    render({"final_velocities", velocity_data,
+    render({"final_velocities", velocities.data(),
             fmt::format("set xlabel 'ball'\nset ylabel 'final velocity [m/s]'\nset xrange [-0.5:{}]\nset xtics 1\nset grid\n"
                         "set key top left\nplot {}",
-                        static_cast<double>(n) - 0.5, velocity_plot)},
+                        static_cast<double>(n) - 0.5, velocities.plot())},
            files);
-    render({"energy_share", share_rows,
-            fmt::format("set logscale x\nset format x '10^{{%L}}'\nset xlabel 'spacing [m] (0 drawn at 10^{{-9}})'\n"
+    render({"energy_share", share_figure.data(),
+            fmt::format("set logscale x\nset format x '10^{{%L}}'\nset xlabel 'spacing [m] (0 drawn at {:g})'\n"
                         "set ylabel 'last ball energy / initial'\nset key bottom right\nset grid\nplot {}",
-                        share_plot)},
+                        kZeroSpacing, share_figure.plot())},
            files);
   } catch (const std::exception& ex) {
     std::cerr << "newton_cradle: " << ex.what() << "\n";

@@ -72,7 +72,7 @@ int main(int argc, char** argv) {
   const auto scene_list = cli::split_list(scenes);
   const auto methods = rigid_method_names();
   std::size_t total = 0;
-  for (const auto& method : methods) total += scene_list.size() * (method.rfind("game", 0) == 0 ? dts.size() : rtols.size());
+  for (const auto& method : methods) total += scene_list.size() * (is_fixed_step(method) ? dts.size() : rtols.size());
 
   Table table({"scene", "method", "setting", "value", "momentum_error_rel", "angular_momentum_error_rel", "energy_error_rel", "contacts",
                "rhs_evals"});
@@ -92,12 +92,10 @@ int main(int argc, char** argv) {
     // that is not zero when the bodies' momenta cancel (the box spinning in place).
     const double p_scale = std::sqrt(2 * mass * scene.energy(scene.initial_state()));
     for (const auto& method : methods) {
-      const bool fixed = method.rfind("game", 0) == 0;
+      const bool fixed = is_fixed_step(method);
       for (double v : fixed ? dts : rtols) {
         progress.step(fmt::format("{} {} {:g}", name, method, v));
-        RigidRunSettings s{info.t_end, info.t_end, 1e-4, 1e-8, 1e-10};
-        (fixed ? s.dt : s.rtol) = v;
-        s.atol = s.rtol / 100;
+        const RigidRunSettings s = with_setting({info.t_end, info.t_end, 1e-4, 1e-8, 1e-10}, method, v);
         const RunResult r = run_rigid(scene, method, s);
         if (!r.ok()) {
           std::cerr << fmt::format("rigid_impacts: {} {} ({} = {:g}): {} at t = {:.9g} s: {}\n", name, method, fixed ? "dt" : "rtol", v,

@@ -3,6 +3,7 @@
 #include "event_driven.hpp"
 #include "game_step.hpp"
 #include "penalty.hpp"
+#include "sweep_setting.hpp"
 
 #include <fmt/format.h>
 
@@ -11,6 +12,18 @@
 namespace contact {
 
 std::vector<std::string> rigid_method_names() { return {"penalty", "game", "game-projection", "event", "event-reversed"}; }
+
+bool is_fixed_step(const std::string& rigid_method) { return rigid_method.rfind("game", 0) == 0; }
+
+RigidRunSettings with_setting(RigidRunSettings s, const std::string& rigid_method, double value) {
+  if (is_fixed_step(rigid_method)) {
+    s.dt = value;
+  } else {
+    s.rtol = value;
+    s.atol = value * kAtolPerRtol;
+  }
+  return s;
+}
 
 RunResult run_rigid(const rigid::RigidScene& scene, const std::string& method, const RigidRunSettings& s) {
   IntegratorOptions integrator;

@@ -24,6 +24,10 @@ struct RigidRunSettings {
 };
 
 std::vector<std::string> rigid_method_names();
+// The game methods, whose setting is a fixed step; the others take a tolerance.
+bool is_fixed_step(const std::string& rigid_method);
+// `s` with the method's setting (game: dt; others: rtol, atol = rtol / 100) set to `value`.
+RigidRunSettings with_setting(RigidRunSettings s, const std::string& rigid_method, double value);
 
 // Runs the named method; throws std::invalid_argument for an unknown name.
 RunResult run_rigid(const rigid::RigidScene& scene, const std::string& method, const RigidRunSettings& settings);

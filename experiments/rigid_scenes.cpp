@@ -136,17 +136,14 @@ int main(int argc, char** argv) {
   OutputSet files;
   files.add_table("runs", runs);
   files.add("observables.csv", observables.to_csv());
-  std::string data, plot;
-  int block = 0;
-  for (const auto& [method, rows] : penetration) {
-    data += rows + "\n\n";
-    plot += fmt::format("{}'data.csv' index {} using 1:3:xtic(2) with points pt {} ps 1.5 title '{}'", block ? ", " : "", block, block + 4, method);
-    ++block;
-  }
+  Series series;
+  int point_type = 4;
+  for (const auto& [method, rows] : penetration)
+    series.add(rows, fmt::format("using 1:3:xtic(2) with points pt {} ps 1.5 title '{}'", point_type++, method));
   try {
-    render({"penetration", data,
+    render({"penetration", series.data(),
             "set logscale y\nset format y '10^{%L}'\nset ylabel 'largest penetration [m] (none: 10^{-12})'\nset xtics rotate by -30\n"
-            "set offsets 0.3, 0.3, 0, 0\nset key outside below\nset grid\nplot " + plot},
+            "set offsets 0.3, 0.3, 0, 0\nset key outside below\nset grid\nplot " + series.plot()},
            files);
   } catch (const std::exception& ex) {
     std::cerr << "rigid_scenes: " << ex.what() << "\n";

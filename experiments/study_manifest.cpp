@@ -1,5 +1,7 @@
 #include "study_manifest.hpp"
 
+#include "table.hpp"
+
 #include <fmt/format.h>
 
 #include <fstream>
@@ -30,14 +32,6 @@ StudyManifest load_study_manifest(const fs::path& path) {
 
 namespace {
 
-std::vector<std::string> split_csv_line(const std::string& line) {
-  std::vector<std::string> cells;
-  std::istringstream in(line);
-  for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
-  if (!line.empty() && line.back() == ',') cells.emplace_back();
-  return cells;
-}
-
 std::string slurp(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
   std::stringstream s;
@@ -46,8 +40,7 @@ std::string slurp(const fs::path& p) {
 }
 
 // Problems of one CSV: the header must hold every declared column; every row must be as wide as
-// the header (cells of the experiments' tables contain no commas; free text, e.g. a solver's
-// message, is the last column and may).
+// the header.
 void check_csv(const std::string& text, const StudyOutput& o, std::vector<std::string>& problems) {
   std::istringstream in(text);
   std::string header;
@@ -58,8 +51,8 @@ void check_csv(const std::string& text, const StudyOutput& o, std::vector<std::s
       problems.push_back(fmt::format("{}: column '{}' missing (header: {})", o.file, c, header));
   long row = 1;
   for (std::string line; std::getline(in, line); ++row)
-    if (split_csv_line(line).size() < columns.size()) {
-      problems.push_back(fmt::format("{}: row {} has fewer cells than the header's {}", o.file, row, columns.size()));
+    if (split_csv_line(line).size() != columns.size()) {
+      problems.push_back(fmt::format("{}: row {} does not have the header's {} cells", o.file, row, columns.size()));
       return;
     }
   if (row == 1) problems.push_back(fmt::format("{}: no rows", o.file));

@@ -51,7 +51,7 @@ int main(int argc, char** argv) {
 
   Table table({"method", "status", "contacts", "rest_time_s", "zeno_time_s", "final_height_m", "static_deflection_m",
                "min_height_m", "rhs_evals"});
-  std::string data;
+  Series heights;
   const std::vector<std::string> methods = {"event-exact", "event-ode", "penalty", "game-symplectic", "game-symplectic-spring"};
   Progress progress("zeno", methods.size());
   for (std::size_t mi = 0; mi < methods.size(); ++mi) {
@@ -66,23 +66,22 @@ int main(int argc, char** argv) {
       if (std::abs(r.samples[i].y[1]) >= rest_speed) break;
       rest = r.samples[i].t;
     }
+    std::string rows;
     for (const auto& smp : r.samples) {
       lowest = std::min(lowest, smp.y[0]);
-      data += fmt::format("{},{},{}\n", mi, smp.t, smp.y[0]);
+      rows += fmt::format("{},{}\n", smp.t, smp.y[0]);
     }
-    data += "\n\n";
+    heights.add(rows, fmt::format("using 1:2 with lines title '{}'", methods[mi]));
     table.add_row({methods[mi], std::string(to_string(r.status)), static_cast<long>(r.contacts.size()), rest, ref.zeno_time(),
                    r.samples.back().y[0], m * g / k, lowest, r.stats.rhs_evals});
   }
   std::string plot = fmt::format("set xlabel 't [s]'\nset ylabel 'height [m]'\nset key top right\nset grid\n"
-                                 "set arrow from {0}, graph 0 to {0}, graph 1 nohead dt 2\nset label 'Zeno time' at {0}, graph 0.9\nplot ",
-                                 ref.zeno_time());
-  for (std::size_t mi = 0; mi < methods.size(); ++mi)
-    plot += fmt::format("{}'data.csv' index {} using 2:3 with lines title '{}'", mi ? ", " : "", mi, methods[mi]);
+                                 "set arrow from {0}, graph 0 to {0}, graph 1 nohead dt 2\nset label 'Zeno time' at {0}, graph 0.9\nplot {1}",
+                                 ref.zeno_time(), heights.plot());
   OutputSet files;
   files.add_table("zeno", table);
   try {
-    render({"heights", data, plot}, files);
+    render({"heights", heights.data(), plot}, files);
   } catch (const std::exception& ex) {
     std::cerr << "zeno: " << ex.what() << "\n";
     return cli::kExitFailure;

@@ -2,6 +2,8 @@
 // A temporary working directory per test and a way to run an experiment executable in it,
 // capturing its exit code, stdout and stderr: the experiments' command-line contract is tested
 // the way a user meets it.
+#include "table.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -28,16 +30,11 @@ inline std::string slurp(const fs::path& p) {
   return s.str();
 }
 
-// The cells of each line of a CSV text (no quoting: the experiments' numeric tables).
+// The cells of each line of a CSV text written by Table::to_csv.
 inline std::vector<std::vector<std::string>> csv_rows(const std::string& csv) {
   std::vector<std::vector<std::string>> out;
   std::istringstream in(csv);
-  for (std::string line; std::getline(in, line);) {
-    std::vector<std::string> cells;
-    std::istringstream l(line);
-    for (std::string cell; std::getline(l, cell, ',');) cells.push_back(cell);
-    out.push_back(cells);
-  }
+  for (std::string line; std::getline(in, line);) out.push_back(contact::split_csv_line(line));
   return out;
 }
 

@@ -1,5 +1,6 @@
 // energy_drift: the signs and rates of energy error that numerical analysis predicts.
 #include "cli_fixture.hpp"
+#include "fit.hpp"
 
 #include <cmath>
 
@@ -54,7 +55,8 @@ TEST_F(EnergyDriftCli, DriftHasThePredictedSignsAndRates) {
   // exponent of |final error| against rtol over 1e-4 .. 1e-8 is 1 within 0.1.
   const auto event = rows("ball", "event-ode");
   ASSERT_EQ(event.size(), 3u);
-  const double p = std::log(std::abs(num(event[0], kFinal) / num(event[2], kFinal))) / std::log(num(event[0], kValue) / num(event[2], kValue));
+  const double p = contact::observed_order(num(event[0], kValue), std::abs(num(event[0], kFinal)), num(event[2], kValue),
+                                           std::abs(num(event[2], kFinal)));
   EXPECT_NEAR(p, 1.0, 0.1);
   // Penalty: each 100-fold tighter tolerance cuts the error at least 10-fold (an exponent >= 1/2).
   const auto penalty = rows("ball", "penalty");

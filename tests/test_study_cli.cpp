@@ -37,7 +37,7 @@ TEST_F(StudyCli, OutputCheckReportsEveryKindOfDefect) {
     return std::any_of(problems.begin(), problems.end(), [&](const std::string& p) { return p.find(what) != std::string::npos; });
   };
   EXPECT_TRUE(reported("column 'b' missing"));
-  EXPECT_TRUE(reported("row 1 has fewer cells"));
+  EXPECT_TRUE(reported("row 1 does not have the header's 2 cells"));
   EXPECT_TRUE(reported("f.png: no PDF"));
   EXPECT_TRUE(reported("gone.csv: missing"));
   EXPECT_EQ(problems.size(), 4u);
