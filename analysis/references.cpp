@@ -1,5 +1,6 @@
 #include "references.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -82,16 +83,29 @@ BallState rigid_ball_state(double h0, double v0, double g, double e, double t) {
   const RigidBounces rigid(h0, v0, g, e);
   if (t < rigid.T1) return {h0 + v0 * t - 0.5 * g * t * t, v0 - g * t};
   if (t >= rigid.zeno_time()) return {0.0, 0.0};
-  double start = rigid.T1, speed = e * rigid.V;  // the current leg: leaves the floor at `start`
-  if (e == 1.0) {
-    start += std::floor((t - rigid.T1) / (2.0 * rigid.V / g)) * (2.0 * rigid.V / g);
-  } else {
-    while (t >= start + 2.0 * speed / g) {
-      start += 2.0 * speed / g;
-      speed *= e;
-    }
+  const double period = 2.0 * rigid.V / g;  // the flight after the first impact, at e = 1
+  const double s = t - rigid.T1;
+  // The leg n = 0, 1, ... leaves the floor at T1 + period (e + ... + e^n) with speed e^(n+1) V.
+  // Leg n contains t when period e (1 - e^n) / (1 - e) <= s, i.e. n = floor(log(1 - s (1-e) /
+  // (period e)) / log e), computed directly: stepping through the legs one by one never ends
+  // once they are shorter than t's rounding, between the floating-point sum of the impact times
+  // and t_inf.
+  double n = 0.0;
+  if (e == 1.0) n = std::floor(s / period);
+  else if (e > 0.0) n = std::floor(std::log1p(-s * (1.0 - e) / (period * e)) / std::log(e));
+  n = std::max(n, 0.0);
+  const double en = std::pow(e, n);
+  const double start = rigid.T1 + (e == 1.0 ? n * period : period * e * (1.0 - en) / (1.0 - e));
+  double speed = en * e * rigid.V;
+  // The logarithm may land one leg off where t is an impact time to rounding: move at most one
+  // leg either way so that start <= t < start + 2 speed / g.
+  double f = t - start;
+  if (f < 0) f = 0;
+  if (speed > 0 && f > 2.0 * speed / g) {
+    f -= 2.0 * speed / g;
+    speed *= e;
   }
-  const double f = t - start;
+  if (!(speed > 0) || f > 2.0 * speed / g) return {0.0, 0.0};  // below t's resolution of t_inf
   return {speed * f - 0.5 * g * f * f, speed - g * f};
 }
 

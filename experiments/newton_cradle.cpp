@@ -91,7 +91,7 @@ int main(int argc, char** argv) {
         o.t_end = o.sample_dt = t_end;
         r = run_event_driven(chain, o);
       } else if (method == "game") {
-        r = run_game(chain, GameOptions{dt, t_end, t_end, FixedStepScheme::SemiImplicitEuler, GameResolution::ProjectionImpulse});
+        r = run_game(chain, GameOptions{.dt = dt, .t_end = t_end, .sample_dt = t_end, .scheme = FixedStepScheme::SemiImplicitEuler, .resolution = GameResolution::ProjectionImpulse});
       } else {
         PenaltyOptions o;
         o.t_end = o.sample_dt = t_end;

@@ -31,7 +31,7 @@ RunResult run_rigid(const rigid::RigidScene& scene, const std::string& method, c
   integrator.atol = s.atol;
   RunResult r;
   if (method == "penalty") {
-    r = run_penalty(scene, PenaltyOptions{s.t_end, s.sample_dt, integrator, true});
+    r = run_penalty(scene, PenaltyOptions{.t_end = s.t_end, .sample_dt = s.sample_dt, .integrator = integrator});
   } else if (method == "game" || method == "game-projection") {
     r = run_game(scene, {s.dt, s.t_end, s.sample_dt, FixedStepScheme::SemiImplicitEuler,
                          method == "game" ? GameResolution::ProjectionImpulse : GameResolution::Projection});

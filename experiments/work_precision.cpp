@@ -139,23 +139,23 @@ int main(int argc, char** argv) {
       const bool adaptive = integrator_info(name).adaptive;
       for (double v : adaptive ? tols : dts)
         jobs.push_back({problem, "penalty", name, adaptive ? "rtol" : "dt", v, [&model, t_end, o = integrator_options(name, v)] {
-                          return run_penalty(model, PenaltyOptions{t_end, t_end, o, true});
+                          return run_penalty(model, PenaltyOptions{.t_end = t_end, .sample_dt = t_end, .integrator = o});
                         }});
     }
     for (const auto& [paradigm, resolution] : {std::pair{std::string("game"), GameResolution::ProjectionImpulse},
                                                std::pair{std::string("game-spring"), GameResolution::Spring}})
       for (double dt : dts)
         jobs.push_back({problem, paradigm, "semi-implicit-euler", "dt", dt, [&model, t_end, dt, resolution] {
-                          return run_game(model, GameOptions{dt, t_end, t_end, FixedStepScheme::SemiImplicitEuler, resolution});
+                          return run_game(model, GameOptions{.dt = dt, .t_end = t_end, .sample_dt = t_end, .scheme = FixedStepScheme::SemiImplicitEuler, .resolution = resolution});
                         }});
     for (const std::string name : {"cvode-bdf", "gsl-rk8pd"})
       for (double tol : tols)
         jobs.push_back({problem, "event", name, "rtol", tol, [&model, t_end, o = integrator_options(name, tol)] {
-                          return run_event_driven(model, EventOptions{t_end, t_end, o, 1e-7, 0.0, 1000000});
+                          return run_event_driven(model, EventOptions{.t_end = t_end, .sample_dt = t_end, .integrator = o, .rest_speed = 1e-7, .max_events = 1000000});
                         }});
     if (problem == "ball")
       jobs.push_back({problem, "event", "exact-flight", "exact", 0.0, [ball, t_end] {
-                        return run_event_driven(*ball, *ball, EventOptions{t_end, t_end, {}, 1e-7, 0.0, 1000000});
+                        return run_event_driven(*ball, *ball, EventOptions{.t_end = t_end, .sample_dt = t_end, .rest_speed = 1e-7, .max_events = 1000000});
                       }});
   }
 

@@ -17,9 +17,12 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // What happens at an impact, whichever flight located it.
 class Impacts {
  public:
-  Impacts(const MechanicalSystem& model, const EventOptions& opt, RunRecorder& rec)
-      : model_(model), opt_(opt), rec_(rec), modes_(model.all_modes(ContactMode::Free)),
-        last_(model.contact_count(), -kInf) {}
+  // `numerical`: the flight is an integrator, with the resolution of its absolute tolerance.
+  Impacts(const MechanicalSystem& model, const EventOptions& opt, RunRecorder& rec, bool numerical)
+      : model_(model), opt_(opt), rec_(rec), numerical_(numerical),
+        rest_height_(opt.rest_height >= 0 ? opt.rest_height : numerical ? 100 * opt.integrator.atol : 0.0),
+        modes_(model.all_modes(ContactMode::Free)), last_(model.contact_count(), -kInf),
+        ydot_(model.state_size()), y_ahead_(model.state_size()) {}
 
   const ContactModes& modes() const { return modes_; }
   bool resting(std::size_t i) const { return modes_[i] == ContactMode::Resting; }
@@ -30,19 +33,35 @@ class Impacts {
   void resolve(std::size_t i, double t, VectorRef y) {
     if (++count_ > opt_.max_events)
       throw SolverFailure(Status::ZenoLimit, t,
-                          fmt::format("more than {} impacts; raise --max-events or the rest speed",
+                          fmt::format("more than {} impacts before rest; raise the impact limit or the rest speed",
                                       opt_.max_events));
     const double v_in = model_.gap_rate(i, y);
+    // A located gap root whose rate is not approaching is noise at the flight's resolution: a
+    // bounce lower than its absolute tolerance, which the rest height should have caught.
+    if (v_in >= 0 && numerical_)
+      throw SolverFailure(Status::Unresolved, t,
+                          fmt::format("contact {} was located with gap rate {:.3g} m/s (not approaching): the "
+                                      "bounce is below what the flight resolves at atol = {:g}; tighten the "
+                                      "absolute tolerance or raise the rest height ({:g} m)",
+                                      i, v_in, opt_.integrator.atol, rest_height_));
     rec_.contact_begin(i, t, v_in);
     rec_.observe_penetration(i, -model_.gap(i, y));
     model_.project(i, y);
-    // A located gap root whose rate is not approaching is noise at the flight's resolution (a
-    // bounce lower than the absolute tolerance): the cascade has ended there. The impulse would
-    // turn that separating rate into an approaching one, so the contact rests instead.
-    const bool unresolved = v_in >= 0;
+    const bool unresolved = v_in >= 0;  // exact flight: touching without approach
     const double before = model_.energy(y);
     if (!unresolved) model_.apply_impulse(i, model_.restitution(i), y);
-    const bool slow = unresolved || model_.gap_rate(i, y) < opt_.rest_speed;
+    const double v_out = model_.gap_rate(i, y);
+    // Resting by height stops a decaying cascade that was followed down to the flight's
+    // resolution. A first bounce already that low, or one that does not decay (e = 1), was never
+    // resolved: resting there would drop its energy silently.
+    const bool low = !unresolved && bounce_height(i, y) < rest_height_;
+    if (low && (last_[i] == -kInf || !(v_out < -v_in)))
+      throw SolverFailure(Status::Unresolved, t,
+                          fmt::format("contact {}'s bounce rises {:.3g} m, below the {:g} m the flight resolves at "
+                                      "atol = {:g}, and it is {}: tighten the absolute tolerance",
+                                      i, bounce_height(i, y), rest_height_, opt_.integrator.atol,
+                                      last_[i] == -kInf ? "the contact's first" : "not decaying"));
+    const bool slow = unresolved || v_out < opt_.rest_speed || low;
     const bool crowded = t - last_[i] < opt_.min_event_spacing;
     rec_.contact_end(i, t, model_.gap_rate(i, y));
     if (slow || crowded) {
@@ -75,11 +94,27 @@ class Impacts {
   }
 
  private:
+  // How high the bounce leaving at y rises: v^2 / (2 |a|), with a the gap's acceleration in free
+  // flight, d/dt gap_rate = (gap_rate(y + h y') - gap_rate(y)) / h. The gap rate is linear in the
+  // velocities, and y' changes them at the rate of the applied forces, so for a ball the
+  // quotient is exactly -g; h = 1e-6 s keeps the error from rotating normals at O(h).
+  double bounce_height(std::size_t i, ConstVectorRef y) {
+    if (rest_height_ <= 0) return kInf;
+    constexpr double h = 1e-6;
+    model_.rhs(0.0, y, modes_, ydot_);
+    y_ahead_ = y + h * ydot_;
+    const double v = model_.gap_rate(i, y), a = (model_.gap_rate(i, y_ahead_) - v) / h;
+    return a < 0 ? v * v / (-2 * a) : kInf;
+  }
+
   const MechanicalSystem& model_;
   const EventOptions& opt_;
   RunRecorder& rec_;
+  bool numerical_;
+  double rest_height_;
   ContactModes modes_;
   std::vector<double> last_;
+  Vector ydot_, y_ahead_;
   long count_ = 0;
 };
 
@@ -87,8 +122,8 @@ class Impacts {
 
 RunResult run_event_driven(const MechanicalSystem& model, const EventOptions& opt) {
   const std::size_t nc = model.contact_count();
-  RunRecorder rec(model, "event-driven " + opt.integrator.method, opt.sample_dt, opt.t_end);
-  Impacts impacts(model, opt, rec);
+  RunRecorder rec(model, "event-driven " + opt.integrator.method, opt.sample_dt, opt.t_end, opt.limits);
+  Impacts impacts(model, opt, rec, true);
 
   OdeSystem sys = mechanical_ode(model, [&](ConstVectorRef) -> const ContactModes& { return impacts.modes(); });
   // Per contact: the gap (impact) and the gap rate (apex), both on falling zeros only. A
@@ -97,8 +132,8 @@ RunResult run_event_driven(const MechanicalSystem& model, const EventOptions& op
   sys.roots = [&](double, ConstVectorRef y, VectorRef g) {
     for (std::size_t i = 0; i < nc; ++i) {
       const bool rest = impacts.resting(i);
-      // Touching but not yet approaching still counts as apart (see kRootOffset).
-      g[static_cast<Eigen::Index>(2 * i)] = rest ? 1.0 : model.gap(i, y) + kRootOffset;
+      // Touching but not yet approaching still counts as apart (see kTouchOffset).
+      g[static_cast<Eigen::Index>(2 * i)] = rest ? 1.0 : model.gap(i, y) + kTouchOffset;
       g[static_cast<Eigen::Index>(2 * i + 1)] = rest ? 1.0 : model.gap_rate(i, y);
     }
   };
@@ -122,8 +157,8 @@ RunResult run_event_driven(const MechanicalSystem& model, const EventOptions& op
 RunResult run_event_driven(const MechanicalSystem& model, const AnalyticFlight& flight,
                            const EventOptions& opt) {
   const std::size_t nc = model.contact_count();
-  RunRecorder rec(model, "event-driven exact", opt.sample_dt, opt.t_end);
-  Impacts impacts(model, opt, rec);
+  RunRecorder rec(model, "event-driven exact", opt.sample_dt, opt.t_end, opt.limits);
+  Impacts impacts(model, opt, rec, false);
 
   // Every state on a flight leg is computed from the leg's start with a time measured from it
   // (never t - t_leg, which would lose the leg time's low bits to the absolute time), so samples

@@ -4,20 +4,28 @@
 // model's impulse map; the flight restarts.
 //
 // Zeno: with e < 1 a bouncing contact accumulates infinitely many impacts before a finite time
-// (t_inf = t0 (1+e)/(1-e) for the ball drop). The run stops the cascade with three guards:
+// (t_inf = t0 (1+e)/(1-e) for the ball drop). The run stops the cascade with four guards:
 //   rest_speed         after an impact whose outgoing normal speed is below it, the contact is
 //                      put at rest on its surface (Resting mode: normal motion frozen);
+//   rest_height        likewise when the bounce it starts would rise less than this: the height
+//                      v_out^2 / (2 |a|), with a the gap's free-flight acceleration (-g for a
+//                      ball), measured by a difference quotient of the gap rate along the flight;
 //   min_event_spacing  two impacts of one contact closer in time than this also mean rest;
 //   max_events         a hard cap: exceeding it ends the run with Status::ZenoLimit.
-// The rest guard costs at most 2 rest_speed / (g (1 - e)) of Zeno time for a ball under gravity.
-// A numerical flight also rests a contact at a located impact that is not approaching: bounces
-// lower than its absolute tolerance are below what it resolves.
+// The rest guards cost at most 2 v_rest / (g (1 - e)) of Zeno time for a ball under gravity,
+// with v_rest the larger of rest_speed and sqrt(2 g rest_height).
+// A numerical flight resolves a bounce only if it rises well above its absolute tolerance, so its
+// rest height defaults to 100 atol. An impact it still locates while not approaching (a bounce it
+// did not resolve) ends the run with Status::Unresolved: resting the contact there would silently
+// drop the bounce's energy (a ball dropped from 1e-9 m with e = 1 and atol 1e-10 used to lose 99 %
+// of its energy and report success).
 //
 // Two flights: any Integrator with root finding (any model), or the model's closed form (AnalyticFlight),
 // the exact reference. With the closed form a resting contact holds the whole state, which is
 // exact for one body on a static surface, the case closed forms cover here.
 #include "integrator.hpp"
 #include "mechanical_system.hpp"
+#include "run_recorder.hpp"
 #include "run_result.hpp"
 
 namespace contact {
@@ -27,9 +35,11 @@ struct EventOptions {
   double sample_dt = 0.01;       // output spacing [s]
   IntegratorOptions integrator;  // the numerical flight (CVODE BDF by default)
   double rest_speed = 1e-7;      // [m/s]
+  double rest_height = -1;       // [m]; < 0: 100 * integrator.atol (numerical flight), 0 (exact)
   double min_event_spacing = 0;  // [s]
   long max_events = 1000000;
   bool reverse_order = false;    // sequential rule: highest contact index first instead of lowest
+  RunLimits limits;
 };
 
 // Flight by a numerical integrator.

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <limits>
 
 namespace contact {
 
@@ -33,7 +34,7 @@ RunResult run_game(const MechanicalSystem& model, const GameOptions& opt) {
   const bool impulse = opt.resolution == GameResolution::ProjectionImpulse ||
                        opt.resolution == GameResolution::Impulse;
   RunRecorder rec(model, fmt::format("game {} {}", to_string(opt.scheme), to_string(opt.resolution)),
-                  opt.sample_dt, opt.t_end);
+                  opt.sample_dt, opt.t_end, opt.limits);
 
   // Detection: the spring acts while its switching function is positive, impulses while the
   // bodies overlap. Both are "positive while in contact".
@@ -51,15 +52,19 @@ RunResult run_game(const MechanicalSystem& model, const GameOptions& opt) {
     d_prev[i] = detect(i, y);
     if (d_prev[i] > 0) rec.contact_begin(i, 0.0, model.gap_rate(i, y));
   }
-  rec.sample(0.0, y);
 
   // The tutorial's collision list: frames left per listed contact, -1 when not listed.
   std::vector<int> frames_left(nc, -1);
   std::vector<bool> fresh(nc, false);
   std::vector<CollisionEvent> batch;
   SolverStats stats;
-  const auto n_steps = static_cast<long>(std::ceil(opt.t_end / opt.dt - 1e-9));
   double t = 0.0;
+  try {
+  rec.sample(0.0, y);
+  // Counted in floating point: t_end / dt can exceed every integer type (1e4 s at 1e-16 s).
+  const double steps_needed = std::ceil(opt.t_end / opt.dt - 1e-9);
+  rec.check_steps(steps_needed < 9e18 ? static_cast<long>(steps_needed) : std::numeric_limits<long>::max(), 0.0);
+  const auto n_steps = static_cast<long>(steps_needed);
   for (long n = 1; n <= n_steps; ++n) {
     const double t0 = t;
     const double h = std::min(opt.dt, opt.t_end - t0);  // the last step lands on t_end
@@ -77,11 +82,8 @@ RunResult run_game(const MechanicalSystem& model, const GameOptions& opt) {
     stats.rhs_evals += fixed_step(opt.scheme, f, positions, t0, h, y, work);
     model.normalize(y);
     stats.steps += 1;
-    if (!y.allFinite()) {
-      return rec.fail(SolverFailure(Status::NonFiniteState, t,
-                                    fmt::format("state is not finite after step {} (dt = {:g} s)", n, h)),
-                      stats);
-    }
+    if (!y.allFinite())
+      throw SolverFailure(Status::NonFiniteState, t, fmt::format("state is not finite after step {} (dt = {:g} s)", n, h));
     for (std::size_t i = 0; i < nc; ++i) {
       // Apex: gap rate falls through zero during free flight.
       const double r0 = model.gap_rate(i, y_prev), r1 = model.gap_rate(i, y);
@@ -95,7 +97,9 @@ RunResult run_game(const MechanicalSystem& model, const GameOptions& opt) {
       if (d > 0) {
         if (frames_left[i] < 0) fresh[i] = true;
         frames_left[i] = opt.persistence;
-        if (!rec.contact_open(i)) rec.contact_begin(i, t0 + crossing(d_prev[i], d) * h, model.gap_rate(i, y));
+        // Detected again in the frame right after its record ended: the same contact goes on.
+        if (!rec.contact_open(i) && !rec.reopen_contact(i, t0))
+          rec.contact_begin(i, t0 + crossing(d_prev[i], d) * h, model.gap_rate(i, y));
         rec.observe_penetration(i, -model.gap(i, y));
         if (project) model.project(i, y);
         if (impulse && model.gap_rate(i, y) < 0) {
@@ -128,6 +132,9 @@ RunResult run_game(const MechanicalSystem& model, const GameOptions& opt) {
       if (opt.on_notifications) opt.on_notifications(batch);
     }
     if (t >= rec.next_sample_time() * (1 - 1e-12)) rec.sample(t, y);
+  }
+  } catch (const SolverFailure& failure) {
+    return rec.fail(failure, stats);
   }
   return rec.finish(stats, t);
 }

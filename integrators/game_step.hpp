@@ -17,11 +17,17 @@
 // The impulse is applied only when the contact approaches (gap rate < 0). The seed applies it
 // unconditionally; on a separating contact that would pull the bodies back together.
 //
+// A contact record spans the frames in which the contact is detected: it ends when a resolution
+// leaves the bodies apart and separating, and is reopened if the very next frame detects the
+// contact again. A ball resting on the floor, detected and resolved every frame, is thus one
+// record, not one per frame.
+//
 // Contact times are the linear interpolation of the detection function's zero between two step
 // ends, so they carry an O(dt) error by construction; apexes are located where the gap rate,
 // interpolated linearly between step ends, falls through zero.
 #include "fixed_step.hpp"
 #include "mechanical_system.hpp"
+#include "run_recorder.hpp"
 #include "run_result.hpp"
 
 #include <functional>
@@ -45,6 +51,7 @@ struct GameOptions {
   GameResolution resolution = GameResolution::ProjectionImpulse;
   int persistence = 1;  // frames a pair stays listed after its last detection
   std::function<void(const std::vector<CollisionEvent>&)> on_notifications;  // once per step with events
+  RunLimits limits;
 };
 
 RunResult run_game(const MechanicalSystem& model, const GameOptions& options);

@@ -1,6 +1,9 @@
 #include "integrator_driver.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <memory>
 
@@ -8,6 +11,7 @@ namespace contact {
 
 RunResult drive(OdeSystem system, ConstVectorRef y0, const IntegratorOptions& options, RunRecorder& rec,
                 const EventHandling& events) {
+  const long root_functions = static_cast<long>(system.root_count);
   std::unique_ptr<Integrator> integrator;
   try {
     integrator = make_integrator(options, std::move(system), 0.0, y0);
@@ -22,15 +26,32 @@ RunResult drive(OdeSystem system, ConstVectorRef y0, const IntegratorOptions& op
     return s;
   };
   double t = 0.0;
+  // Progress guard: CVODE can return a root without flagging any (its sign test glo * ghi < 0
+  // underflows for root functions of ~1e-160); calling it again returns the same root forever.
+  // Such a return restarts the integrator, which clears its root memory and steps past; a run
+  // that still returns at the same time, whatever the reason, ends with Status::NoProgress.
+  // Simultaneous roots are reported in one return, so a bound of a few returns per root
+  // function at one instant is generous.
+  const long max_returns_at_one_time = 2 * root_functions + 10;
+  long returns_at_t = 0;
+  double t_last_root = -std::numeric_limits<double>::infinity();
   try {
     for (double t_out = rec.next_sample_time(); std::isfinite(t_out); t_out = rec.next_sample_time()) {
       if (t_out > t) {
         const auto out = integrator->advance(t_out);
         t = out.t;
+        rec.check_steps(integrator->stats().steps, t);
         if (out.root) {
+          returns_at_t = t > t_last_root ? 1 : returns_at_t + 1;
+          t_last_root = t;
+          if (returns_at_t > max_returns_at_one_time)
+            throw SolverFailure(Status::NoProgress, t,
+                                fmt::format("the integrator returned {} times at t = {:.17g} without advancing",
+                                            returns_at_t, t));
           Vector y = integrator->y();
-          handled += std::count_if(out.roots_found.begin(), out.roots_found.end(), [](int r) { return r != 0; });
-          if (events.on_roots(t, y, out.roots_found)) integrator->reinit(t, y);
+          const auto flagged = std::count_if(out.roots_found.begin(), out.roots_found.end(), [](int r) { return r != 0; });
+          handled += flagged;
+          if (flagged == 0 || events.on_roots(t, y, out.roots_found)) integrator->reinit(t, y);
           continue;
         }
       }

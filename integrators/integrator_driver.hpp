@@ -20,14 +20,25 @@ struct EventHandling {
   std::vector<int> root_directions;  // empty: both directions
 };
 
-// Root functions of switching and gap values are offset by this much, towards the side of the
-// mode a contact is held in, so that none is ever exactly zero where an integrator (re)starts:
-// CVODE deactivates a root function that is exactly zero at its initial time and reactivates it
-// without reporting a root when it turns non-zero, which let touching bodies pass through each
-// other unnoticed. The offset must not be so small that CVODE's sign test glo * ghi < 0
-// underflows to zero (the smallest normal double, tried first, did: roots went unreported), nor
-// large enough to move a root: 1e-150 m is far below any length resolved here.
-inline constexpr double kRootOffset = 1e-150;
+// The contact threshold: a contact begins when its switching function (or, event-driven, its
+// overlap) passes this length and ends when it falls this far below zero. Root functions are
+// offset by it towards the side of the mode a contact is held in, so that none is ever exactly
+// zero where an integrator (re)starts: CVODE deactivates a root function that is exactly zero at
+// its initial time and reactivates it without reporting a root when it turns non-zero, which let
+// touching bodies pass through each other unnoticed.
+// It is a thousandth of the absolute tolerance: an overlap below the tolerance is not resolved by
+// the integrator anyway, so a contact always means a real overlap, and the force missed while
+// waiting for it (k times the threshold) is a thousandth of the error the tolerance allows. An
+// offset far below every resolved length (1e-150 m, formerly) opened contacts on rounding noise
+// (overlaps of 1e-26 ... 1e-150 m along a touching chain) and let CVODE's sign test
+// glo * ghi < 0 underflow to zero, so that roots went unreported and the run stalled.
+inline double contact_threshold(const IntegratorOptions& options) { return 1e-3 * options.atol; }
+
+// Event-driven impacts need no such threshold: they fire only on approach, and the projection
+// then moves the bodies by the overlap at the root, which must stay far below every resolved
+// length for impulses to keep angular momentum to rounding. The gap's root function is offset by
+// this much so that touching bodies (gap exactly 0 after a projection) count as apart.
+inline constexpr double kTouchOffset = 1e-150;
 
 RunResult drive(OdeSystem system, ConstVectorRef y0, const IntegratorOptions& options, RunRecorder& recorder,
                 const EventHandling& events);

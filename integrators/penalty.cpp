@@ -8,7 +8,7 @@ namespace contact {
 
 RunResult run_penalty(const MechanicalSystem& model, const PenaltyOptions& opt) {
   const std::size_t nc = model.contact_count();
-  RunRecorder rec(model, "penalty " + opt.integrator.method, opt.sample_dt, opt.t_end);
+  RunRecorder rec(model, "penalty " + opt.integrator.method, opt.sample_dt, opt.t_end, opt.limits);
   const Vector y0 = model.initial_state();
   ContactModes modes(nc);
   model.modes_from_state(y0, modes);
@@ -19,11 +19,12 @@ RunResult run_penalty(const MechanicalSystem& model, const PenaltyOptions& opt) 
     return modes;
   };
   OdeSystem base = mechanical_ode(model, modes_at);
+  const double threshold = contact_threshold(opt.integrator);
   base.root_count = 2 * nc;
   base.roots = [&](double, ConstVectorRef y, VectorRef g) {
     for (std::size_t i = 0; i < nc; ++i) {
-      // Touching counts as the mode held (see kRootOffset).
-      const double side = modes[i] == ContactMode::Penalty ? kRootOffset : -kRootOffset;
+      // Touching counts as the mode held (see contact_threshold).
+      const double side = modes[i] == ContactMode::Penalty ? threshold : -threshold;
       g[static_cast<Eigen::Index>(2 * i)] = model.switching(i, y) + side;
       g[static_cast<Eigen::Index>(2 * i + 1)] = model.gap_rate(i, y);
     }

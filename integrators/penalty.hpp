@@ -12,6 +12,7 @@
 // maximum penetration (in contact) exactly.
 #include "integrator.hpp"
 #include "mechanical_system.hpp"
+#include "run_recorder.hpp"
 #include "run_result.hpp"
 
 namespace contact {
@@ -21,6 +22,7 @@ struct PenaltyOptions {
   double sample_dt = 0.01; // output spacing [s]
   IntegratorOptions integrator;
   bool locate_switches = true;
+  RunLimits limits;
 };
 
 RunResult run_penalty(const MechanicalSystem& model, const PenaltyOptions& options);

@@ -1,5 +1,8 @@
 #include "run_recorder.hpp"
 
+#include <fmt/format.h>
+
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -10,34 +13,64 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 }
 
 RunRecorder::RunRecorder(const MechanicalSystem& model, std::string method, double sample_dt,
-                         double t_end)
+                         double t_end, const RunLimits& limits)
     : model_(model),
+      limits_(limits),
+      sample_dt_(sample_dt),
+      t_end_(t_end),
       open_(model.contact_count(), -1),
+      last_(model.contact_count(), -1),
       start_(std::chrono::steady_clock::now()) {
   result_.method = std::move(method);
   result_.state_labels = model.state_labels();
   result_.energy0 = model.energy(model.initial_state());
-  // Grid t_j = j * sample_dt by multiplication (no accumulated round-off), closed by t_end.
-  for (std::size_t j = 0; static_cast<double>(j) * sample_dt < t_end * (1 - 1e-12); ++j)
-    times_.push_back(static_cast<double>(j) * sample_dt);
-  times_.push_back(t_end);
 }
 
 double RunRecorder::next_sample_time() const {
-  return next_sample_ < times_.size() ? times_[next_sample_]
-                                      : std::numeric_limits<double>::infinity();
+  // Grid t_j = j * sample_dt by multiplication (no accumulated round-off), closed by t_end;
+  // -1 marks the grid as done.
+  if (next_sample_ < 0) return std::numeric_limits<double>::infinity();
+  const double t = static_cast<double>(next_sample_) * sample_dt_;
+  return t < t_end_ * (1 - 1e-12) ? t : t_end_;
 }
 
 void RunRecorder::sample(double t, ConstVectorRef y) { sample(t, y, dissipated_); }
 
 void RunRecorder::sample(double t, ConstVectorRef y, double dissipated) {
+  // The grid's size is checked before the first sample, so the index below cannot overflow.
+  const double grid = t_end_ / sample_dt_;
+  if (!(grid < static_cast<double>(limits_.max_samples)) ||
+      static_cast<long>(result_.samples.size()) >= limits_.max_samples)
+    throw SolverFailure(Status::WorkLimit, t,
+                        fmt::format("t_end / sample_dt = {:.3g} output samples; at most {} are kept: raise the "
+                                    "sample spacing", grid, limits_.max_samples));
   result_.samples.push_back({t, y, model_.energy(y), dissipated});
-  // Fixed-step methods sample at step ends: skip every grid time this sample stands for.
-  while (next_sample_ < times_.size() && times_[next_sample_] <= t * (1 + 1e-12)) ++next_sample_;
+  // Fixed-step methods sample at step ends: skip every grid time this sample stands for, in one
+  // jump (a step may stand for many grid times).
+  if (next_sample_ < 0) return;
+  if (t >= t_end_ * (1 - 1e-12)) {
+    next_sample_ = -1;
+    return;
+  }
+  const double j = std::floor(t * (1 + 1e-12) / sample_dt_);
+  next_sample_ = std::max(next_sample_, static_cast<long>(j) + 1);
+}
+
+void RunRecorder::check_records(double t) const {
+  const auto kept = result_.contacts.size() + result_.apexes.size() + result_.notifications.size();
+  if (static_cast<long>(kept) >= limits_.max_records)
+    throw SolverFailure(Status::WorkLimit, t,
+                        fmt::format("more than {} contact records, apexes and notifications", limits_.max_records));
+}
+
+void RunRecorder::check_steps(long steps, double t) const {
+  if (steps > limits_.max_steps)
+    throw SolverFailure(Status::WorkLimit, t, fmt::format("more than {} steps in the run", limits_.max_steps));
 }
 
 void RunRecorder::contact_begin(std::size_t i, double t, double v_in) {
-  open_[i] = static_cast<long>(result_.contacts.size());
+  check_records(t);
+  open_[i] = last_[i] = static_cast<long>(result_.contacts.size());
   result_.contacts.push_back({i, t, kNaN, 0.0, v_in, kNaN});
 }
 
@@ -47,6 +80,15 @@ void RunRecorder::contact_end(std::size_t i, double t, double v_out) {
   c.t_end = t;
   c.v_out = v_out;
   open_[i] = -1;
+}
+
+bool RunRecorder::reopen_contact(std::size_t i, double t) {
+  if (open_[i] >= 0 || last_[i] < 0) return false;
+  auto& c = result_.contacts[static_cast<std::size_t>(last_[i])];
+  if (c.t_end != t) return false;
+  c.t_end = c.v_out = kNaN;
+  open_[i] = last_[i];
+  return true;
 }
 
 void RunRecorder::observe_penetration(std::size_t i, double penetration) {
@@ -60,6 +102,7 @@ void RunRecorder::apex(std::size_t i, double t, double gap, double energy) {
 }
 
 void RunRecorder::apex(std::size_t i, double t, double gap, double energy, double dissipated) {
+  check_records(t);
   result_.apexes.push_back({i, t, gap, energy, dissipated});
 }
 

@@ -9,9 +9,20 @@
 
 namespace contact {
 
+// Bounds on one run's work and memory, whatever the method: a run that would pass one ends with
+// Status::WorkLimit and the time reached, instead of running for hours or exhausting memory.
+// The defaults are far above what any experiment here needs (the study's largest run takes
+// ~1e6 steps and keeps ~1e4 records) and far below what this machine can hold.
+struct RunLimits {
+  long max_steps = 100'000'000;  // integrator steps over the whole run, restarts included
+  long max_records = 1'000'000;  // contact records, apexes and notifications kept
+  long max_samples = 10'000'000; // output samples (about t_end / sample_dt)
+};
+
 class RunRecorder {
  public:
-  RunRecorder(const MechanicalSystem& model, std::string method, double sample_dt, double t_end);
+  RunRecorder(const MechanicalSystem& model, std::string method, double sample_dt, double t_end,
+              const RunLimits& limits = {});
 
   // The next output time still to be recorded (t_end included); +inf when all are done.
   double next_sample_time() const;
@@ -25,24 +36,34 @@ class RunRecorder {
   bool contact_open(std::size_t i) const { return open_[i] >= 0; }
   void contact_begin(std::size_t i, double t, double v_in);
   void contact_end(std::size_t i, double t, double v_out);
+  // Reopens contact i's last record if it ended at t (a contact that goes on); returns whether.
+  bool reopen_contact(std::size_t i, double t);
   void observe_penetration(std::size_t i, double penetration);
   void notify(const std::vector<CollisionEvent>& batch) {
+    if (!batch.empty()) check_records(batch.front().t);
     result_.notifications.insert(result_.notifications.end(), batch.begin(), batch.end());
   }
   void apex(std::size_t i, double t, double gap, double energy);
   void apex(std::size_t i, double t, double gap, double energy, double dissipated);
+
+  // Throws SolverFailure(WorkLimit) at t when `steps` passes the run's step limit.
+  void check_steps(long steps, double t) const;
 
   // Closes the result; open contacts stay with t_end = v_out = NaN.
   RunResult finish(SolverStats stats, double t_reached);
   RunResult fail(const SolverFailure& f, SolverStats stats);
 
  private:
+  void check_records(double t) const;
+
   const MechanicalSystem& model_;
   RunResult result_;
-  std::vector<double> times_;  // output grid
+  RunLimits limits_;
+  double sample_dt_, t_end_;  // output grid t_j = j sample_dt, closed by t_end (computed, not stored)
   double dissipated_ = 0.0;
-  std::size_t next_sample_ = 0;
+  long next_sample_ = 0;
   std::vector<long> open_;  // index into result_.contacts of the open contact, or -1
+  std::vector<long> last_;  // index of contact i's last record, or -1
   std::chrono::steady_clock::time_point start_;
 };
 

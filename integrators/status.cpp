@@ -12,6 +12,9 @@ const char* to_string(Status s) {
     case Status::ErrorTestFailure: return "error-test-failure";
     case Status::NonFiniteState: return "non-finite-state";
     case Status::ZenoLimit: return "zeno-limit";
+    case Status::Unresolved: return "unresolved";
+    case Status::NoProgress: return "no-progress";
+    case Status::WorkLimit: return "work-limit";
     case Status::SolverError: return "solver-error";
   }
   return "unknown";

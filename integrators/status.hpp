@@ -12,6 +12,9 @@ enum class Status {
   ErrorTestFailure,    // error test failed repeatedly or the step fell below the minimum
   NonFiniteState,      // the state or right-hand side became NaN or infinite
   ZenoLimit,           // event-driven: more impacts than allowed before reaching rest
+  Unresolved,          // event-driven: an impact below what the flight's tolerance resolves
+  NoProgress,          // the solver kept returning at the same time without advancing
+  WorkLimit,           // the run's bound on steps, samples or records (RunLimits) was reached
   SolverError,         // any other solver error
 };
 

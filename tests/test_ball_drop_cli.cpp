@@ -30,7 +30,7 @@ TEST_F(BallDropCli, BadInputIsRefusedWithOptionValueAndRangeAndWritesNothing) {
       {"--e -0.1", "--e", "'-0.1'", "[0, 1]"},
       {"--e NaN", "--e", "'NaN'", "[0, 1]"},
       {"--rtol 0", "--rtol", "'0'", "(0, 1)"},
-      {"--atol -1e-9", "--atol", "'-1e-9'", "(0, inf)"},
+      {"--atol -1e-9", "--atol", "'-1e-9'", "[0, inf)"},
       {"--t-end 0", "--t-end", "'0'", "(0, inf)"},
       {"--t-end ten", "--t-end", "'ten'", "(0, inf)"},
       {"--v0 nan", "--v0", "'nan'", "(-inf, inf)"},

@@ -67,7 +67,7 @@ TEST(RigidScene, PlanetDoesNotMove) {
   const std::vector<RunResult> runs = {
       run_penalty(s, po),
       run_game(s, {1e-4, 0.01, 0.01, FixedStepScheme::SemiImplicitEuler, GameResolution::ProjectionImpulse}),
-      run_event_driven(s, EventOptions{0.01, 0.01, {}, 1e-7, 0, 1000000})};
+      run_event_driven(s, EventOptions{.t_end = 0.01, .sample_dt = 0.01, .rest_speed = 1e-7, .max_events = 1000000})};
   for (const auto& r : runs) {
     ASSERT_TRUE(r.ok()) << r.method << ": " << r.message;
     EXPECT_LE(velocity(s, r.samples.back().y, 1).norm(), 2 * 1e-6 * 2.0 * (1 + 1e-9)) << r.method;
