@@ -53,8 +53,10 @@ Designed design(const ContactRequest& r) {
     const bool clamped = r.law == "kelvin-voigt-clamped";
     const double zeta = clamped ? clamped_damping_ratio(r.e) : damping_ratio_for_restitution(r.e);
     const double s = std::sqrt(1 - zeta * zeta), theta = std::atan2(s, zeta);
-    const double w = r.max_penetration ? V * std::exp(-zeta * theta / s) / *r.max_penetration
-                                       : (clamped ? pi - 2 * std::asin(zeta) : pi) / (*r.duration * s);
+    // Duration times w: pi / s unclamped; clamped, the push until release, (pi - 2 asin zeta) / s,
+    // then the overlap closing at the exit speed, 2 zeta (references.hpp).
+    const double wT = clamped ? (pi - 2 * std::asin(zeta)) / s + 2 * zeta : pi / s;
+    const double w = r.max_penetration ? V * std::exp(-zeta * theta / s) / *r.max_penetration : wT / *r.duration;
     const double k = m * w * w, c = 2 * zeta * std::sqrt(k * m);
     return {KelvinVoigt{k, c, clamped}, k, c};
   }

@@ -31,6 +31,11 @@
 // and the bracket is -(cos 2a + 2 sin^2 a) = -1, so the ball leaves force-free at
 //   e_clamped = exp(-zeta (pi - 2 asin zeta) / sqrt(1 - zeta^2)) = e_target exp(2 zeta asin(zeta) / sqrt(1 - zeta^2)),
 // always above the target the damping was tuned for (e.g. 0.8 -> 0.808, 0.5 -> 0.550, 0.1 -> 0.253).
+// The bodies still overlap there, by delta_r = (V/w_d) e_c exp(...) sin(theta*) = 2 zeta V e_c / w
+// (sin theta* = 2 zeta sqrt(1-zeta^2)), and the contact, which lasts until the overlap closes, ends
+// delta_r / (V e_c) = 2 zeta / w later: duration ((pi - 2 asin zeta) / sqrt(1-zeta^2) + 2 zeta) / w.
+// Under gravity the ball is still slowed on the way out, so the speed where the overlap closes,
+// not the speed at release, is the restitution the next apex and the energy agree with.
 //
 // Power-law contact F = K delta^n (Hertz: n = 3/2), undamped, no gravity, entered at speed V:
 // energy gives V^2 - delta_dot^2 = 2K delta^(n+1) / ((n+1) m), so

@@ -20,13 +20,16 @@ RunResult run_penalty(const MechanicalSystem& model, const PenaltyOptions& opt) 
   };
   OdeSystem base = mechanical_ode(model, modes_at);
   const double threshold = contact_threshold(opt.integrator);
-  base.root_count = 2 * nc;
+  // Per contact: the switching function (offset towards the held mode), the gap rate (apexes and
+  // maximum penetration) and the gap (the overlap closing after a clamped law let go).
+  base.root_count = 3 * nc;
   base.roots = [&](double, ConstVectorRef y, VectorRef g) {
     for (std::size_t i = 0; i < nc; ++i) {
       // Touching counts as the mode held (see contact_threshold).
       const double side = modes[i] == ContactMode::Penalty ? threshold : -threshold;
-      g[static_cast<Eigen::Index>(2 * i)] = model.switching(i, y) + side;
-      g[static_cast<Eigen::Index>(2 * i + 1)] = model.gap_rate(i, y);
+      g[static_cast<Eigen::Index>(3 * i)] = model.switching(i, y) + side;
+      g[static_cast<Eigen::Index>(3 * i + 1)] = model.gap_rate(i, y);
+      g[static_cast<Eigen::Index>(3 * i + 2)] = model.gap(i, y) + threshold;
     }
   };
   // The energy ledger: the laws' dissipated power integrated as one more state.
@@ -44,20 +47,32 @@ RunResult run_penalty(const MechanicalSystem& model, const PenaltyOptions& opt) 
   for (std::size_t i = 0; i < nc; ++i)
     if (modes[i] == ContactMode::Penalty) rec.contact_begin(i, 0.0, model.gap_rate(i, y0));
 
+  // A contact lasts from the law's first push to the overlap's closing: a clamped law lets go
+  // while the bodies still overlap, and gravity may still slow them until they separate, so
+  // the record ends, and its outgoing speed is read, where the overlap closes. Its restitution
+  // then agrees with the next apex and the energy after the bounce. At every switch the elastic
+  // energy of the spring is booked beside the ledger (released: a physical loss; re-engaged at
+  // an overlap: energy the law takes back), since energy() counts only engaged springs.
+  double booked = 0.0;  // spring energy booked at switches [J], beside the ledger state
   EventHandling drive;
   drive.on_roots = [&](double t, Vector& y_full, const std::vector<int>& roots) {
     const auto y = y_full.head(n);
     bool switched = false;
     for (std::size_t i = 0; i < nc; ++i) {
-      const int sw = roots[2 * i], rate = roots[2 * i + 1];
+      const int sw = roots[3 * i], rate = roots[3 * i + 1], closing = roots[3 * i + 2];
       const bool engaged = modes_at(y)[i] == ContactMode::Penalty;
       if (rate > 0 && engaged) rec.observe_penetration(i, -model.gap(i, y));
-      if (rate < 0 && !engaged) rec.apex(i, t, model.gap(i, y), model.energy(y), y_full[n]);
-      if (sw > 0) rec.contact_begin(i, t, model.gap_rate(i, y));
+      if (rate < 0 && !engaged) rec.apex(i, t, model.gap(i, y), model.energy(y), y_full[n] + booked);
+      if (sw > 0) {
+        if (!rec.contact_open(i)) rec.contact_begin(i, t, model.gap_rate(i, y));
+        booked -= model.elastic_energy(i, y);
+      }
       if (sw < 0) {
         rec.observe_penetration(i, -model.gap(i, y));
-        rec.contact_end(i, t, model.gap_rate(i, y));
+        booked += model.elastic_energy(i, y);
+        if (model.gap(i, y) >= 0) rec.contact_end(i, t, model.gap_rate(i, y));
       }
+      if (closing > 0 && sw == 0 && !engaged) rec.contact_end(i, t, model.gap_rate(i, y));
       if (sw != 0 && opt.locate_switches) {
         modes[i] = sw > 0 ? ContactMode::Penalty : ContactMode::Free;
         switched = true;
@@ -68,7 +83,7 @@ RunResult run_penalty(const MechanicalSystem& model, const PenaltyOptions& opt) 
   drive.sample = [&](double t, ConstVectorRef y_full) {
     const auto y = y_full.head(n);
     for (std::size_t i = 0; i < nc; ++i) rec.observe_penetration(i, -model.gap(i, y));
-    rec.sample(t, y, y_full[n]);
+    rec.sample(t, y, y_full[n] + booked);
   };
   return contact::drive(std::move(sys), y0_ledger, opt.integrator, rec, drive);
 }

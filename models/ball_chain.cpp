@@ -79,8 +79,7 @@ void BallChain::jacobian(double, ConstVectorRef y, const ContactModes& modes, Sp
 double BallChain::energy(ConstVectorRef y) const {
   double E = 0;
   for (std::size_t b = 0; b < p_.n; ++b) E += 0.5 * p_.m * v(y, b) * v(y, b);
-  for (std::size_t i = 0; i + 1 < p_.n; ++i) E += stored_energy(p_.law, -gap(i, y));
-  return E;
+  return E + engaged_elastic_energy(y);
 }
 
 void BallChain::project(std::size_t i, VectorRef y) const {

@@ -57,6 +57,7 @@ class BallChain final : public MechanicalSystem {
   double dissipated_power(std::size_t i, ConstVectorRef y) const override {
     return contact::dissipated_power(p_.law, -gap(i, y), -gap_rate(i, y));
   }
+  double elastic_energy(std::size_t i, ConstVectorRef y) const override { return stored_energy(p_.law, -gap(i, y)); }
   double restitution(std::size_t) const override { return p_.e; }
   void project(std::size_t i, VectorRef y) const override;
   void apply_impulse(std::size_t i, double e, VectorRef y) const override;

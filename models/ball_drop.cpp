@@ -38,7 +38,7 @@ void BallDrop::jacobian(double, ConstVectorRef y, const ContactModes& modes, Spa
 }
 
 double BallDrop::energy(ConstVectorRef y) const {
-  return 0.5 * p_.m * y[1] * y[1] + p_.m * p_.g * y[0] + stored_energy(p_.law, -y[0]);
+  return 0.5 * p_.m * y[1] * y[1] + p_.m * p_.g * y[0] + engaged_elastic_energy(y);
 }
 
 void BallDrop::project(std::size_t, VectorRef y) const {

@@ -50,6 +50,7 @@ class BallDrop final : public MechanicalSystem, public AnalyticFlight {
   double dissipated_power(std::size_t, ConstVectorRef y) const override {
     return contact::dissipated_power(p_.law, -y[0], -y[1]);
   }
+  double elastic_energy(std::size_t, ConstVectorRef y) const override { return stored_energy(p_.law, -y[0]); }
   double restitution(std::size_t) const override { return p_.e; }
   void project(std::size_t i, VectorRef y) const override;
   void apply_impulse(std::size_t i, double e, VectorRef y) const override;

@@ -37,6 +37,7 @@ class SpringMass final : public MechanicalSystem {
   double gap_rate(std::size_t, ConstVectorRef) const override { return 0.0; }
   double switching(std::size_t, ConstVectorRef) const override { return 0.0; }
   double dissipated_power(std::size_t, ConstVectorRef) const override { return 0.0; }
+  double elastic_energy(std::size_t, ConstVectorRef) const override { return 0.0; }
   double restitution(std::size_t) const override { return 1.0; }
   void project(std::size_t, VectorRef) const override {}
   void apply_impulse(std::size_t, double, VectorRef) const override {}

@@ -44,6 +44,7 @@ class PoisonedBall final : public MechanicalSystem {
   double gap_rate(std::size_t i, ConstVectorRef y) const override { return ball_.gap_rate(i, y); }
   double switching(std::size_t i, ConstVectorRef y) const override { return ball_.switching(i, y); }
   double dissipated_power(std::size_t i, ConstVectorRef y) const override { return ball_.dissipated_power(i, y); }
+  double elastic_energy(std::size_t i, ConstVectorRef y) const override { return ball_.elastic_energy(i, y); }
   double restitution(std::size_t i) const override { return ball_.restitution(i); }
   void project(std::size_t i, VectorRef y) const override { ball_.project(i, y); }
   void apply_impulse(std::size_t i, double e, VectorRef y) const override { ball_.apply_impulse(i, e, y); }

@@ -154,8 +154,11 @@ double RigidScene::energy(ConstVectorRef y) const {
     E += b.kinetic_energy();
     if (b.inverse_mass > 0) E -= gravity_.dot(b.position) / b.inverse_mass;
   }
-  for (std::size_t i = 0; i < candidates_.size(); ++i) E += stored_energy(candidates_[i].law, contact(i, bodies).penetration);
-  return E;
+  return E + engaged_elastic_energy(y);
+}
+
+double RigidScene::elastic_energy(std::size_t i, ConstVectorRef y) const {
+  return stored_energy(candidates_[i].law, contact(i, y).penetration);
 }
 
 double RigidScene::restitution(std::size_t i) const {

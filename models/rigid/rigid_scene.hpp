@@ -56,6 +56,7 @@ class RigidScene final : public MechanicalSystem {
   double gap_rate(std::size_t i, ConstVectorRef y) const override;
   double switching(std::size_t i, ConstVectorRef y) const override;
   double dissipated_power(std::size_t i, ConstVectorRef y) const override;
+  double elastic_energy(std::size_t i, ConstVectorRef y) const override;
 
   double restitution(std::size_t i) const override;
   void project(std::size_t i, VectorRef y) const override;
