@@ -1,10 +1,13 @@
 // The stiffness advisor and the engine conventions.
+#include "ball_drop.hpp"
 #include "contact_advisor.hpp"
 #include "engine_conventions.hpp"
 #include "fixed_step.hpp"
+#include "game_step.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -94,9 +97,14 @@ TEST(Advisor, HertzDesignFromPenetrationOrMaterial) {
   EXPECT_NEAR(std::get<HuntCrossley>(s.law).k, 4.0 / 3.0 * 210e9 / 0.91 * 0.1, 1.0);
 }
 
-// The advised semi-implicit Euler step keeps the energy error of a contact within the budget (the
-// bound it comes from is conservative; the simulated error is reported beside it).
-TEST(Advisor, GameStepMeetsTheEnergyBudget) {
+// The advised semi-implicit Euler step meets the energy budget after a contact, and the bound
+// it comes from, (wh)^2 / (4 - (wh)^2) (contact_advisor.hpp), is nearly attained: a phase scan of
+// real runs (128 entry phases, Hooke, no gravity) finds at least a third of the budget spent (the
+// bound takes the entry and exit phases as independent; the dynamics ties them: 0.44 eps was
+// measured at eps = 0.1, wh = 0.6). The rule
+// it replaced, h = 2 eps / ((2 + eps) w), bounded the swing inside the contact and gave steps 20
+// times smaller at eps = 0.01, whose error is ~400 times below the budget.
+TEST(Advisor, GameStepMeetsTheEnergyBudgetAfterTheContactAndNoMore) {
   for (double eps : {0.1, 0.01, 0.001}) {
     ContactRequest r;
     r.e = 1.0;
@@ -105,7 +113,20 @@ TEST(Advisor, GameStepMeetsTheEnergyBudget) {
     r.max_penetration = 2e-3;
     r.energy_error = eps;
     const ContactAdvice a = advise(r);
-    EXPECT_LE(a.game_energy_error, eps) << "eps " << eps;
+    EXPECT_NEAR(a.game_dt * a.omega, 2 * std::sqrt(eps / (1 + eps)), 1e-12);
+    double worst = 0;
+    for (int phase = 0; phase < 128; ++phase) {
+      const double h0 = r.v * a.game_dt * (1.0 + phase / 128.0), T = std::numbers::pi / a.omega;
+      const BallDrop model({.m = r.m, .g = 0.0, .h0 = h0, .v0 = -r.v, .e = 1.0, .law = a.law});
+      const RunResult run = run_game(model, {.dt = a.game_dt, .t_end = h0 / r.v + 3 * T, .sample_dt = 1.0,
+                                             .resolution = GameResolution::Spring});
+      ASSERT_TRUE(run.ok());
+      ASSERT_EQ(run.contacts.size(), 1u);
+      worst = std::max(worst, std::abs(run.samples.back().energy / run.energy0 - 1));
+    }
+    EXPECT_LE(worst, eps * (1 + 1e-9)) << "eps " << eps;
+    EXPECT_GE(worst, eps / 3) << "eps " << eps;
+    EXPECT_LE(a.game_energy_error, eps * (1 + 1e-9)) << "eps " << eps;
   }
 }
 
