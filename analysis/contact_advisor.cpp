@@ -31,7 +31,9 @@ double clamped_damping_ratio(double e) {
   auto f = [](double zeta, void* p) { return clamped_kelvin_voigt_restitution(zeta) - *static_cast<double*>(p); };
   gsl_function fn{+f, &e};
   gsl::RootSolver brent(gsl_root_fsolver_alloc(gsl_root_fsolver_brent));
-  gsl_root_fsolver_set(brent.get(), &fn, 0.0, 1.0 - 1e-12);
+  if (!brent) throw std::runtime_error("gsl_root_fsolver_alloc failed");
+  if (gsl_root_fsolver_set(brent.get(), &fn, 0.0, 1.0 - 1e-12) != GSL_SUCCESS)
+    throw std::runtime_error("clamped damping ratio: the root is not bracketed in [0, 1)");
   double lo = 0, hi = 1;
   for (int i = 0; i < 200; ++i) {
     gsl_root_fsolver_iterate(brent.get());

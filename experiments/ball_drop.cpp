@@ -13,6 +13,7 @@
 // apexes.csv, samples.csv, stats.csv, heights.{png,pdf,gp}, meta.json; with --sweep,
 // sweep.{csv,md,tex}, penetration.{png,pdf,gp} (first penetration against k) and meta.json.
 // Exit codes: 0 success, 1 solver failure (status, time reached and message on stderr), 2 bad input.
+#include "process.hpp"
 #include "ball_drop_methods.hpp"
 #include "cli.hpp"
 #include "figure.hpp"
@@ -227,7 +228,7 @@ int run_sweep(const Options& o, OutputSet& out) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int program(int argc, char** argv) {
   Options o;
   CLI::App app{"The ball drop resolved three ways: penalty springs under CVODE, game-style "
                "fixed-step integration, event-driven impulses.", "ball_drop"};
@@ -293,3 +294,5 @@ int main(int argc, char** argv) {
   if (code != 0) return code;
   return write_outputs(out, app, argc, argv, start, o.out);
 }
+
+int main(int argc, char** argv) { return contact::guarded_main("ball_drop", argc, argv, program); }

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
+#include <limits>
 #include <sstream>
 
 namespace contact::cli {
@@ -38,18 +39,23 @@ CLI::Validator real_in(double lo, double hi, bool lo_open, bool hi_open) {
       "in " + range);
 }
 
-CLI::Validator integer_at_least(long lo) {
+CLI::Validator integer_in(long lo, long hi) {
+  const std::string range = hi == std::numeric_limits<long>::max() ? fmt::format("integer >= {}", lo)
+                                                                    : fmt::format("integer in [{}, {}]", lo, hi);
   return CLI::Validator(
       [=](std::string& s) -> std::string {
         const char* begin = s.c_str();
         char* end = nullptr;
         errno = 0;
         const long v = std::strtol(begin, &end, 10);
-        if (end != begin && *end == '\0' && errno != ERANGE && v >= lo) return {};
-        return fmt::format("value '{}' is not a whole number >= {}", s, lo);
+        if (end != begin && *end == '\0' && errno != ERANGE && v >= lo && v <= hi) return {};
+        if (hi == std::numeric_limits<long>::max()) return fmt::format("value '{}' is not a whole number >= {}", s, lo);
+        return fmt::format("value '{}' is not a whole number in [{}, {}]", s, lo, hi);
       },
-      fmt::format("integer >= {}", lo));
+      range);
 }
+
+CLI::Validator integer_at_least(long lo) { return integer_in(lo, std::numeric_limits<long>::max()); }
 
 CLI::Validator one_of(std::vector<std::string> names, bool list) {
   const std::string accepted = fmt::format("{}", fmt::join(names, ", "));

@@ -19,8 +19,9 @@ CLI::Validator real_in(double lo, double hi, bool lo_open, bool hi_open);
 inline CLI::Validator positive() { return real_in(0, HUGE_VAL, true, true); }
 inline CLI::Validator non_negative() { return real_in(0, HUGE_VAL, false, true); }
 inline CLI::Validator finite() { return real_in(-HUGE_VAL, HUGE_VAL, true, true); }
-// A whole number >= lo.
+// A whole number >= lo (and <= hi).
 CLI::Validator integer_at_least(long lo);
+CLI::Validator integer_in(long lo, long hi);
 // One of the names, or a comma-separated list of them when `list` is set.
 CLI::Validator one_of(std::vector<std::string> names, bool list = false);
 

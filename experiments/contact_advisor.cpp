@@ -7,6 +7,7 @@
 // Derivations: analysis/contact_advisor.hpp and models/engine_conventions.hpp.
 // Outputs in --out (default results/contact_advisor): advice.{csv,md,tex}, meta.json.
 // Exit codes: 0 success, 1 the check's simulation failed, 2 bad input.
+#include "process.hpp"
 #include "cli.hpp"
 #include "contact_advisor.hpp"
 #include "output.hpp"
@@ -19,7 +20,7 @@
 
 using namespace contact;
 
-int main(int argc, char** argv) {
+int program(int argc, char** argv) {
   ContactRequest r;
   double max_penetration = 0, duration = 0, radius = 0, young = 0, poisson = 0;
   std::string rule = "lankarani-nikravesh", out = "results/contact_advisor";
@@ -106,3 +107,5 @@ int main(int argc, char** argv) {
   files.add_table("advice", t);
   return write_outputs(files, app, argc, argv, start, out);
 }
+
+int main(int argc, char** argv) { return contact::guarded_main("contact_advisor", argc, argv, program); }

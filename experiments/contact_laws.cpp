@@ -7,6 +7,7 @@
 // depend on K or V for these laws (dimensional analysis: e depends on chi V and n only).
 // Outputs in --out (default results/contact_laws): restitution.{csv,md,tex},
 // restitution.{png,pdf,gp}, meta.json. Exit codes: 0, 1 simulation failure, 2 bad input.
+#include "process.hpp"
 #include "cli.hpp"
 #include "contact_measurement.hpp"
 #include "figure.hpp"
@@ -30,7 +31,7 @@ struct LawCase {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int program(int argc, char** argv) {
   double m = 1.0, v = 1.0, depth = 1e-3;
   long points = 10;
   std::string out = "results/contact_laws";
@@ -100,3 +101,5 @@ int main(int argc, char** argv) {
   fmt::print("Restitution achieved against the target (m = {:g} kg, v = {:g} m/s, no gravity)\n\n{}", m, v, table.to_markdown());
   return write_outputs(files, app, argc, argv, start, out);
 }
+
+int main(int argc, char** argv) { return contact::guarded_main("contact_laws", argc, argv, program); }

@@ -18,6 +18,7 @@
 // adaptive.{csv,md,tex}, orders.{csv,md,tex}, fixed_step_errors.{png,pdf,gp},
 // adaptive_errors.{png,pdf,gp},
 // meta.json. Exit codes: 0, 1 solver failure, 2 bad input.
+#include "process.hpp"
 #include "ball_drop.hpp"
 #include "cli.hpp"
 #include "figure.hpp"
@@ -59,7 +60,7 @@ double fitted(const std::vector<Point>& points) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int program(int argc, char** argv) {
   double k = 1e4, t_final = 1.5, dt_max = 2e-3, tol_min = 1e-10;
   long halvings = 6;
   std::string integrators = "all", out = "results/convergence_dt";
@@ -181,3 +182,5 @@ int main(int argc, char** argv) {
   fmt::print("Observed orders on the penalty ball drop (k = {:g} N/m, error at t = {:g} s)\n\n{}", k, t_final, orders.to_markdown(3));
   return write_outputs(files, app, argc, argv, start, out);
 }
+
+int main(int argc, char** argv) { return contact::guarded_main("convergence_dt", argc, argv, program); }

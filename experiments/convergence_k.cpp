@@ -8,6 +8,7 @@
 // of k) and the least-squares exponent (GSL) over all rows.
 // Outputs in --out (default results/convergence_k): convergence_k.{csv,md,tex}, rates.{csv,md,tex},
 // errors.{png,pdf,gp}, meta.json. Exit codes: 0, 1 solver failure, 2 bad input.
+#include "process.hpp"
 #include "ball_drop.hpp"
 #include "cli.hpp"
 #include "event_driven.hpp"
@@ -26,7 +27,7 @@
 
 using namespace contact;
 
-int main(int argc, char** argv) {
+int program(int argc, char** argv) {
   double e = 0.8, k_min = 1e3, k_max = 1e9;
   long bounces = 3, per_decade = 1;
   std::string out = "results/convergence_k";
@@ -117,3 +118,5 @@ int main(int argc, char** argv) {
              rates.to_markdown());
   return write_outputs(files, app, argc, argv, start, out);
 }
+
+int main(int argc, char** argv) { return contact::guarded_main("convergence_k", argc, argv, program); }

@@ -11,6 +11,7 @@
 // (|error| against t for the ball), rigid_energy.{png,pdf,gp} (largest |error| per scene at the first
 // --rigid-dts and last --rigid-rtols),
 // meta.json. Exit codes: 0, 1 solver failure, 2 bad input.
+#include "process.hpp"
 #include "ball_drop_methods.hpp"
 #include "cli.hpp"
 #include "figure.hpp"
@@ -65,7 +66,7 @@ DriftRow drift_of(const RunResult& r) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int program(int argc, char** argv) {
   double k = 1e5;
   long bounces = 100;
   std::vector<double> dts{1e-3, 1e-4}, rtols{1e-4, 1e-6, 1e-8}, rigid_dts{1e-4, 1e-5}, rigid_rtols{1e-6, 1e-8};
@@ -177,3 +178,5 @@ int main(int argc, char** argv) {
   fmt::print("Energy drift (ball: e = 1, k = {:g} N/m, {} bounces; rigid scenes)\n\n{}", k, bounces, table.to_markdown());
   return write_outputs(files, app, argc, argv, start, out);
 }
+
+int main(int argc, char** argv) { return contact::guarded_main("energy_drift", argc, argv, program); }

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "process.hpp"
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -31,23 +33,44 @@ void Series::add(const std::string& rows, const std::string& clause) {
 }
 
 void render(const Figure& f, OutputSet& out) {
-  const fs::path dir = fs::temp_directory_path() / fmt::format("contact_figure_{}_{}", ::getpid(), f.name);
-  fs::create_directories(dir);
-  std::ofstream(dir / "data.csv") << f.data;
-  for (const auto& [terminal, ext] : {std::pair{"pngcairo size 900,600 font ',11'", "png"},
-                                      std::pair{"pdfcairo size 6in,4in font ',10'", "pdf"}}) {
-    std::ofstream(dir / "plot.gp") << "set terminal " << terminal << "\nset output '" << f.name << "." << ext
-                                   << "'\nset datafile separator ','\n" << f.script << "\n";
-    const std::string cmd = fmt::format("cd '{}' && gnuplot plot.gp > gnuplot.log 2>&1", dir.string());
-    if (std::system(cmd.c_str()) != 0) {
-      const std::string log = read_file(dir / "gnuplot.log");
-      fs::remove_all(dir);
-      throw std::runtime_error(fmt::format("gnuplot failed for {}: {}", f.name, log.empty() ? "is gnuplot installed?" : log));
+  throw_if_interrupted();
+  // A private scratch folder (mkdtemp: unique, not guessable) removed however render() ends.
+  std::string pattern = (fs::temp_directory_path() / "contact_figure_XXXXXX").string();
+  if (::mkdtemp(pattern.data()) == nullptr)
+    throw std::runtime_error(fmt::format("cannot create a scratch folder in {}", fs::temp_directory_path().string()));
+  struct Scratch {
+    fs::path dir;
+    ~Scratch() {
+      std::error_code ec;
+      fs::remove_all(dir, ec);
     }
-    out.add(fmt::format("{}.{}", f.name, ext), read_file(dir / fmt::format("{}.{}", f.name, ext)));
+  } scratch{pattern};
+  const fs::path& dir = scratch.dir;
+  std::ofstream(dir / "data.csv") << f.data;
+  // One gnuplot run draws both pictures, the script once per terminal (a multiplot cannot be
+  // replotted). The file names are relative (gnuplot runs in the scratch folder), so no path is
+  // ever quoted.
+  std::ofstream(dir / "plot.gp") << "set datafile separator ','\n"
+                                 << "set terminal pngcairo size 900,600 font ',11'\nset output '" << f.name << ".png'\n"
+                                 << f.script << "\nunset output\n"
+                                 << "set terminal pdfcairo size 6in,4in font ',10'\nset output '" << f.name << ".pdf'\n"
+                                 << f.script << "\nunset output\n";
+  const int code = run_process({"gnuplot", "plot.gp"}, dir, dir / "gnuplot.log");
+  if (code != 0) {
+    const std::string log = read_file(dir / "gnuplot.log");
+    throw std::runtime_error(fmt::format("gnuplot failed for {} (exit {}): {}", f.name, code,
+                                         log.empty() ? "is gnuplot installed? (bash scripts/setup.sh)" : log));
   }
-  out.add(f.name + ".gp", "set datafile separator ','\n# data: " + f.name + ".csv\n" + f.script + "\n");
-  fs::remove_all(dir);
+  for (const char* ext : {"png", "pdf"}) out.add(fmt::format("{}.{}", f.name, ext), read_file(dir / fmt::format("{}.{}", f.name, ext)));
+  // The saved script re-runs beside its data: `gnuplot NAME.gp` in the folder reads NAME-data.csv.
+  const std::string data_file = f.name + "-data.csv";
+  std::string script = f.script;
+  for (std::size_t at = script.find("'data.csv'"); at != std::string::npos; at = script.find("'data.csv'", at))
+    script.replace(at, 10, "'" + data_file + "'");
+  out.add(data_file, f.data);
+  out.add(f.name + ".gp", "# gnuplot " + f.name + ".gp, in this folder, draws " + f.name + ".png from " + data_file +
+                              "\nset datafile separator ','\nset terminal pngcairo size 900,600 font ',11'\nset output '" +
+                              f.name + ".png'\n" + script + "\n");
 }
 
 }  // namespace contact

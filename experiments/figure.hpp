@@ -1,8 +1,8 @@
 #pragma once
 // Figures drawn by gnuplot (Debian's gnuplot-nox, cairo terminals) from the experiment's own CSV,
-// as PNG for quick viewing and PDF for the paper. The script and data are written to a scratch
-// directory, gnuplot runs there, and the pictures join the experiment's OutputSet, so they are
-// written with everything else or not at all.
+// as PNG for quick viewing and PDF for the paper. The script and data are written to a private
+// scratch folder, gnuplot runs there (no shell), and the pictures join the experiment's
+// OutputSet, so they are written with everything else or not at all.
 #include "output.hpp"
 
 #include <string>
@@ -30,8 +30,9 @@ class Series {
   int count_ = 0;
 };
 
-// Renders the figure into `out` (NAME.png, NAME.pdf, and the script NAME.gp for reuse). Throws
-// std::runtime_error with gnuplot's message if it fails or is missing.
+// Renders the figure into `out`: NAME.png and NAME.pdf from one gnuplot run, and, to redraw it,
+// the script NAME.gp with its data NAME-data.csv. Throws std::runtime_error with gnuplot's
+// message if it fails or is missing.
 void render(const Figure& figure, OutputSet& out);
 
 }  // namespace contact

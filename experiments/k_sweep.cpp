@@ -12,6 +12,7 @@
 // Outputs in --out (default results/k_sweep): k_sweep.{csv,md,tex}, exponents.{csv,md,tex},
 // penetration.{png,pdf,gp}, duration.{png,pdf,gp}, cost.{png,pdf,gp}, stable_dt.{png,pdf,gp},
 // meta.json. Exit codes: 0, 1 solver failure, 2 bad input.
+#include "process.hpp"
 #include "ball_drop.hpp"
 #include "cli.hpp"
 #include "figure.hpp"
@@ -60,7 +61,7 @@ Figure loglog(const std::string& name, const std::string& ylabel, int ycol, int 
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int program(int argc, char** argv) {
   double e = 0.8, k_min = 1e2, k_max = 1e10;
   long per_decade = 3;
   std::string out = "results/k_sweep";
@@ -155,3 +156,5 @@ int main(int argc, char** argv) {
              m, h0, e, table.to_markdown(), exponents.to_markdown());
   return write_outputs(files, app, argc, argv, start, out);
 }
+
+int main(int argc, char** argv) { return contact::guarded_main("k_sweep", argc, argv, program); }

@@ -2,13 +2,16 @@
 
 #include "sundials_integrators.hpp"
 #include "fit.hpp"
+#include "process.hpp"
 #include "table.hpp"
 
 #include <CLI/Version.hpp>
 #include <Eigen/Core>
 #include <fmt/format.h>
 
+#include <csignal>
 #include <fstream>
+#include <unistd.h>
 #include <stdexcept>
 
 #ifndef CONTACT_ODE_GIT_REVISION
@@ -25,19 +28,91 @@ void OutputSet::add_table(const std::string& name, const Table& table) {
   add(name + ".tex", table.to_latex());
 }
 
-void OutputSet::write(const fs::path& dir) const {
+namespace {
+
+void write_file(const fs::path& path, const std::string& content) {
+  std::ofstream out(path, std::ios::binary);
+  out << content;
+  if (!out.flush()) throw std::runtime_error(fmt::format("cannot write {}", path.string()));
+}
+
+// A folder removed with everything in it when its owner goes out of scope (unless released).
+struct ScratchDir {
+  fs::path path;
+  ~ScratchDir() {
+    std::error_code ec;
+    if (!path.empty()) fs::remove_all(path, ec);
+  }
+};
+
+// Blocks SIGINT and SIGTERM while alive, so that a swap of folders is not cut in half; a
+// signal that arrives meanwhile is delivered (and its flag raised) when it ends.
+struct SignalsHeld {
+  sigset_t old{};
+  SignalsHeld() {
+    sigset_t set;
+    sigemptyset(&set);
+    sigaddset(&set, SIGINT);
+    sigaddset(&set, SIGTERM);
+    sigprocmask(SIG_BLOCK, &set, &old);
+  }
+  ~SignalsHeld() { sigprocmask(SIG_SETMASK, &old, nullptr); }
+};
+
+std::string sibling_name(const fs::path& dir, const char* what) {
+  return fmt::format(".{}.{}-{}", dir.filename().string(), what, ::getpid());
+}
+
+}  // namespace
+
+void OutputSet::write(const fs::path& dir_in) const {
+  throw_if_interrupted();
+  const fs::path dir = fs::absolute(dir_in).lexically_normal();
+  const fs::path target = dir.filename().empty() ? dir.parent_path() : dir;
+  std::error_code ec;
+  fs::create_directories(target.parent_path(), ec);
+  if (ec) throw std::runtime_error(fmt::format("cannot create {}: {}", target.parent_path().string(), ec.message()));
+  ScratchDir staging{target.parent_path() / sibling_name(target, "staging")};
+  fs::create_directory(staging.path, ec);
+  if (ec) throw std::runtime_error(fmt::format("cannot create {}: {}", staging.path.string(), ec.message()));
+  for (const auto& [name, content] : files_) write_file(staging.path / name, content);
+  throw_if_interrupted();
+  const SignalsHeld held;
+  ScratchDir previous;
+  if (fs::exists(target, ec)) {
+    previous.path = target.parent_path() / sibling_name(target, "previous");
+    fs::rename(target, previous.path, ec);
+    if (ec) {
+      previous.path.clear();
+      throw std::runtime_error(fmt::format("cannot replace {}: {}", target.string(), ec.message()));
+    }
+  }
+  fs::rename(staging.path, target, ec);
+  if (ec) {
+    if (!previous.path.empty()) {
+      std::error_code back;
+      fs::rename(previous.path, target, back);  // keep the earlier results
+      if (!back) previous.path.clear();
+    }
+    throw std::runtime_error(fmt::format("cannot write {}: {}", target.string(), ec.message()));
+  }
+  staging.path.clear();  // it is the results now; `previous` goes with its owner
+}
+
+void OutputSet::write_into(const fs::path& dir) const {
+  throw_if_interrupted();
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) throw std::runtime_error(fmt::format("cannot create {}: {}", dir.string(), ec.message()));
+  const SignalsHeld held;
   for (const auto& [name, content] : files_) {
     const fs::path final_path = dir / name, tmp = dir / ("." + name + ".tmp");
-    {
-      std::ofstream out(tmp, std::ios::binary);
-      out << content;
-      if (!out.flush()) throw std::runtime_error(fmt::format("cannot write {}", tmp.string()));
-    }
+    write_file(tmp, content);
     fs::rename(tmp, final_path, ec);
-    if (ec) throw std::runtime_error(fmt::format("cannot write {}: {}", final_path.string(), ec.message()));
+    if (ec) {
+      fs::remove(tmp, ec);
+      throw std::runtime_error(fmt::format("cannot write {}: {}", final_path.string(), ec.message()));
+    }
   }
 }
 
@@ -90,10 +165,36 @@ int write_outputs(OutputSet& files, const CLI::App& app, int argc, char** argv,
   return 0;
 }
 
-std::string check_output_dir(const fs::path& dir) {
+std::string check_output_dir(const fs::path& dir, const std::string& marker) {
+  auto refuse = [&](const std::string& why) {
+    return fmt::format("--out: value '{}' {}; accepted: {}", dir.string(), why,
+                       marker.empty() ? "a writable folder"
+                                      : "a new folder, an empty one, or an earlier --out of this program (it is replaced whole)");
+  };
+  if (dir.empty()) return refuse("is empty");
   std::error_code ec;
-  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
-    return fmt::format("--out: value '{}' exists and is not a directory; accepted: a directory path", dir.string());
+  const fs::path abs = fs::absolute(dir, ec).lexically_normal();
+  if (ec) return refuse(ec.message());
+  // The staging folder beside it adds ".NAME.staging-PID": every name must leave room for it.
+  for (const auto& part : abs)
+    if (part.string().size() > 200) return refuse("has a name longer than 200 characters");
+  if (abs.string().size() > 3000) return refuse("is longer than 3000 characters");
+  // The nearest existing ancestor must be a writable folder (a file there means "under a file").
+  fs::path existing = abs;
+  while (!fs::exists(existing, ec) && existing.has_parent_path() && existing != existing.parent_path())
+    existing = existing.parent_path();
+  if (!fs::is_directory(existing, ec))
+    return refuse(existing == abs ? "exists and is not a folder" : fmt::format("lies under the file {}", existing.string()));
+  if (existing != abs && ::access(existing.c_str(), W_OK | X_OK) != 0)
+    return refuse(fmt::format("cannot be created: {} is not writable", existing.string()));
+  if (existing == abs && !marker.empty()) {
+    if (::access(abs.parent_path().c_str(), W_OK | X_OK) != 0)
+      return refuse(fmt::format("cannot be replaced: {} is not writable", abs.parent_path().string()));
+    if (!fs::is_empty(abs, ec) && !fs::exists(abs / marker, ec))
+      return refuse(fmt::format("is a folder that is not empty and holds no {} of an earlier run", marker));
+    if (abs == fs::current_path(ec) || fs::current_path(ec).string().rfind(abs.string() + "/", 0) == 0)
+      return refuse("is the current folder or holds it");
+  }
   return {};
 }
 

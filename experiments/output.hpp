@@ -1,7 +1,8 @@
 #pragma once
 // Results of an experiment are gathered in memory and written only once the experiment has
-// succeeded, each file to a temporary name and then renamed into place: a failed or refused run
-// leaves no file, and a reader never sees a half-written one.
+// succeeded, into a staging folder beside --out that then replaces --out whole: a failed, refused
+// or interrupted run leaves no file and keeps the previous results, and a folder never mixes the
+// files of two runs.
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
@@ -19,8 +20,13 @@ class OutputSet {
   void add(const std::string& name, std::string content) { files_[name] = std::move(content); }
   // name.csv, name.md and name.tex.
   void add_table(const std::string& name, const Table& table);
-  // Creates `dir` and writes every file; throws std::runtime_error naming the path on failure.
+  // Writes every file into a staging folder and swaps it in as `dir` (the previous `dir`, an
+  // earlier run's results, is removed only then). Throws std::runtime_error naming the path on
+  // failure, having removed the staging folder.
   void write(const std::filesystem::path& dir) const;
+  // Adds the files to the existing folder `dir`, each written to a temporary name and renamed
+  // into place (the study's index beside the experiments' folders).
+  void write_into(const std::filesystem::path& dir) const;
   const std::map<std::string, std::string>& files() const { return files_; }
 
  private:
@@ -34,8 +40,12 @@ nlohmann::json run_metadata(const CLI::App& app, int argc, char** argv, double w
 // The versions of the libraries the project links, e.g. {"SUNDIALS": "6.4.1", ...}.
 nlohmann::json library_versions();
 
-// Checks before running that --out can be created as a directory; returns an error line or "".
-std::string check_output_dir(const std::filesystem::path& dir);
+// Checks before running that --out can receive the results: not empty, not a file or under one,
+// every name short enough for the staging folder beside it, the nearest existing folder
+// writable, and, if it exists, empty or an earlier run's results (holding `marker`, meta.json by
+// default; an empty marker skips this: the folder is written into, not replaced), since it will
+// be replaced whole. Returns an error line naming --out, or "".
+std::string check_output_dir(const std::filesystem::path& dir, const std::string& marker = "meta.json");
 
 // The end every experiment shares: adds meta.json (wall time since `start`), writes everything to
 // `dir`, prints where. Returns the exit code: 0, or 1 (with the reason on stderr) if writing failed.

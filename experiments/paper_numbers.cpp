@@ -4,6 +4,7 @@
 // column it comes from. A missing file, row or column is an error: the paper must not build on a
 // partial study.
 // Usage: paper_numbers --results DIR --out FILE.  Exit codes: 0, 1 a number is missing, 2 bad input.
+#include "process.hpp"
 #include "cli.hpp"
 #include "output.hpp"
 #include "table.hpp"
@@ -164,7 +165,7 @@ std::string first_line(const std::string& command) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int program(int argc, char** argv) {
   std::string results = "results", out = "results/paper/numbers.tex";
   CLI::App app{"Writes the numbers the paper quotes, from the study's results, as LaTeX macros.", "paper_numbers"};
   app.option_defaults()->always_capture_default();
@@ -217,3 +218,5 @@ int main(int argc, char** argv) {
   }
   return 0;
 }
+
+int main(int argc, char** argv) { return contact::guarded_main("paper_numbers", argc, argv, program); }

@@ -1,5 +1,7 @@
 #include "progress.hpp"
 
+#include "process.hpp"
+
 #include <fmt/format.h>
 #include <unistd.h>
 
@@ -16,6 +18,7 @@ Progress::~Progress() {
 }
 
 void Progress::step(const std::string& what) {
+  throw_if_interrupted();  // every sweep passes here between runs
   ++done_;
   if (enabled_) fmt::print(stderr, "\r\033[K{} [{}/{}] {}", label_, done_, total_, what);
 }

@@ -13,6 +13,7 @@
 // Outputs in --out (default results/rigid_impacts): conservation.{csv,md,tex},
 // conservation.{png,pdf,gp} (largest error over the scenes against step or tolerance),
 // meta.json. Exit codes: 0, 1 solver failure, 2 bad input.
+#include "process.hpp"
 #include "cli.hpp"
 #include "figure.hpp"
 #include "output.hpp"
@@ -51,7 +52,7 @@ Totals totals(const std::vector<RigidBody>& bodies) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int program(int argc, char** argv) {
   std::vector<double> dts{1e-4, 1e-5, 1e-6}, rtols{1e-6, 1e-8, 1e-10};
   std::string scenes = "snooker,planet,spinning-box,off-centre,cradle,wedge", out = "results/rigid_impacts";
   CLI::App app{"Momentum, angular momentum and energy errors of every method on the 3D scenes.", "rigid_impacts"};
@@ -141,3 +142,5 @@ int main(int argc, char** argv) {
   fmt::print("Conservation errors on the 3D scenes\n\n{}", table.to_markdown(3));
   return write_outputs(files, app, argc, argv, start, out);
 }
+
+int main(int argc, char** argv) { return contact::guarded_main("rigid_impacts", argc, argv, program); }

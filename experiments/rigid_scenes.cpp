@@ -9,6 +9,7 @@
 // method), observables.csv (scene, method, quantity, value), penetration.{png,pdf,gp} (largest
 // penetration per scene and method), meta.json.
 // Exit codes: 0 success, 1 solver failure, 2 bad input (option, value, accepted range).
+#include "process.hpp"
 #include "cli.hpp"
 #include "figure.hpp"
 #include "metrics.hpp"
@@ -70,7 +71,7 @@ Observables observe(const std::string& scene, const RigidScene& s, const RunResu
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int program(int argc, char** argv) {
   std::string scenes = "all", methods = "penalty,game,game-projection,event,event-reversed", out = "results/rigid_scenes";
   SceneParams p;
   double dt = 1e-4, rtol = 1e-8, atol = 1e-10;
@@ -92,8 +93,10 @@ int main(int argc, char** argv) {
   app.add_option("--atol", atol, "CVODE absolute tolerance")->check(cli::positive());
   app.add_option("--out", out, "output directory");
   if (const int code = cli::parse(app, argc, argv); code >= 0) return code;
-  const Eigen::Vector4d q(quat[0], quat[1], quat[2], quat[3]);
-  if (q.norm() == 0) {
+  // Normalised with scaling (stableNormalized): the plain norm of (1e200, ...) overflows to inf and
+  // of (1e-200, ...) underflows to 0, though both are fine orientations.
+  const Eigen::Vector4d q = Eigen::Vector4d(quat[0], quat[1], quat[2], quat[3]);
+  if (q.cwiseAbs().maxCoeff() == 0) {
     std::cerr << "rigid_scenes: --quaternion: value '0 0 0 0' has zero norm; accepted: any finite non-zero quaternion\n";
     return cli::kExitBadInput;
   }
@@ -102,7 +105,8 @@ int main(int argc, char** argv) {
     return cli::kExitBadInput;
   }
   p.half_extents = Vec3(half[0], half[1], half[2]);
-  p.orientation = Quat(q[0], q[1], q[2], q[3]).normalized();
+  const Eigen::Vector4d unit = q.stableNormalized();
+  p.orientation = Quat(unit[0], unit[1], unit[2], unit[3]);
 
   const auto start = std::chrono::steady_clock::now();
   Table runs({"scene", "method", "status", "contacts", "max_penetration_m", "energy_drift_rel", "rhs_evals", "wall_time_s"});
@@ -151,3 +155,5 @@ int main(int argc, char** argv) {
   }
   return write_outputs(files, app, argc, argv, start, out);
 }
+
+int main(int argc, char** argv) { return contact::guarded_main("rigid_scenes", argc, argv, program); }

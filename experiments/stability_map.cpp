@@ -9,6 +9,7 @@
 // keeps it within (1 + w dt/2)/(1 - w dt/2) of the entry value below w dt = 2 and is unstable above.
 // Outputs in --out (default results/stability_map): stability.{csv,md,tex},
 // restitution.{png,pdf,gp}, meta.json. Exit codes: 0, 1 failure, 2 bad input.
+#include "process.hpp"
 #include "ball_drop.hpp"
 #include "cli.hpp"
 #include "figure.hpp"
@@ -25,7 +26,7 @@
 
 using namespace contact;
 
-int main(int argc, char** argv) {
+int program(int argc, char** argv) {
   long points = 40;
   double wdt_max = 4.0;
   std::string out = "results/stability_map";
@@ -93,3 +94,5 @@ int main(int argc, char** argv) {
   fmt::print("Stability map: spring contact under game integration (Hooke, m = 1 kg, 1 m/s)\n\n{}", table.to_markdown());
   return write_outputs(files, app, argc, argv, start, out);
 }
+
+int main(int argc, char** argv) { return contact::guarded_main("stability_map", argc, argv, program); }

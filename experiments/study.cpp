@@ -3,6 +3,7 @@
 // (a link and a sentence per table and figure) and study.json (what ran, how long it took).
 // --tiny runs the smoke-test arguments instead of the defaults.
 // Exit codes: 0, 1 an experiment failed or left an output missing, 2 bad input.
+#include "process.hpp"
 #include "cli.hpp"
 #include "output.hpp"
 #include "study_manifest.hpp"
@@ -14,23 +15,12 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <sys/wait.h>
 #include <thread>
 
 using namespace contact;
 namespace fs = std::filesystem;
 
-namespace {
-
-std::string shell_quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-}  // namespace
-
-int main(int argc, char** argv) {
+int program(int argc, char** argv) {
   std::string out = "results", manifest_path = CONTACT_ODE_STUDY_MANIFEST, only;
   bool tiny = false;
   CLI::App app{"Runs every experiment of the study into one folder and writes its index.md.", "study"};
@@ -55,7 +45,9 @@ int main(int argc, char** argv) {
       std::cerr << fmt::format("study: --only: value '{}' is not an experiment; accepted: {}\n", name, fmt::join(names, ", "));
       return cli::kExitBadInput;
     }
-  if (const auto err = check_output_dir(out); !err.empty()) {
+  // The study writes into --out (each experiment replaces its own folder), so a folder that
+  // holds other files is fine; it must only be a writable folder.
+  if (const auto err = check_output_dir(out, ""); !err.empty()) {
     std::cerr << "study: " << err << "\n";
     return cli::kExitBadInput;
   }
@@ -65,21 +57,20 @@ int main(int argc, char** argv) {
   int failures = 0;
   for (const auto& e : manifest.experiments) {
     if (!only_list.empty() && std::find(only_list.begin(), only_list.end(), e.name) == only_list.end()) continue;
+    // The experiment replaces its folder only if it succeeds: earlier results stay until then.
     const fs::path dir = fs::path(out) / e.name;
-    fs::remove_all(dir);  // stale outputs of an earlier run must not pass the check
-    std::string cmd = shell_quote((bin / e.exe).string());
-    for (const auto& a : tiny ? e.tiny : e.args) cmd += " " + shell_quote(a);
-    cmd += " --out " + shell_quote(dir.string());
+    std::vector<std::string> cmd{(bin / e.exe).string()};
+    for (const auto& a : tiny ? e.tiny : e.args) cmd.push_back(a);
+    cmd.insert(cmd.end(), {"--out", dir.string()});
     fmt::print("\n== {} ==\n", e.name);
     std::fflush(stdout);
     const auto t0 = std::chrono::steady_clock::now();
-    const int status = std::system(cmd.c_str());
+    const int code = run_process(cmd);  // throws Interrupted after a Ctrl-C: the study stops
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     std::vector<std::string> problems = code == 0 ? check_outputs(e, dir) : std::vector<std::string>{fmt::format("exit code {}", code)};
     for (const auto& p : problems) std::cerr << fmt::format("study: {}: {}\n", e.name, p);
     failures += problems.empty() ? 0 : 1;
-    record["experiments"].push_back({{"name", e.name}, {"command", cmd}, {"wall_time_s", seconds}, {"ok", problems.empty()}});
+    record["experiments"].push_back({{"name", e.name}, {"command", fmt::format("{}", fmt::join(cmd, " "))}, {"wall_time_s", seconds}, {"ok", problems.empty()}});
   }
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   record["wall_time_s"] = total;
@@ -91,12 +82,9 @@ int main(int argc, char** argv) {
   OutputSet files;
   files.add("index.md", study_index(manifest, record, out));
   files.add("study.json", record.dump(2) + "\n");
-  try {
-    files.write(out);
-  } catch (const std::exception& ex) {
-    std::cerr << "study: " << ex.what() << "\n";
-    return cli::kExitFailure;
-  }
+  files.write_into(out);
   fmt::print("\nstudy: {} experiments in {:.1f} s; index in {}\n", record["experiments"].size(), total, (fs::path(out) / "index.md").string());
   return 0;
 }
+
+int main(int argc, char** argv) { return contact::guarded_main("study", argc, argv, program); }

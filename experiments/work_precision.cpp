@@ -17,6 +17,7 @@
 // from 1/16 of a contact's duration (w dt = pi/16: 2.0e-3 s for the ball, 4.4e-5 s for the chain).
 // Outputs in --out (default results/work_precision): work_precision.{csv,md,tex},
 // {ball,chain}_{rhs,time}.{png,pdf,gp}, meta.json. Exit codes: 0, 1 solver failure, 2 bad input.
+#include "process.hpp"
 #include "ball_chain.hpp"
 #include "ball_drop.hpp"
 #include "cli.hpp"
@@ -52,7 +53,7 @@ struct Job {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int program(int argc, char** argv) {
   double k = 1e4, chain_k = 1e6;
   long balls = 10, halvings = 4;
   std::string integrators = "all", problems = "ball,chain", out = "results/work_precision";
@@ -203,3 +204,5 @@ int main(int argc, char** argv) {
              table.to_markdown(3));
   return write_outputs(files, app, argc, argv, start, out);
 }
+
+int main(int argc, char** argv) { return contact::guarded_main("work_precision", argc, argv, program); }

@@ -7,6 +7,7 @@
 // spring at the static deflection m g / k; the game loop's contact flickers every step at rest.
 // Outputs in --out (default results/zeno): zeno.{csv,md,tex}, heights.{png,pdf,gp}, meta.json.
 // Exit codes: 0, 1 solver failure, 2 bad input.
+#include "process.hpp"
 #include "ball_drop_methods.hpp"
 #include "cli.hpp"
 #include "figure.hpp"
@@ -23,7 +24,7 @@
 
 using namespace contact;
 
-int main(int argc, char** argv) {
+int program(int argc, char** argv) {
   double e = 0.8, k = 1e5, t_end = 6.0, dt = 1e-3, rest_speed = 1e-3;
   std::string out = "results/zeno";
   CLI::App app{"The ball drop near the accumulation of bounces, by every method.", "zeno"};
@@ -89,3 +90,5 @@ int main(int argc, char** argv) {
   fmt::print("Zeno: ball drop with e = {:g}, accumulation at t_inf = {:.6g} s\n\n{}", e, ref.zeno_time(), table.to_markdown());
   return write_outputs(files, app, argc, argv, start, out);
 }
+
+int main(int argc, char** argv) { return contact::guarded_main("zeno", argc, argv, program); }

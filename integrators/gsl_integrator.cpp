@@ -39,7 +39,10 @@ class GslIntegrator final : public SteppingIntegrator {
     if (!driver_) throw SolverFailure(Status::SolverError, t0, "gsl_odeiv2_driver_alloc_y_new failed");
     max_step_ = o.max_step;
     h_ = h0;
-    if (!multistep_) dense_step_.reset(gsl_odeiv2_step_alloc(type_, n_));
+    if (!multistep_) {
+      dense_step_.reset(gsl_odeiv2_step_alloc(type_, n_));
+      if (!dense_step_) throw SolverFailure(Status::SolverError, t0, "gsl_odeiv2_step_alloc failed");
+    }
   }
 
   SolverStats stats() const override {

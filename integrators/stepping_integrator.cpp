@@ -94,6 +94,7 @@ bool SteppingIntegrator::locate_root(double t_hi, ConstVectorRef y_hi, Outcome& 
   double t_root = std::numeric_limits<double>::infinity();
   Vector y(y_.size()), g(static_cast<Eigen::Index>(n));
   gsl::RootSolver brent(gsl_root_fsolver_alloc(gsl_root_fsolver_brent));
+  if (!brent) throw SolverFailure(Status::SolverError, t_, "gsl_root_fsolver_alloc failed");
   for (std::size_t i = 0; i < n; ++i) {
     const auto k = static_cast<Eigen::Index>(i);
     if (!allowed(i, crossing(g_[k], g_hi_[k]))) continue;

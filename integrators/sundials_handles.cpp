@@ -1,13 +1,13 @@
 #include "sundials_handles.hpp"
 
-#include <stdexcept>
+#include "status.hpp"
 
 namespace contact::sundials {
 
 Context make_context() {
   SUNContext ctx = nullptr;
   if (SUNContext_Create(nullptr, &ctx) != 0 || ctx == nullptr)
-    throw std::runtime_error("SUNContext_Create failed");
+    throw SolverFailure(Status::SolverError, 0.0, "SUNContext_Create failed");
   return Context(ctx);
 }
 

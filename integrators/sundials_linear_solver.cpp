@@ -8,35 +8,66 @@
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
+#include "status.hpp"
+
+#include <fmt/format.h>
+
 #include <stdexcept>
 
 namespace contact::sundials {
+
+namespace {
+
+// Dense matrices above this size are refused before allocation: 4 GiB is a sixth of this
+// machine's memory, and a larger request either fails (SUNDenseMatrix returns NULL, which used to
+// be dereferenced) or is granted by overcommit and thrashes. Band, KLU and GMRES scale linearly.
+constexpr double kMaxDenseBytes = 4.0 * 1024 * 1024 * 1024;
+
+template <class Handle>
+void require(const Handle& h, const char* what, sunindextype n) {
+  if (!h) throw SolverFailure(Status::SolverError, 0.0, fmt::format("{} returned NULL for n = {} (out of memory?)", what, n));
+}
+
+}  // namespace
 
 LinearSystem make_linear_system(LinearSolverKind kind, N_Vector y, Bandwidth band, long nonzeros,
                                 SUNContext ctx) {
   const sunindextype n = N_VGetLength(y);
   LinearSystem ls;
   switch (kind) {
-    case LinearSolverKind::Dense:
+    case LinearSolverKind::Dense: {
+      const double bytes = 8.0 * static_cast<double>(n) * static_cast<double>(n);
+      if (bytes > kMaxDenseBytes)
+        throw SolverFailure(Status::WorkLimit, 0.0,
+                            fmt::format("a dense {0} x {0} Jacobian needs {1:.3g} GiB (at most {2:g}): use the band, "
+                                        "klu or gmres linear solver", n, bytes / (1 << 30), kMaxDenseBytes / (1 << 30)));
       ls.matrix.reset(SUNDenseMatrix(n, n, ctx));
+      require(ls.matrix, "SUNDenseMatrix", n);
       ls.solver.reset(SUNLinSol_Dense(y, ls.matrix.get(), ctx));
+      require(ls.solver, "SUNLinSol_Dense", n);
       break;
+    }
     case LinearSolverKind::Band:
       ls.matrix.reset(SUNBandMatrix(n, band.upper, band.lower, ctx));
+      require(ls.matrix, "SUNBandMatrix", n);
       ls.solver.reset(SUNLinSol_Band(y, ls.matrix.get(), ctx));
+      require(ls.solver, "SUNLinSol_Band", n);
       break;
     case LinearSolverKind::Klu:
       ls.matrix.reset(SUNSparseMatrix(n, n, std::max(nonzeros, 1L), CSC_MAT, ctx));
+      require(ls.matrix, "SUNSparseMatrix", n);
       ls.solver.reset(SUNLinSol_KLU(y, ls.matrix.get(), ctx));
+      require(ls.solver, "SUNLinSol_KLU", n);
       break;
     case LinearSolverKind::Gmres:
       ls.solver.reset(SUNLinSol_SPGMR(y, SUN_PREC_NONE, 0, ctx));
+      require(ls.solver, "SUNLinSol_SPGMR", n);
       break;
     case LinearSolverKind::GmresBandPreconditioned:
       ls.solver.reset(SUNLinSol_SPGMR(y, SUN_PREC_LEFT, 0, ctx));
+      require(ls.solver, "SUNLinSol_SPGMR", n);
       break;
   }
-  if (!ls.solver) throw std::runtime_error("SUNDIALS linear solver allocation failed");
   return ls;
 }
 

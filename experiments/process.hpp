@@ -1,0 +1,41 @@
+#pragma once
+// How an experiment process starts, runs children and stops.
+//
+// Interrupts: SIGINT and SIGTERM only raise a flag. Long work checks it at every progress step,
+// every figure and every child process (throw_if_interrupted), and an Interrupted exception
+// unwinds the stack, so that scratch and staging folders are removed by their owners and no
+// half-written output is left; guarded_main turns it into exit code 130 (128 + SIGINT).
+// A SIGTERM reaching the process while it waits for a child is passed on to the child.
+//
+// Children (gnuplot, the experiments a study runs) are started without a shell: arguments are
+// passed as they are, so a quote or a space in a path (TMPDIR, --out) cannot break a command.
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace contact {
+
+class Interrupted : public std::runtime_error {
+ public:
+  Interrupted() : std::runtime_error("interrupted") {}
+};
+
+// Installs the SIGINT/SIGTERM flag handlers (once per process).
+void install_interrupt_handlers();
+bool interrupted();
+void throw_if_interrupted();
+
+// Runs `argv` (argv[0] looked up on PATH if it has no slash) in `cwd` (empty: this one), with
+// stdout and stderr sent to `log` (empty: inherited). Returns the exit code, 128 + N if killed by
+// signal N, or throws std::runtime_error if it cannot be started; throws Interrupted if this
+// process was interrupted meanwhile.
+int run_process(const std::vector<std::string>& argv, const std::filesystem::path& cwd = {},
+                const std::filesystem::path& log = {});
+
+// main() for every executable: installs the handlers and runs `body`; bad input it throws as
+// std::invalid_argument is exit 2, any other exception exit 1, an interrupt 130, each with one
+// line on stderr naming the program. No exception escapes.
+int guarded_main(const char* name, int argc, char** argv, int (*body)(int, char**));
+
+}  // namespace contact
