@@ -10,6 +10,7 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_roots.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -136,6 +137,18 @@ void validate(const ContactRequest& r) {
   if (!(finite(r.energy_error) && r.energy_error > 0 && r.energy_error < 1)) bad("--energy-error", r.energy_error, "range (0, 1)");
   if (!(finite(r.engine_step) && r.engine_step > 0)) bad("--engine-step", r.engine_step, "range (0, inf)");
   if (!(finite(r.g) && r.g > 0)) bad("--g", r.g, "range (0, inf)");
+  const Designed d = design(r);
+  // Extreme inputs (a mass of 1e-300 kg, a penetration of 1e300 m) give a design double precision
+  // cannot hold or simulate: say so in terms of the inputs, before the check's own solver does.
+  const SpringContact undamped = power_law_contact(r.m, stiffness(d.law), exponent(d.law), r.v);
+  const double scales[] = {d.k_lin, std::sqrt(d.k_lin / r.m), undamped.duration, undamped.max_penetration,
+                           1e-13 * undamped.max_penetration, r.v * undamped.duration};
+  if (!std::all_of(std::begin(scales), std::end(scales), [](double x) { return std::isfinite(x) && x > 1e-300; }) ||
+      !std::isfinite(d.c_lin) || !(undamped.duration < 1e12))
+    throw std::invalid_argument(fmt::format(
+        "--m, --v, --max-penetration/--duration: m = {:g} kg, v = {:g} m/s give k = {:g} N/m and a contact of {:g} s "
+        "and {:g} m, outside what double precision resolves; accepted: inputs giving a finite, positive stiffness, "
+        "duration and penetration", r.m, r.v, d.k_lin, undamped.duration, undamped.max_penetration));
 }
 
 ContactAdvice advise(const ContactRequest& r) {

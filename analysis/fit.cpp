@@ -5,6 +5,7 @@
 #include <gsl/gsl_fit.h>
 #include <gsl/gsl_statistics_double.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -59,4 +60,17 @@ LineFit fit_line(const std::vector<double>& x, const std::vector<double>& y) {
 
 namespace contact {
 const char* gsl_version_string() { return gsl_version; }
+std::vector<double> log_grid(double lo, double hi, long per_decade) {
+  if (!(lo > 0 && hi >= lo && std::isfinite(hi) && per_decade >= 1))
+    throw std::invalid_argument("log_grid: needs 0 < lo <= hi < inf and per_decade >= 1");
+  if (hi == lo) return {lo};
+  // At least one interval: a range narrower than a point's share of a decade (1e5 ... 1.0001e5)
+  // used to round to zero intervals and divide by zero (k = NaN).
+  const long n = std::max(1L, std::lround(std::log10(hi / lo) * static_cast<double>(per_decade)));
+  std::vector<double> grid;
+  for (long j = 0; j < n; ++j) grid.push_back(lo * std::pow(hi / lo, static_cast<double>(j) / static_cast<double>(n)));
+  grid.push_back(hi);
+  return grid;
+}
+
 }  // namespace contact

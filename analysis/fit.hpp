@@ -24,6 +24,10 @@ double observed_order(double h_prev, double err_prev, double h, double err);
 // fewer than two remain.
 double fitted_order(const std::vector<double>& h, const std::vector<double>& err, double floor, std::size_t rows);
 
+// Points from lo to hi (0 < lo <= hi), evenly spaced in log, per_decade >= 1 of them per decade
+// (rounded; at least the two ends), the ends exact: lo * (hi/lo)^(j/n). lo == hi gives one point.
+std::vector<double> log_grid(double lo, double hi, long per_decade);
+
 // Ordinary least squares y ~ intercept + slope x (GSL), e.g. an energy drift rate.
 struct LineFit {
   double slope;

@@ -17,6 +17,7 @@
 #include "ball_drop_methods.hpp"
 #include "cli.hpp"
 #include "figure.hpp"
+#include "fit.hpp"
 #include "metrics.hpp"
 #include "output.hpp"
 #include "progress.hpp"
@@ -43,6 +44,7 @@ struct Options {
   std::string integrator = "cvode-bdf";
   std::string linear_solver = "dense";
   long max_steps = 100000;
+  long max_records = RunLimits{}.max_records;
   double rest_speed = 1e-7;
   bool sweep = false;
   double k_min = 1e2, k_max = 1e8;
@@ -75,6 +77,7 @@ BallDropSettings settings_for(const Options& o, double k) {
   // Fixed-step integrators run at --dt; adaptive ones control their own step.
   s.integrator.dt = integrator_info(o.integrator).adaptive ? 0.0 : o.dt;
   s.rest_speed = o.rest_speed;
+  s.limits.max_records = o.max_records;
   return s;
 }
 
@@ -180,10 +183,7 @@ int run_single(const Options& o, OutputSet& out) {
 }
 
 int run_sweep(const Options& o, OutputSet& out) {
-  std::vector<double> ks;
-  const double decades = std::log10(o.k_max / o.k_min);
-  const long n = std::max(1L, std::lround(decades * static_cast<double>(o.per_decade)));
-  for (long j = 0; j <= n; ++j) ks.push_back(o.k_min * std::pow(o.k_max / o.k_min, static_cast<double>(j) / static_cast<double>(n)));
+  const std::vector<double> ks = log_grid(o.k_min, o.k_max, o.per_decade);
 
   std::vector<std::string> columns{"k_N_per_m", "method", "omega_dt", "closed_form_penetration_m",
                                    "closed_form_duration_s"};
@@ -201,6 +201,11 @@ int run_sweep(const Options& o, OutputSet& out) {
   for (const auto& [k, m] : runs) {
     progress.step(fmt::format("k = {:g}, {}", k, m.name));
     const RunResult r = run_ball_drop(m.name, settings_for(o, std::isnan(k) ? o.k : k));
+    // A sweep charts where methods break, so a failed run is a row, not the end of the sweep;
+    // but it is said, on stderr, with its status, time and message.
+    if (!r.ok())
+      std::cerr << fmt::format("ball_drop: sweep: k = {:g}, {}: {} at t = {:.9g} s: {}\n", k, m.name, to_string(r.status),
+                               r.t_reached, r.message);
     const bool game = m.name.rfind("game", 0) == 0;
     const SpringContact ref = closed_form_contact(o, k);
     std::vector<Table::Cell> row{std::isnan(k) ? Table::Cell(std::string("any")) : Table::Cell(k), m.name,
@@ -258,6 +263,10 @@ int program(int argc, char** argv) {
   app.add_option("--jacobian", o.jacobian, "Jacobian of implicit integrators (penalty-dq always uses dq)")
       ->check(cli::one_of({"analytic", "dq"}));
   app.add_option("--max-steps", o.max_steps, "integrator steps allowed between outputs")->check(cli::integer_at_least(1));
+  app.add_option("--max-records", o.max_records,
+                 "contact records and apexes a run may keep before it fails (a game ball in a bouncing limit "
+                 "cycle adds two every ~14 ms)")
+      ->check(cli::integer_in(1, 100'000'000));
   app.add_option("--rest-speed", o.rest_speed, "event-driven: outgoing speed below which the ball rests [m/s]")
       ->check(cli::positive());
   app.add_flag("--sweep", o.sweep, "run every method for k from --k-min to --k-max and print one table");

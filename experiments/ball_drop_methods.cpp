@@ -42,12 +42,12 @@ ContactLaw make_law(const std::string& name, double k, double m, double e) {
 RunResult run_ball_drop(const std::string& method, const BallDropSettings& s) {
   const BallDrop model(s.model);
   auto game = [&](FixedStepScheme scheme, GameResolution resolution) {
-    return run_game(model, GameOptions{.dt = s.dt, .t_end = s.t_end, .sample_dt = s.sample_dt, .scheme = scheme, .resolution = resolution});
+    return run_game(model, GameOptions{.dt = s.dt, .t_end = s.t_end, .sample_dt = s.sample_dt, .scheme = scheme, .resolution = resolution, .limits = s.limits});
   };
-  auto events = [&] { return EventOptions{.t_end = s.t_end, .sample_dt = s.sample_dt, .integrator = s.integrator, .rest_speed = s.rest_speed, .max_events = s.max_events}; };
+  auto events = [&] { return EventOptions{.t_end = s.t_end, .sample_dt = s.sample_dt, .integrator = s.integrator, .rest_speed = s.rest_speed, .max_events = s.max_events, .limits = s.limits}; };
   RunResult r;
   if (method == "penalty" || method == "penalty-dq") {
-    PenaltyOptions o{.t_end = s.t_end, .sample_dt = s.sample_dt, .integrator = s.integrator};
+    PenaltyOptions o{.t_end = s.t_end, .sample_dt = s.sample_dt, .integrator = s.integrator, .limits = s.limits};
     if (method == "penalty-dq") o.integrator.jacobian = JacobianMode::DifferenceQuotient;
     r = run_penalty(model, o);
   } else if (method == "game-euler") {

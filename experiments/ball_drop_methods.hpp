@@ -3,6 +3,7 @@
 // experiment, the tests and the benchmarks so that all three run exactly the same thing.
 #include "ball_drop.hpp"
 #include "integrator.hpp"
+#include "run_recorder.hpp"
 #include "run_result.hpp"
 
 #include <string>
@@ -34,6 +35,7 @@ struct BallDropSettings {
   IntegratorOptions integrator;  // penalty, penalty-dq and event-ode (CVODE BDF by default)
   double rest_speed = 1e-7; // event-driven rest threshold [m/s]
   long max_events = 1000000;
+  RunLimits limits;
 };
 
 // Runs the named method; throws std::invalid_argument for an unknown name.

@@ -7,7 +7,6 @@
 #include <cstdlib>
 #include <iostream>
 #include <limits>
-#include <sstream>
 
 namespace contact::cli {
 
@@ -87,9 +86,37 @@ int parse(CLI::App& app, int argc, char** argv) {
 
 std::vector<std::string> split_list(const std::string& s) {
   std::vector<std::string> out;
-  std::stringstream in(s);
-  for (std::string item; std::getline(in, item, ',');) out.push_back(item);
+  std::size_t begin = 0;
+  for (std::size_t comma = s.find(','); comma != std::string::npos; comma = s.find(',', begin)) {
+    out.push_back(s.substr(begin, comma - begin));
+    begin = comma + 1;
+  }
+  out.push_back(s.substr(begin));
   return out;
+}
+
+CLI::Option* add_real_list(CLI::App& app, const std::string& name, std::vector<double>& values,
+                           const std::string& help, const CLI::Validator& item) {
+  const std::string shown = fmt::format("{}", fmt::join(values, ","));
+  CLI::Validator each(
+      [item](std::string& s) -> std::string {
+        for (std::string part : split_list(s)) {
+          if (part.empty()) return fmt::format("value '{}' has an empty item; accepted: a comma-separated list, each {}", s, item.get_description());
+          if (std::string err = item(part); !err.empty()) return err;
+        }
+        return {};
+      },
+      "comma-separated, each " + item.get_description());
+  return app
+      .add_option_function<std::string>(
+          name,
+          [&values](const std::string& s) {
+            values.clear();
+            for (const auto& part : split_list(s)) values.push_back(std::strtod(part.c_str(), nullptr));
+          },
+          help)
+      ->check(each)
+      ->default_str(shown);
 }
 
 }  // namespace contact::cli

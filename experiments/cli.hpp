@@ -29,7 +29,12 @@ CLI::Validator one_of(std::vector<std::string> names, bool list = false);
 // error (its one-line message already printed on stderr).
 int parse(CLI::App& app, int argc, char** argv);
 
-// Splits "a,b,c".
+// Splits "a,b,c", keeping empty items ("a,,b" and "a," have one), so that validators refuse them.
 std::vector<std::string> split_list(const std::string& s);
+
+// A comma-separated list of reals, each checked by `item`; an empty item is refused with the
+// option's name. (CLI11's own delimiter drops empty items silently.)
+CLI::Option* add_real_list(CLI::App& app, const std::string& name, std::vector<double>& values,
+                           const std::string& help, const CLI::Validator& item);
 
 }  // namespace contact::cli

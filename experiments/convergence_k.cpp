@@ -67,11 +67,10 @@ int program(int argc, char** argv) {
   }
   Table table({"k_N_per_m", "impact_time_error_s", "order_time", "apex_height_error_rel", "order_apex", "rhs_evals"});
   std::vector<double> ks, time_err, apex_err;
-  const long n = std::lround(std::log10(k_max / k_min) * static_cast<double>(per_decade));
-  Progress progress("convergence_k", static_cast<std::size_t>(n + 1));
+  const std::vector<double> grid = log_grid(k_min, k_max, per_decade);
+  Progress progress("convergence_k", grid.size());
   std::string data;
-  for (long j = 0; j <= n; ++j) {
-    const double k = k_min * std::pow(k_max / k_min, static_cast<double>(j) / static_cast<double>(n));
+  for (const double k : grid) {
     progress.step(fmt::format("k = {:.3g}", k));
     PenaltyOptions o;
     o.t_end = o.sample_dt = t_end;
@@ -79,8 +78,16 @@ int program(int argc, char** argv) {
     o.integrator.atol = 1e-13;
     o.integrator.max_steps = 1000000;
     const RunResult r = run_penalty(BallDrop({m, g, h0, 0.0, e, kelvin_voigt_for_restitution(k, m, e, false)}), o);
-    if (!r.ok() || r.contacts.size() < nb || r.apexes.size() < nb) {
-      std::cerr << fmt::format("convergence_k: k = {:g}: {} {}\n", k, to_string(r.status), r.message);
+    if (!r.ok()) {
+      std::cerr << fmt::format("convergence_k: k = {:g}: {} at t = {:.9g} s: {}\n", k, to_string(r.status), r.t_reached, r.message);
+      return cli::kExitFailure;
+    }
+    if (r.contacts.size() < nb || r.apexes.size() < nb) {
+      // The penalty ball bounces lower than the rigid one at low k (its contacts take time): it
+      // may not make --bounces bounces before the rigid reference's end time.
+      std::cerr << fmt::format("convergence_k: k = {:g}: the penalty run made {} contacts and {} apexes by t = {:.6g} s, "
+                               "fewer than the {} bounces compared; lower --bounces or raise --k-min\n",
+                               k, r.contacts.size(), r.apexes.size(), t_end, nb);
       return cli::kExitFailure;
     }
     double te = 0, ae = 0;

@@ -75,10 +75,10 @@ int program(int argc, char** argv) {
   app.option_defaults()->always_capture_default();
   app.add_option("--k", k, "penalty stiffness of the ball [N/m]")->check(cli::positive());
   app.add_option("--bounces", bounces, "bounces of the rigid ball solution to run")->check(cli::integer_at_least(1));
-  app.add_option("--dts", dts, "ball game steps [s], comma-separated")->delimiter(',')->check(cli::positive());
-  app.add_option("--rtols", rtols, "ball relative tolerances, comma-separated")->delimiter(',')->check(cli::real_in(0, 1, true, true));
-  app.add_option("--rigid-dts", rigid_dts, "rigid-scene game steps [s]")->delimiter(',')->check(cli::positive());
-  app.add_option("--rigid-rtols", rigid_rtols, "rigid-scene relative tolerances")->delimiter(',')->check(cli::real_in(0, 1, true, true));
+  cli::add_real_list(app, "--dts", dts, "ball game steps [s], comma-separated", cli::positive());
+  cli::add_real_list(app, "--rtols", rtols, "ball relative tolerances, comma-separated", cli::real_in(0, 1, true, true));
+  cli::add_real_list(app, "--rigid-dts", rigid_dts, "rigid-scene game steps [s]", cli::positive());
+  cli::add_real_list(app, "--rigid-rtols", rigid_rtols, "rigid-scene relative tolerances", cli::real_in(0, 1, true, true));
   auto names = rigid::rigid_scene_names();
   names.insert(names.begin(), "all");
   names.emplace_back("none");

@@ -83,17 +83,16 @@ int program(int argc, char** argv) {
   }
   const auto start = std::chrono::steady_clock::now();
   const double m = 1.0, g = 9.81, h0 = 1.0, V = std::sqrt(2 * g * h0);
-  const long n = std::max(1L, std::lround(std::log10(k_max / k_min) * static_cast<double>(per_decade)));
+  const std::vector<double> grid = log_grid(k_min, k_max, per_decade);
 
   Table table({"k_N_per_m", "law", "penetration_m", "closed_form_penetration_m", "duration_s", "closed_form_duration_s",
                "restitution", "energy_after_first_bounce_rel", "steps_per_contact", "rhs_per_contact", "jac_per_contact",
                "newton_per_contact", "failed_steps", "euler_max_dt_s", "symplectic_max_dt_s"});
   std::string data;  // for the figures: k, law index, the numeric columns in table order
-  Progress progress("k_sweep", kLaws.size() * static_cast<std::size_t>(n + 1));
+  Progress progress("k_sweep", kLaws.size() * grid.size());
   std::map<std::string, std::vector<double>> fit_k, fit_pen, fit_dur;
   for (std::size_t li = 0; li < kLaws.size(); ++li) {
-    for (long j = 0; j <= n; ++j) {
-      const double k = k_min * std::pow(k_max / k_min, static_cast<double>(j) / static_cast<double>(std::max(1L, n)));
+    for (const double k : grid) {
       progress.step(fmt::format("{} k = {:.3g}", kLaws[li].name, k));
       const ContactLaw law = kLaws[li].make(k, m, e);
       PenaltyOptions o;

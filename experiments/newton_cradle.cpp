@@ -53,7 +53,7 @@ int program(int argc, char** argv) {
   app.add_option("--balls", balls, "balls in the row")->check(cli::integer_in(2, 1000));
   app.add_option("--k", k, "linear penalty stiffness [N/m]")->check(cli::positive());
   app.add_option("--dt", dt, "game step [s]")->check(cli::positive());
-  app.add_option("--spacings", spacings, "gaps between the resting balls [m], comma-separated")->delimiter(',')->check(cli::non_negative());
+  cli::add_real_list(app, "--spacings", spacings, "gaps between the resting balls [m], comma-separated", cli::non_negative());
   app.add_option("--out", out, "output directory");
   if (const int code = cli::parse(app, argc, argv); code >= 0) return code;
   if (const auto err = check_output_dir(out); !err.empty()) {

@@ -137,7 +137,8 @@ nlohmann::json run_metadata(const CLI::App& app, int argc, char** argv, double w
     if (opt->get_expected_min() == 0) {
       options[name] = opt->count() > 0;  // a flag
     } else {
-      options[name] = opt->count() > 0 ? opt->as<std::string>() : opt->get_default_str();
+      // Every value given (a list option has several, or one comma-separated string).
+      options[name] = opt->count() > 0 ? fmt::format("{}", fmt::join(opt->results(), ",")) : opt->get_default_str();
     }
   }
   std::vector<std::string> command(argv, argv + argc);
@@ -173,8 +174,9 @@ std::string check_output_dir(const fs::path& dir, const std::string& marker) {
   };
   if (dir.empty()) return refuse("is empty");
   std::error_code ec;
-  const fs::path abs = fs::absolute(dir, ec).lexically_normal();
+  fs::path abs = fs::absolute(dir, ec).lexically_normal();
   if (ec) return refuse(ec.message());
+  if (abs.filename().empty()) abs = abs.parent_path();  // "a/." normalises to "a/"
   // The staging folder beside it adds ".NAME.staging-PID": every name must leave room for it.
   for (const auto& part : abs)
     if (part.string().size() > 200) return refuse("has a name longer than 200 characters");
@@ -192,9 +194,9 @@ std::string check_output_dir(const fs::path& dir, const std::string& marker) {
       return refuse(fmt::format("cannot be replaced: {} is not writable", abs.parent_path().string()));
     if (!fs::is_empty(abs, ec) && !fs::exists(abs / marker, ec))
       return refuse(fmt::format("is a folder that is not empty and holds no {} of an earlier run", marker));
-    if (abs == fs::current_path(ec) || fs::current_path(ec).string().rfind(abs.string() + "/", 0) == 0)
-      return refuse("is the current folder or holds it");
   }
+  if (abs == fs::current_path(ec) || fs::current_path(ec).string().rfind(abs.string() + "/", 0) == 0)
+    return refuse("is the current folder or holds it");
   return {};
 }
 

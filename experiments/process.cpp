@@ -25,7 +25,9 @@ volatile pid_t g_child = 0;  // the child being waited for, to pass SIGTERM on
 extern "C" void on_signal(int sig) {
   g_signal = sig;
   const pid_t child = g_child;
-  if (child > 0 && sig == SIGTERM) ::kill(child, SIGTERM);  // async-signal-safe
+  // Passed on to the child (kill is async-signal-safe): a Ctrl-C on a terminal reaches the whole
+  // process group anyway, but a signal sent to this process alone must stop the child too.
+  if (child > 0) ::kill(child, sig);
 }
 
 }  // namespace

@@ -5,7 +5,7 @@
 // every figure and every child process (throw_if_interrupted), and an Interrupted exception
 // unwinds the stack, so that scratch and staging folders are removed by their owners and no
 // half-written output is left; guarded_main turns it into exit code 130 (128 + SIGINT).
-// A SIGTERM reaching the process while it waits for a child is passed on to the child.
+// A signal reaching the process while it waits for a child is passed on to the child.
 //
 // Children (gnuplot, the experiments a study runs) are started without a shell: arguments are
 // passed as they are, so a quote or a space in a path (TMPDIR, --out) cannot break a command.
@@ -16,10 +16,9 @@
 
 namespace contact {
 
-class Interrupted : public std::runtime_error {
- public:
-  Interrupted() : std::runtime_error("interrupted") {}
-};
+// Not a std::exception on purpose: the handlers experiments keep for their own failures
+// (catch (const std::exception&)) must not swallow an interrupt.
+struct Interrupted {};
 
 // Installs the SIGINT/SIGTERM flag handlers (once per process).
 void install_interrupt_handlers();

@@ -57,8 +57,8 @@ int program(int argc, char** argv) {
   std::string scenes = "snooker,planet,spinning-box,off-centre,cradle,wedge", out = "results/rigid_impacts";
   CLI::App app{"Momentum, angular momentum and energy errors of every method on the 3D scenes.", "rigid_impacts"};
   app.option_defaults()->always_capture_default();
-  app.add_option("--dts", dts, "game steps [s], comma-separated")->delimiter(',')->check(cli::positive());
-  app.add_option("--rtols", rtols, "CVODE relative tolerances, comma-separated")->delimiter(',')->check(cli::real_in(0, 1, true, true));
+  cli::add_real_list(app, "--dts", dts, "game steps [s], comma-separated", cli::positive());
+  cli::add_real_list(app, "--rtols", rtols, "CVODE relative tolerances, comma-separated", cli::real_in(0, 1, true, true));
   auto names = rigid_scene_names();
   std::erase(names, "rubber-steel");
   app.add_option("--scene", scenes, "scenes, comma-separated (all finite masses)")->check(cli::one_of(names, true));

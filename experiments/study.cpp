@@ -28,7 +28,7 @@ int program(int argc, char** argv) {
   app.add_option("--out", out, "results folder");
   app.add_option("--manifest", manifest_path, "the study's manifest")->check(CLI::ExistingFile);
   app.add_flag("--tiny", tiny, "run the smoke-test settings (seconds, for tests)");
-  app.add_option("--only", only, "run only these experiments, comma-separated");
+  auto* only_opt = app.add_option("--only", only, "run only these experiments, comma-separated (default: all)");
   if (const int code = cli::parse(app, argc, argv); code >= 0) return code;
   StudyManifest manifest;
   try {
@@ -39,7 +39,7 @@ int program(int argc, char** argv) {
   }
   std::vector<std::string> names;
   for (const auto& e : manifest.experiments) names.push_back(e.name);
-  const auto only_list = cli::split_list(only);
+  const auto only_list = only_opt->count() == 0 ? std::vector<std::string>{} : cli::split_list(only);  // absent: all
   for (const auto& name : only_list)
     if (std::find(names.begin(), names.end(), name) == names.end()) {
       std::cerr << fmt::format("study: --only: value '{}' is not an experiment; accepted: {}\n", name, fmt::join(names, ", "));

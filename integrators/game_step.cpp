@@ -85,9 +85,10 @@ RunResult run_game(const MechanicalSystem& model, const GameOptions& opt) {
     if (!y.allFinite())
       throw SolverFailure(Status::NonFiniteState, t, fmt::format("state is not finite after step {} (dt = {:g} s)", n, h));
     for (std::size_t i = 0; i < nc; ++i) {
-      // Apex: gap rate falls through zero during free flight.
+      // Apex: gap rate falls through zero during free flight (not in a step that detects the
+      // contact: a resting ball's contact closes and reopens every frame).
       const double r0 = model.gap_rate(i, y_prev), r1 = model.gap_rate(i, y);
-      if (r0 > 0 && r1 <= 0 && !rec.contact_open(i)) {
+      if (r0 > 0 && r1 <= 0 && !rec.contact_open(i) && !(detect(i, y) > 0)) {
         const double s = crossing(r0, r1);
         const Vector ya = y_prev + s * (y - y_prev);
         rec.apex(i, t0 + s * h, model.gap(i, y_prev) + 0.5 * r0 * s * h, model.energy(ya));

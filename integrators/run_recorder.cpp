@@ -60,7 +60,8 @@ void RunRecorder::check_records(double t) const {
   const auto kept = result_.contacts.size() + result_.apexes.size() + result_.notifications.size();
   if (static_cast<long>(kept) >= limits_.max_records)
     throw SolverFailure(Status::WorkLimit, t,
-                        fmt::format("more than {} contact records, apexes and notifications", limits_.max_records));
+                        fmt::format("more than {} contact records, apexes and notifications: the run's record limit",
+                                    limits_.max_records));
 }
 
 void RunRecorder::check_steps(long steps, double t) const {
@@ -85,7 +86,7 @@ void RunRecorder::contact_end(std::size_t i, double t, double v_out) {
 bool RunRecorder::reopen_contact(std::size_t i, double t) {
   if (open_[i] >= 0 || last_[i] < 0) return false;
   auto& c = result_.contacts[static_cast<std::size_t>(last_[i])];
-  if (c.t_end != t) return false;
+  if (!(c.t_end >= t)) return false;
   c.t_end = c.v_out = kNaN;
   open_[i] = last_[i];
   return true;

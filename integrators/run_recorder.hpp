@@ -36,7 +36,8 @@ class RunRecorder {
   bool contact_open(std::size_t i) const { return open_[i] >= 0; }
   void contact_begin(std::size_t i, double t, double v_in);
   void contact_end(std::size_t i, double t, double v_out);
-  // Reopens contact i's last record if it ended at t (a contact that goes on); returns whether.
+  // Reopens contact i's last record if it ended at or after t (a contact that goes on); returns
+  // whether it did.
   bool reopen_contact(std::size_t i, double t);
   void observe_penetration(std::size_t i, double penetration);
   void notify(const std::vector<CollisionEvent>& batch) {

@@ -48,8 +48,9 @@ class CliTest : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir_); }
 
-  Outcome run(const std::string& exe, const std::string& args) const {
-    const std::string cmd = "cd '" + dir_.string() + "' && '" + exe + "' " + args + " >stdout.txt 2>stderr.txt";
+  // `prefix` goes before the program: environment settings, or a wrapper such as timeout.
+  Outcome run(const std::string& exe, const std::string& args, const std::string& prefix = "") const {
+    const std::string cmd = "cd '" + dir_.string() + "' && " + prefix + " '" + exe + "' " + args + " >stdout.txt 2>stderr.txt";
     const int status = std::system(cmd.c_str());
     Outcome r{WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir_ / "stdout.txt"), slurp(dir_ / "stderr.txt")};
     fs::remove(dir_ / "stdout.txt");

@@ -80,6 +80,7 @@ TEST(RunBounds, RestingGameContactIsOneRecord) {
   ASSERT_TRUE(r.ok()) << r.message;
   EXPECT_LE(r.contacts.size(), bounces + 1);
   EXPECT_EQ(r.contacts.back().t_end, 100.0) << "the resting contact lasts to the end";
+  EXPECT_LE(r.apexes.size(), r.contacts.size()) << "a resting ball has no apexes";
   EXPECT_LT(r.contacts.back().t_begin, 10.0);
 }
 

@@ -1,0 +1,91 @@
+// Every executable's command line, from its own --help: every option that takes a value is given
+// values no option accepts (not a number, not finite, empty, an empty list item) and must refuse
+// each with exit code 2, one line on stderr naming the option, and nothing written. --out is
+// given the paths no run may write to. Options are read from --help, so a new option is covered
+// the day it is added.
+#include "cli_fixture.hpp"
+#include "study_manifest.hpp"
+
+#include <regex>
+#include <set>
+
+namespace {
+
+class CliBattery : public CliTest {
+ protected:
+  // The executables: every experiment of the manifest, the study runner and paper_numbers.
+  static std::vector<std::string> executables() {
+    std::set<std::string> names{"study", "paper_numbers"};
+    for (const auto& e : contact::load_study_manifest(STUDY_MANIFEST).experiments) names.insert(e.exe);
+    return {names.begin(), names.end()};
+  }
+  static std::string path(const std::string& exe) { return (fs::path(EXPERIMENTS_DIR) / exe).string(); }
+  // What a program needs besides the option under test (the advisor needs a requirement).
+  static std::string base_args(const std::string& exe) {
+    return exe == "contact_advisor" ? " --max-penetration 1e-3" : "";
+  }
+
+  struct Option {
+    std::string name, type;  // e.g. "--k", "FLOAT:in (0, inf)"
+    bool free_text;          // TEXT with no check: any string is a value (paths, names)
+  };
+  // "  --k FLOAT:in (0, inf)=1e+06 ..." -> {"--k", "FLOAT:in (0, inf)"}; flags have no type.
+  std::vector<Option> options(const std::string& exe) const {
+    const Outcome help = run(path(exe), "--help");
+    EXPECT_EQ(help.code, 0) << exe;
+    std::vector<Option> out;
+    const std::regex line(R"(^\s+(?:-\w,)?(--[a-z0-9-]+)(?: (\S+(?: [^=]*?)?))?(?:=.*)?$)");
+    std::istringstream in(help.out);
+    for (std::string l; std::getline(in, l);) {
+      std::smatch m;
+      if (!std::regex_match(l, m, line) || m[1] == "--help" || !m[2].matched) continue;
+      const std::string type = m[2];
+      out.push_back({m[1], type, type == "TEXT"});
+    }
+    return out;
+  }
+};
+
+}  // namespace
+
+TEST_F(CliBattery, EveryOptionRefusesValuesNoOptionAccepts) {
+  const std::vector<std::string> bad = {"nan", "inf", "-inf", "abc", "", "1e999", "1,,2", "1,"};
+  for (const auto& exe : executables()) {
+    const auto opts = options(exe);
+    ASSERT_FALSE(opts.empty()) << exe << ": no options read from --help";
+    for (const auto& o : opts) {
+      if (o.free_text || o.name == "--out") continue;
+      // Options taking N values ("FLOAT x 4" in CLI11's help) get the bad value N times.
+      int count = 1;
+      if (std::smatch m; std::regex_search(o.type, m, std::regex(R"(x (\d+))"))) count = std::stoi(m[1]);
+      for (const auto& value : bad) {
+        std::string args;
+        for (int i = 0; i < count; ++i) args += " " + o.name + " '" + value + "'";
+        const Outcome r = run(path(exe), base_args(exe) + args + " --out never");
+        EXPECT_EQ(r.code, 2) << exe << args << ": " << r.err;
+        EXPECT_NE(r.err.find(o.name), std::string::npos) << exe << args << ": " << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << exe << args << ": " << r.err;
+        EXPECT_TRUE(dir_is_empty()) << exe << args << " wrote files";
+      }
+    }
+  }
+}
+
+TEST_F(CliBattery, OutRefusesPathsNoRunMayWriteTo) {
+  std::ofstream(dir_ / "a_file") << "x";
+  const std::string long_name(300, 'a');
+  const std::vector<std::string> bad_out = {"", "a_file", "a_file/below", long_name, "."};
+  for (const auto& exe : executables()) {
+    if (exe == "paper_numbers") continue;  // its --out is a file, checked in its own test
+    for (const auto& out : bad_out) {
+      const Outcome r = run(path(exe), base_args(exe) + " --out '" + out + "'");
+      EXPECT_EQ(r.code, 2) << exe << " --out '" << out << "': " << r.err;
+      EXPECT_NE(r.err.find("--out"), std::string::npos) << exe << " --out '" << out << "': " << r.err;
+      EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << exe << " --out '" << out << "': " << r.err;
+    }
+    // Nothing but the file that was there.
+    std::size_t entries = 0;
+    for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir_)) ++entries;
+    EXPECT_EQ(entries, 1u) << exe << " wrote into the test folder";
+  }
+}

@@ -1,0 +1,133 @@
+// The commands an independent audit found hanging, crashing or answering wrong, each as a user
+// types it: now each ends with the exit code and message the contract promises.
+#include "cli_fixture.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <set>
+
+namespace {
+
+class TrustCli : public CliTest {
+ protected:
+  static std::string exe(const std::string& name) { return (fs::path(EXPERIMENTS_DIR) / name).string(); }
+  // No folder or file of a run left in the test folder but `keep`.
+  void expect_only(const std::set<std::string>& keep) const {
+    for (const auto& e : fs::directory_iterator(dir_))
+      EXPECT_TRUE(keep.count(e.path().filename().string())) << "left behind: " << e.path();
+  }
+};
+
+}  // namespace
+
+// t_end / dt = 1e20 steps overflowed to 0 and reported success.
+TEST_F(TrustCli, AStepCountBeyondTheRunLimitFailsTyped) {
+  const Outcome r = run(exe("ball_drop"), "--method game-euler --t-end 1e4 --dt 1e-16 --out res");
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_NE(r.err.find("work-limit"), std::string::npos) << r.err;
+  expect_only({});
+}
+
+// A 1e-9 m drop: with the tolerance scaled to it the elastic ball keeps its energy; with the
+// study's 1e-10 m its bounces are unresolved and the run fails instead of losing 99 % of it.
+TEST_F(TrustCli, ATinyDropIsResolvedOrRefusedNeverWrong) {
+  Outcome r = run(exe("ball_drop"), "--method event-ode --e 1 --h0 1e-9 --t-end 1e-3 --out res");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto rows = csv_rows(slurp(dir_ / "res" / "comparison.csv"));
+  ASSERT_EQ(rows.size(), 2u);
+  // max_energy_change_rel: CVODE at rtol 1e-8 over ~70 bounces keeps it to ~1e-6.
+  EXPECT_LT(std::stod(rows[1][7]), 1e-5) << rows[1][7];
+  r = run(exe("ball_drop"), "--method event-ode --e 1 --h0 1e-9 --atol 1e-10 --out res2");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("unresolved"), std::string::npos) << r.err;
+}
+
+// A resting game ball used to add a record per frame (1e7 for 1e4 s, then bad_alloc).
+TEST_F(TrustCli, ARestingGameBallIsOneRecord) {
+  const Outcome r = run(exe("ball_drop"), "--method game-symplectic --t-end 1e4 --sample-dt 100 --out res");
+  ASSERT_EQ(r.code, 0) << r.err;
+  // ~22 bounces, then one resting contact (test_run_bounds derives the count).
+  EXPECT_LT(csv_rows(slurp(dir_ / "res" / "contacts.csv")).size(), 40u);
+}
+
+TEST_F(TrustCli, CrashesAreNowMessages) {
+  // Norm overflow: a quaternion of 1e200s is a fine orientation.
+  Outcome r = run(exe("rigid_scenes"), "--quaternion 1e200 1e200 1e200 1e200 --scene off-centre --out rs");
+  EXPECT_EQ(r.code, 0) << r.err;
+  // A soft cradle spring: contacts of 30 s at a 1 us step; used to run out of memory.
+  r = run(exe("newton_cradle"), "--k 1e-3 --out nc");
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_NE(r.err.find("work-limit"), std::string::npos) << r.err;
+  // A dense 2e5 x 2e5 matrix: SUNDenseMatrix returned NULL, which was dereferenced.
+  r = run(exe("work_precision"), "--balls 100000 --problems chain --integrators cvode-bdf --out wp");
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_NE(r.err.find("dense"), std::string::npos) << r.err;
+  expect_only({"rs"});
+}
+
+TEST_F(TrustCli, MessagesNameTheRealCause) {
+  // The advisor has no --atol: extreme inputs are refused in terms of its own options.
+  Outcome r = run(exe("contact_advisor"), "--max-penetration 1e300 --out ca");
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_EQ(r.err.find("--atol"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--max-penetration"), std::string::npos) << r.err;
+  // Too few bounces for --bounces: said so, not "k = 1000: success".
+  r = run(exe("convergence_k"), "--bounces 10 --out ck");
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_EQ(r.err.find("success"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--bounces"), std::string::npos) << r.err;
+  // A k range narrower than a point per decade used to divide by zero (k = NaN).
+  r = run(exe("convergence_k"), "--k-min 1e5 --k-max 1.0001e5 --out ck2");
+  EXPECT_EQ(r.code, 0) << r.err;
+  const auto k_rows = csv_rows(slurp(dir_ / "ck2" / "convergence_k.csv"));
+  ASSERT_EQ(k_rows.size(), 3u);  // the header and both ends
+  for (std::size_t j = 1; j < k_rows.size(); ++j) EXPECT_TRUE(std::isfinite(std::stod(k_rows[j][0]))) << k_rows[j][0];
+  // A sweep into unstable territory says which runs failed.
+  r = run(exe("ball_drop"), "--sweep --k-min 1e10 --k-max 1e16 --out sw");
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("game-euler-spring: non-finite-state"), std::string::npos) << r.err;
+  // Empty list items are refused; meta.json keeps the whole list.
+  r = run(exe("ball_drop"), "--method penalty, --out l1");
+  EXPECT_EQ(r.code, 2) << r.err;
+  r = run(exe("newton_cradle"), "--spacings 0,,1e-3 --out l2");
+  EXPECT_EQ(r.code, 2) << r.err;
+  r = run(exe("newton_cradle"), "--balls 3 --spacings 0,1e-3 --out l3");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(slurp(dir_ / "l3" / "meta.json").find("\"spacings\": \"0,1e-3\""), std::string::npos);
+}
+
+// gnuplot ran through a shell with the scratch path in quotes.
+TEST_F(TrustCli, AQuoteInTmpdirDoesNotBreakTheFigures) {
+  fs::create_directories(dir_ / "it's");
+  const Outcome r = run(exe("zeno"), "--out z", "TMPDIR=\"$PWD/it's\"");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir_ / "z" / "heights.png"));
+  EXPECT_TRUE(fs::is_empty(dir_ / "it's")) << "scratch folders left behind";
+}
+
+// SIGINT or SIGTERM: exit 128 + N, no output, no staging or scratch folder left; a study keeps the
+// results of an earlier run of an experiment it did not get to.
+TEST_F(TrustCli, InterruptsLeaveNothingBehindAndKeepEarlierResults) {
+  fs::create_directories(dir_ / "tmp");
+  for (const char* sig : {"INT", "TERM"}) {
+    const std::string out = fmt::format("res_{}", sig);
+    const Outcome r = run(exe("ball_drop"), "--sweep --per-decade 40 --out " + out,
+                          fmt::format("TMPDIR=\"$PWD/tmp\" timeout --preserve-status -s {} 0.5", sig));
+    EXPECT_EQ(r.code, std::string(sig) == "INT" ? 130 : 143) << sig << ": " << r.err;
+    EXPECT_NE(r.err.find("interrupted"), std::string::npos) << r.err;
+  }
+  EXPECT_TRUE(fs::is_empty(dir_ / "tmp")) << "gnuplot scratch folders left behind";
+  expect_only({"tmp"});
+
+  Outcome r = run(exe("study"), "--tiny --only newton_cradle --out res");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string before = slurp(dir_ / "res" / "newton_cradle" / "meta.json");
+  // convergence_dt (~4 s, before newton_cradle in the manifest) is running when the signal comes.
+  r = run(exe("study"), "--only convergence_dt,newton_cradle --out res", "timeout --preserve-status -s INT 1");
+  EXPECT_EQ(r.code, 130) << r.err;
+  EXPECT_EQ(slurp(dir_ / "res" / "newton_cradle" / "meta.json"), before) << "the earlier results were touched";
+  EXPECT_FALSE(fs::exists(dir_ / "res" / "convergence_dt")) << "an interrupted experiment left a folder";
+  for (const auto& e : fs::directory_iterator(dir_ / "res"))
+    EXPECT_EQ(e.path().filename().string().find(".staging"), std::string::npos) << e.path();
+}
