@@ -62,6 +62,17 @@ SpringContact power_law_contact(double m, double K, double n, double V) {
 
 double hunt_crossley_small_damping_loss(double chi, double V) { return 4.0 / 3.0 * chi * V; }
 
+double hunt_crossley_restitution(double a) {
+  if (!(a > 0)) return a == 0 ? 1.0 : std::numeric_limits<double>::quiet_NaN();
+  // g(e) = a e + ln(1 - a e) + a - ln(1 + a) is a - ln(1 + a) > 0 at e = 0 and falls to -inf at
+  // e = 1/a: one root in (0, min(1, 1/a)).
+  auto g = [a](double e) { return a * e + std::log1p(-a * e) + a - std::log1p(a); };
+  double lo = 0.0, hi = std::min(1.0, (1.0 - 1e-15) / a);
+  if (g(hi) > 0) return std::numeric_limits<double>::quiet_NaN();
+  for (int i = 0; i < 200 && hi - lo > 1e-16; ++i) (g(0.5 * (lo + hi)) > 0 ? lo : hi) = 0.5 * (lo + hi);
+  return 0.5 * (lo + hi);
+}
+
 double hooke_impact_time(double m, double k, double h0, double v0, double g, std::size_t n) {
   const RigidBounces rigid(h0, v0, g, 1.0);
   const double cycle = hooke_contact(m, k, rigid.V, g).duration + 2.0 * rigid.V / g;

@@ -82,6 +82,14 @@ double power_law_time_factor(double n);
 // Small-damping restitution loss 1 - e^2 of a Hunt–Crossley contact: (4/3) chi V.
 double hunt_crossley_small_damping_loss(double chi, double V);
 
+// Hunt–Crossley restitution, exact (no gravity, no clamp acting): with u the overlap rate,
+// m u du / (1 + chi u) = -K delta^n d(delta); over the whole contact delta returns to 0, so the
+// right side integrates to zero and, with a = chi V and e = u_out / V,
+//   a - ln(1 + a) = -a e - ln(1 - a e),
+// whatever n, K and m: the restitution depends on chi V alone. Solved by bisection; NaN if the
+// root needs 1 - a e <= 0 (the clamp F >= 0 would act).
+double hunt_crossley_restitution(double chi_v);
+
 // Undamped penalty bounce sequence of the ball drop under Hooke (the exact penalty solution):
 // every contact lasts T_c and returns the impact speed, so T(n) = T1 + (n-1)(T_c + 2V/g).
 double hooke_impact_time(double m, double k, double h0, double v0, double g, std::size_t n);

@@ -2,6 +2,10 @@
 // their targets (closed form: the dashpot formula is exact without gravity), and bad input is
 // refused.
 #include "cli_fixture.hpp"
+#include "contact_law.hpp"
+#include "references.hpp"
+
+#include <cmath>
 
 namespace {
 class ContactLawsCli : public CliTest {};
@@ -25,6 +29,32 @@ TEST_F(ContactLawsCli, WritesTableAndFigureWithTheDeclaredColumns) {
     const double miss = std::stod(line.substr(line.rfind(',') + 1));
     EXPECT_LT(std::abs(miss), 1e-6) << line;
   }
+}
+
+// The Hunt–Crossley family, F = K delta^n (1 + chi delta_dot), has an exact restitution that
+// depends on chi V alone (hunt_crossley_restitution, derived in references.hpp). The experiment's
+// rows (CVODE, rtol 1e-10) must match it to 1e-7.
+TEST_F(ContactLawsCli, HuntCrossleyRowsMatchTheExactRestitution) {
+  const Outcome r = run(CONTACT_LAWS_EXE, "--points 4 --out laws");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::vector<std::pair<std::string, contact::DampingRule>> rules = {
+      {"hunt-crossley", contact::DampingRule::HuntCrossley},
+      {"lankarani-nikravesh", contact::DampingRule::LankaraniNikravesh},
+      {"flores", contact::DampingRule::Flores},
+      {"gonthier", contact::DampingRule::Gonthier}};
+  int checked = 0;
+  for (const auto& c : csv_rows(slurp(dir_ / "laws" / "restitution.csv"))) {
+    for (const auto& [name, rule] : rules) {
+      if (c[0].rfind(name + " n=", 0) != 0) continue;
+      const double target = std::stod(c[1]), achieved = std::stod(c[2]);
+      const double a = contact::damping_factor(rule, target, 1.0) * 1.0;  // chi V at the default V = 1 m/s
+      const double e = contact::hunt_crossley_restitution(a);
+      if (std::isnan(e)) continue;  // the clamp would act: no closed form
+      EXPECT_NEAR(achieved, e, 1e-7) << c[0] << " target " << target;
+      ++checked;
+    }
+  }
+  EXPECT_GE(checked, 24);  // 4 rules x 2 exponents x the targets below 1 and 1 itself
 }
 
 TEST_F(ContactLawsCli, BadInputIsRefused) {

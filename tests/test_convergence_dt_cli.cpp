@@ -32,9 +32,18 @@ TEST_F(ConvergenceDtCli, LocatedSwitchesRestoreTheOrderTheKinkTakes) {
   ASSERT_EQ(r.code, 0) << r.err;
   auto o = orders();
   // Located: every switch is a step end, the solution is smooth inside each step, and the method
-  // shows its order (fitted over the finest rows; 0.3 covers the pre-asymptotic spread).
+  // shows its order (fitted over the finest rows; 0.3 covers the pre-asymptotic spread), from
+  // both sides. RK4 is bounded below only: its fit (5.3) still takes pre-asymptotic rows, since
+  // its finer rows fall under the fit's 1e-10 floor (reported; the fit range is the paper issue's).
   for (const char* name : {"euler", "semi-implicit-euler", "velocity-verlet", "rk4", "gsl-rkf45"})
     EXPECT_GE(std::stod(o[name][3]), std::stod(o[name][1]) - 0.3) << name;
+  for (const char* name : {"euler", "semi-implicit-euler", "velocity-verlet", "gsl-rkf45"})
+    EXPECT_LE(std::stod(o[name][3]), std::stod(o[name][1]) + 0.3) << name;
+  // Unlocated, a method of order p > 2 drops: each step across the kink errs O(dt^2) in v, with a
+  // constant that depends on where the kink falls in the step, so the fitted slope is erratic but
+  // stays well below p: below p - 1 is asserted (measured 2.8 for rk4, 1.7 for rkf45).
+  for (const char* name : {"rk4", "gsl-rkf45"})
+    EXPECT_LT(std::stod(o[name][2]), std::stod(o[name][1]) - 1) << name;
   // Unlocated: F = k max(-x, 0) has a kink, so the acceleration has a jump in slope and a step
   // across it errs by O(dt^2) in v. For rk4 at the finest step (w dt = 0.003) that leaves the
   // error ~ 1/(w dt)^2 ~ 1e5 times the located one; 100x is asserted.
