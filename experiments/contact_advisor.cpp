@@ -101,7 +101,7 @@ int program(int argc, char** argv) {
   row("achieved_duration", a.achieved_duration, "s", "simulated");
   row("requested_restitution", r.e, "", "");
   row("achieved_restitution", a.achieved_restitution, "", "simulated");
-  row("game_energy_error", a.game_energy_error, "", "simulated at game_dt, worst of 8 step phases");
+  row("game_energy_error", a.game_energy_error, "", "simulated after one contact at game_dt, worst of 32 entry phases");
   fmt::print("Contact advice: m = {:g} kg, v = {:g} m/s, e = {:g}, law {}\n\n{}", r.m, r.v, r.e, r.law, t.to_markdown(6));
   OutputSet files;
   files.add_table("advice", t);
