@@ -14,11 +14,10 @@
 #include <unistd.h>
 #include <stdexcept>
 
-#ifndef CONTACT_ODE_GIT_REVISION
-#define CONTACT_ODE_GIT_REVISION "unknown"
-#endif
 
 namespace contact {
+
+const char* git_revision();  // generated at build time (cmake/git_revision.cmake)
 
 namespace fs = std::filesystem;
 
@@ -146,7 +145,7 @@ nlohmann::json run_metadata(const CLI::App& app, int argc, char** argv, double w
       {"experiment", app.get_name()},
       {"options", options},
       {"command_line", command},
-      {"git_revision", CONTACT_ODE_GIT_REVISION},
+      {"git_revision", git_revision()},
       {"libraries", library_versions()},
       {"wall_time_s", wall_time_s},
   };
