@@ -38,14 +38,8 @@ void render(const Figure& f, OutputSet& out) {
   std::string pattern = (fs::temp_directory_path() / "contact_figure_XXXXXX").string();
   if (::mkdtemp(pattern.data()) == nullptr)
     throw std::runtime_error(fmt::format("cannot create a scratch folder in {}", fs::temp_directory_path().string()));
-  struct Scratch {
-    fs::path dir;
-    ~Scratch() {
-      std::error_code ec;
-      fs::remove_all(dir, ec);
-    }
-  } scratch{pattern};
-  const fs::path& dir = scratch.dir;
+  const ScratchDir scratch{pattern};
+  const fs::path& dir = scratch.path;
   std::ofstream(dir / "data.csv") << f.data;
   // One gnuplot run draws both pictures, the script once per terminal (a multiplot cannot be
   // replotted). The file names are relative (gnuplot runs in the scratch folder), so no path is

@@ -35,15 +35,6 @@ void write_file(const fs::path& path, const std::string& content) {
   if (!out.flush()) throw std::runtime_error(fmt::format("cannot write {}", path.string()));
 }
 
-// A folder removed with everything in it when its owner goes out of scope (unless released).
-struct ScratchDir {
-  fs::path path;
-  ~ScratchDir() {
-    std::error_code ec;
-    if (!path.empty()) fs::remove_all(path, ec);
-  }
-};
-
 // Blocks SIGINT and SIGTERM while alive, so that a swap of folders is not cut in half; a
 // signal that arrives meanwhile is delivered (and its flag raised) when it ends.
 struct SignalsHeld {
@@ -63,6 +54,11 @@ std::string sibling_name(const fs::path& dir, const char* what) {
 }
 
 }  // namespace
+
+ScratchDir::~ScratchDir() {
+  std::error_code ec;
+  if (!path.empty()) fs::remove_all(path, ec);
+}
 
 void OutputSet::write(const fs::path& dir_in) const {
   throw_if_interrupted();
@@ -194,7 +190,8 @@ std::string check_output_dir(const fs::path& dir, const std::string& marker) {
     if (!fs::is_empty(abs, ec) && !fs::exists(abs / marker, ec))
       return refuse(fmt::format("is a folder that is not empty and holds no {} of an earlier run", marker));
   }
-  if (abs == fs::current_path(ec) || fs::current_path(ec).string().rfind(abs.string() + "/", 0) == 0)
+  const fs::path here = fs::current_path(ec);
+  if (abs == here || here.string().rfind(abs.string() + "/", 0) == 0)
     return refuse("is the current folder or holds it");
   return {};
 }

@@ -15,6 +15,16 @@ namespace contact {
 
 class Table;
 
+// A folder removed with everything in it when its owner goes out of scope; clear `path` to keep it.
+struct ScratchDir {
+  std::filesystem::path path;
+  ScratchDir() = default;
+  explicit ScratchDir(std::filesystem::path p) : path(std::move(p)) {}
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
+  ~ScratchDir();
+};
+
 class OutputSet {
  public:
   void add(const std::string& name, std::string content) { files_[name] = std::move(content); }

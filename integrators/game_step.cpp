@@ -60,92 +60,92 @@ RunResult run_game(const MechanicalSystem& model, const GameOptions& opt) {
   SolverStats stats;
   double t = 0.0;
   try {
-  rec.sample(0.0, y);
-  // Counted in floating point: t_end / dt can exceed every integer type (1e4 s at 1e-16 s).
-  const double steps_needed = std::ceil(opt.t_end / opt.dt - 1e-9);
-  rec.check_steps(steps_needed < 9e18 ? static_cast<long>(steps_needed) : std::numeric_limits<long>::max(), 0.0);
-  const auto n_steps = static_cast<long>(steps_needed);
-  for (long n = 1; n <= n_steps; ++n) {
-    const double t0 = t;
-    const double h = std::min(opt.dt, opt.t_end - t0);  // the last step lands on t_end
-    t = n == n_steps ? opt.t_end : static_cast<double>(n) * opt.dt;
-    y_prev = y;
-    // 1. integrate
-    if (spring) {
-      model.modes_from_state(y, modes);
-      // The dashpot's loss over the step, by the rectangle rule the Euler step itself uses.
-      double power = 0;
-      for (std::size_t i = 0; i < nc; ++i)
-        if (modes[i] == ContactMode::Penalty) power += model.dissipated_power(i, y);
-      rec.add_dissipated(h * power);
-    }
-    stats.rhs_evals += fixed_step(opt.scheme, f, positions, t0, h, y, work);
-    model.normalize(y);
-    if (spring) {
-      // energy() counts a spring only while its law pushes: a clamped law that lets go while the
-      // bodies overlap releases its elastic energy (a physical loss), and one that takes hold at
-      // an overlap takes it back. Booked here, as the penalty method does at its roots, but only
-      // for a switch inside the overlap (at both ends of the step): where the overlap itself
-      // crosses zero the elastic energy is continuous, and what changes is the scheme's error.
-      for (std::size_t i = 0; i < nc; ++i) {
-        const bool was = modes[i] == ContactMode::Penalty, now = model.switching(i, y) > 0;
-        if (was != now && model.gap(i, y_prev) < 0 && model.gap(i, y) < 0)
-          rec.add_dissipated((was ? 1.0 : -1.0) * model.elastic_energy(i, y));
+    rec.sample(0.0, y);
+    // Counted in floating point: t_end / dt can exceed every integer type (1e4 s at 1e-16 s).
+    const double steps_needed = std::ceil(opt.t_end / opt.dt - 1e-9);
+    rec.check_steps(steps_needed < 9e18 ? static_cast<long>(steps_needed) : std::numeric_limits<long>::max(), 0.0);
+    const auto n_steps = static_cast<long>(steps_needed);
+    for (long n = 1; n <= n_steps; ++n) {
+      const double t0 = t;
+      const double h = std::min(opt.dt, opt.t_end - t0);  // the last step lands on t_end
+      t = n == n_steps ? opt.t_end : static_cast<double>(n) * opt.dt;
+      y_prev = y;
+      // 1. integrate
+      if (spring) {
+        model.modes_from_state(y, modes);
+        // The dashpot's loss over the step, by the rectangle rule the Euler step itself uses.
+        double power = 0;
+        for (std::size_t i = 0; i < nc; ++i)
+          if (modes[i] == ContactMode::Penalty) power += model.dissipated_power(i, y);
+        rec.add_dissipated(h * power);
       }
-    }
-    stats.steps += 1;
-    if (!y.allFinite())
-      throw SolverFailure(Status::NonFiniteState, t, fmt::format("state is not finite after step {} (dt = {:g} s)", n, h));
-    for (std::size_t i = 0; i < nc; ++i) {
-      // Apex: gap rate falls through zero during free flight (not in a step that detects the
-      // contact: a resting ball's contact closes and reopens every frame).
-      const double r0 = model.gap_rate(i, y_prev), r1 = model.gap_rate(i, y);
-      if (r0 > 0 && r1 <= 0 && !rec.contact_open(i) && !(detect(i, y) > 0)) {
-        const double s = crossing(r0, r1);
-        const Vector ya = y_prev + s * (y - y_prev);
-        rec.apex(i, t0 + s * h, model.gap(i, y_prev) + 0.5 * r0 * s * h, model.energy(ya));
-      }
-      // 2. detect, 3. resolve
-      const double d = detect(i, y);
-      if (d > 0) {
-        if (frames_left[i] < 0) fresh[i] = true;
-        frames_left[i] = opt.persistence;
-        // Detected again in the frame right after its record ended: the same contact goes on.
-        if (!rec.contact_open(i) && !rec.reopen_contact(i, t0))
-          rec.contact_begin(i, t0 + crossing(d_prev[i], d) * h, model.gap_rate(i, y));
-        rec.observe_penetration(i, -model.gap(i, y));
-        if (project) model.project(i, y);
-        if (impulse && model.gap_rate(i, y) < 0) {
-          const double before = model.energy(y);
-          model.apply_impulse(i, model.restitution(i), y);
-          rec.add_dissipated(before - model.energy(y));
-          stats.events += 1;
+      stats.rhs_evals += fixed_step(opt.scheme, f, positions, t0, h, y, work);
+      model.normalize(y);
+      if (spring) {
+        // energy() counts a spring only while its law pushes: a clamped law that lets go while the
+        // bodies overlap releases its elastic energy (a physical loss), and one that takes hold at
+        // an overlap takes it back. Booked here, as the penalty method does at its roots, but only
+        // for a switch inside the overlap (at both ends of the step): where the overlap itself
+        // crosses zero the elastic energy is continuous, and what changes is the scheme's error.
+        for (std::size_t i = 0; i < nc; ++i) {
+          const bool was = modes[i] == ContactMode::Penalty, now = model.switching(i, y) > 0;
+          if (was != now && model.gap(i, y_prev) < 0 && model.gap(i, y) < 0)
+            rec.add_dissipated((was ? 1.0 : -1.0) * model.elastic_energy(i, y));
         }
       }
-      // 4. notify, decided on the resolved state: a contact ends once the bodies no longer
-      // overlap (touching after a projection counts as not overlapping) and do not approach.
-      // Projection alone leaves them approaching, so its contact stays open while it pushes.
-      const double d_after = detect(i, y);
-      if (rec.contact_open(i) && d_after <= 0 && model.gap_rate(i, y) >= 0) {
-        const double end = d > 0 ? t : t0 + crossing(d_prev[i], d_after) * h;
-        rec.contact_end(i, end, model.gap_rate(i, y));
+      stats.steps += 1;
+      if (!y.allFinite())
+        throw SolverFailure(Status::NonFiniteState, t, fmt::format("state is not finite after step {} (dt = {:g} s)", n, h));
+      for (std::size_t i = 0; i < nc; ++i) {
+        // Apex: gap rate falls through zero during free flight (not in a step that detects the
+        // contact: a resting ball's contact closes and reopens every frame).
+        const double r0 = model.gap_rate(i, y_prev), r1 = model.gap_rate(i, y);
+        const double d = detect(i, y);
+        if (r0 > 0 && r1 <= 0 && !rec.contact_open(i) && !(d > 0)) {
+          const double s = crossing(r0, r1);
+          const Vector ya = y_prev + s * (y - y_prev);
+          rec.apex(i, t0 + s * h, model.gap(i, y_prev) + 0.5 * r0 * s * h, model.energy(ya));
+        }
+        // 2. detect, 3. resolve
+        if (d > 0) {
+          if (frames_left[i] < 0) fresh[i] = true;
+          frames_left[i] = opt.persistence;
+          // Detected again in the frame right after its record ended: the same contact goes on.
+          if (!rec.contact_open(i) && !rec.reopen_contact(i, t0))
+            rec.contact_begin(i, t0 + crossing(d_prev[i], d) * h, model.gap_rate(i, y));
+          rec.observe_penetration(i, -model.gap(i, y));
+          if (project) model.project(i, y);
+          if (impulse && model.gap_rate(i, y) < 0) {
+            const double before = model.energy(y);
+            model.apply_impulse(i, model.restitution(i), y);
+            rec.add_dissipated(before - model.energy(y));
+            stats.events += 1;
+          }
+        }
+        // 4. notify, decided on the resolved state: a contact ends once the bodies no longer
+        // overlap (touching after a projection counts as not overlapping) and do not approach.
+        // Projection alone leaves them approaching, so its contact stays open while it pushes.
+        const double d_after = detect(i, y);
+        if (rec.contact_open(i) && d_after <= 0 && model.gap_rate(i, y) >= 0) {
+          const double end = d > 0 ? t : t0 + crossing(d_prev[i], d_after) * h;
+          rec.contact_end(i, end, model.gap_rate(i, y));
+        }
+        d_prev[i] = d_after;
       }
-      d_prev[i] = d_after;
+      // 4. notify: one batch, after the whole physics step.
+      batch.clear();
+      for (std::size_t i = 0; i < nc; ++i) {
+        if (frames_left[i] < 0) continue;
+        if (fresh[i]) batch.push_back({CollisionEvent::Kind::Begin, i, n, t});
+        fresh[i] = false;
+        if (--frames_left[i] < 0) batch.push_back({CollisionEvent::Kind::End, i, n, t});
+      }
+      if (!batch.empty()) {
+        rec.notify(batch);
+        if (opt.on_notifications) opt.on_notifications(batch);
+      }
+      if (t >= rec.next_sample_time() * (1 - 1e-12)) rec.sample(t, y);
     }
-    // 4. notify: one batch, after the whole physics step.
-    batch.clear();
-    for (std::size_t i = 0; i < nc; ++i) {
-      if (frames_left[i] < 0) continue;
-      if (fresh[i]) batch.push_back({CollisionEvent::Kind::Begin, i, n, t});
-      fresh[i] = false;
-      if (--frames_left[i] < 0) batch.push_back({CollisionEvent::Kind::End, i, n, t});
-    }
-    if (!batch.empty()) {
-      rec.notify(batch);
-      if (opt.on_notifications) opt.on_notifications(batch);
-    }
-    if (t >= rec.next_sample_time() * (1 - 1e-12)) rec.sample(t, y);
-  }
   } catch (const SolverFailure& failure) {
     return rec.fail(failure, stats);
   }
