@@ -1,5 +1,7 @@
 #include "contact_advisor.hpp"
 
+#include "law_registry.hpp"
+
 #include "ball_drop.hpp"
 #include "contact_measurement.hpp"
 #include "game_step.hpp"
@@ -22,14 +24,17 @@ namespace {
 using std::numbers::pi;
 
 [[noreturn]] void bad(const std::string& option, double value, const std::string& accepted) {
-  throw std::invalid_argument(fmt::format("{}: value '{:g}' is out of range; accepted {}", option, value, accepted));
+  throw std::invalid_argument(
+      fmt::format("{}: value '{:g}' is out of range; accepted {}", option, value, accepted));
 }
 
 // zeta in (0, 1) with e_clamped(zeta) = e, by GSL's Brent solver on [0, 1).
 double clamped_damping_ratio(double e) {
   gsl::report_errors_by_return_code();
   if (e >= 1.0) return 0.0;
-  auto f = [](double zeta, void* p) { return clamped_kelvin_voigt_restitution(zeta) - *static_cast<double*>(p); };
+  auto f = [](double zeta, void* p) {
+    return clamped_kelvin_voigt_restitution(zeta) - *static_cast<double*>(p);
+  };
   gsl_function fn{+f, &e};
   gsl::RootSolver brent(gsl_root_fsolver_alloc(gsl_root_fsolver_brent));
   if (!brent) throw std::runtime_error("gsl_root_fsolver_alloc failed");
@@ -59,7 +64,8 @@ Designed design(const ContactRequest& r) {
     // Duration times w: pi / s unclamped; clamped, the push until release, (pi - 2 asin zeta) / s,
     // then the overlap closing at the exit speed, 2 zeta (references.hpp).
     const double wT = clamped ? (pi - 2 * std::asin(zeta)) / s + 2 * zeta : pi / s;
-    const double w = r.max_penetration ? V * std::exp(-zeta * theta / s) / *r.max_penetration : wT / *r.duration;
+    const double w =
+        r.max_penetration ? V * std::exp(-zeta * theta / s) / *r.max_penetration : wT / *r.duration;
     const double k = m * w * w, c = 2 * zeta * std::sqrt(k * m);
     return {KelvinVoigt{k, c, clamped}, k, c};
   }
@@ -75,7 +81,8 @@ Designed design(const ContactRequest& r) {
   if (r.radius) {
     K = hertz_stiffness(*r.radius, effective_modulus(*r.young, *r.poisson, INFINITY, 0.0));
   } else {
-    const double dmax = r.max_penetration ? *r.max_penetration : *r.duration * V / (2 * power_law_time_factor(n));
+    const double dmax =
+        r.max_penetration ? *r.max_penetration : *r.duration * V / (2 * power_law_time_factor(n));
     K = (n + 1) * m * V * V / (2 * std::pow(dmax, n + 1));
   }
   const double dmax = power_law_contact(m, K, n, V).max_penetration;
@@ -93,8 +100,9 @@ double game_energy_error(const ContactLaw& law, double m, double V, double dt) {
     const BallDrop model({m, 0.0, h0, -V, 1.0, law});
     const double T = power_law_contact(m, stiffness(law), exponent(law), V).duration;
     const double t_end = h0 / V + 4 * T;
-    const RunResult r = run_game(model, {.dt = dt, .t_end = t_end, .sample_dt = t_end,
-                                         .scheme = FixedStepScheme::SemiImplicitEuler, .resolution = GameResolution::Spring});
+    const RunResult r = run_game(
+        model, {.dt = dt, .scheme = FixedStepScheme::SemiImplicitEuler, .resolution = GameResolution::Spring},
+        {.t_end = t_end, .sample_dt = t_end});
     const auto& s = r.samples.back();
     worst = std::max(worst, std::abs(r.energy0 - s.energy - s.dissipated) / r.energy0);
   }
@@ -103,52 +111,68 @@ double game_energy_error(const ContactLaw& law, double m, double V, double dt) {
 
 }  // namespace
 
-std::vector<std::string> advisor_law_names() {
-  return {"kelvin-voigt", "kelvin-voigt-clamped", "hertz", "hunt-crossley-linear", "hooke"};
-}
-
 void validate(const ContactRequest& r) {
   auto finite = [](double v) { return std::isfinite(v); };
   if (!(finite(r.m) && r.m > 0)) bad("--m", r.m, "range (0, inf)");
   if (!(finite(r.v) && r.v > 0)) bad("--v", r.v, "range (0, inf)");
   if (!(finite(r.e) && r.e >= 0 && r.e <= 1)) bad("--e", r.e, "range [0, 1]");
-  const auto laws = advisor_law_names();
+  const auto laws = law_names();
   if (std::find(laws.begin(), laws.end(), r.law) == laws.end())
-    throw std::invalid_argument(fmt::format("--law: value '{}' is not one of: {}", r.law, fmt::join(laws, ", ")));
+    throw std::invalid_argument(
+        fmt::format("--law: value '{}' is not one of: {}", r.law, fmt::join(laws, ", ")));
   const bool material = r.radius || r.young || r.poisson;
   const int given = (r.max_penetration ? 1 : 0) + (r.duration ? 1 : 0) + (material ? 1 : 0);
   if (given != 1)
-    throw std::invalid_argument("--max-penetration / --duration: give exactly one requirement (or, for hertz, --radius, --young and --poisson)");
+    throw std::invalid_argument(
+        "--max-penetration / --duration: give exactly one requirement (or, for hertz, --radius, --young and "
+        "--poisson)");
   if (r.max_penetration && !(finite(*r.max_penetration) && *r.max_penetration > 0))
     bad("--max-penetration", *r.max_penetration, "range (0, inf)");
-  if (r.duration && !(finite(*r.duration) && *r.duration > 0)) bad("--duration", *r.duration, "range (0, inf)");
+  if (r.duration && !(finite(*r.duration) && *r.duration > 0))
+    bad("--duration", *r.duration, "range (0, inf)");
   if (material) {
-    if (r.law != "hertz") throw std::invalid_argument("--radius/--young/--poisson: a material defines only the hertz law");
-    if (!(r.radius && r.young && r.poisson)) throw std::invalid_argument("--radius, --young, --poisson: give all three");
+    if (r.law != "hertz")
+      throw std::invalid_argument("--radius/--young/--poisson: a material defines only the hertz law");
+    if (!(r.radius && r.young && r.poisson))
+      throw std::invalid_argument("--radius, --young, --poisson: give all three");
     if (!(finite(*r.radius) && *r.radius > 0)) bad("--radius", *r.radius, "range (0, inf)");
     if (!(finite(*r.young) && *r.young > 0)) bad("--young", *r.young, "range (0, inf)");
-    if (!(finite(*r.poisson) && *r.poisson > -1 && *r.poisson < 0.5)) bad("--poisson", *r.poisson, "range (-1, 0.5)");
+    if (!(finite(*r.poisson) && *r.poisson > -1 && *r.poisson < 0.5))
+      bad("--poisson", *r.poisson, "range (-1, 0.5)");
   }
   if (r.law == "hooke" && r.e != 1) bad("--e", r.e, "range [1, 1] for hooke, which is undamped");
-  if (r.law == "kelvin-voigt" && r.e == 0) bad("--e", r.e, "range (0, 1] for kelvin-voigt (e = 0 is critical damping: the contact never ends)");
+  if (r.law == "kelvin-voigt" && r.e == 0)
+    bad("--e", r.e, "range (0, 1] for kelvin-voigt (e = 0 is critical damping: the contact never ends)");
   if (r.law == "kelvin-voigt-clamped" && r.e < std::exp(-2.0))
-    bad("--e", r.e, fmt::format("range [{:.4f}, 1] for kelvin-voigt-clamped (exp(-2), reached at critical damping)", std::exp(-2.0)));
-  if ((r.law == "hertz" || r.law == "hunt-crossley-linear") && r.e == 0) bad("--e", r.e, "range (0, 1] for the Hunt-Crossley laws");
-  if (!(finite(r.energy_error) && r.energy_error > 0 && r.energy_error < 1)) bad("--energy-error", r.energy_error, "range (0, 1)");
+    bad("--e", r.e,
+        fmt::format("range [{:.4f}, 1] for kelvin-voigt-clamped (exp(-2), reached at critical damping)",
+                    std::exp(-2.0)));
+  if ((r.law == "hertz" || r.law == "hunt-crossley-linear") && r.e == 0)
+    bad("--e", r.e, "range (0, 1] for the Hunt-Crossley laws");
+  if (!(finite(r.energy_error) && r.energy_error > 0 && r.energy_error < 1))
+    bad("--energy-error", r.energy_error, "range (0, 1)");
   if (!(finite(r.engine_step) && r.engine_step > 0)) bad("--engine-step", r.engine_step, "range (0, inf)");
   if (!(finite(r.g) && r.g > 0)) bad("--g", r.g, "range (0, inf)");
   const Designed d = design(r);
   // Extreme inputs (a mass of 1e-300 kg, a penetration of 1e300 m) give a design double precision
   // cannot hold or simulate: say so in terms of the inputs, before the check's own solver does.
   const SpringContact undamped = power_law_contact(r.m, stiffness(d.law), exponent(d.law), r.v);
-  const double scales[] = {d.k_lin, std::sqrt(d.k_lin / r.m), undamped.duration, undamped.max_penetration,
-                           1e-13 * undamped.max_penetration, r.v * undamped.duration};
-  if (!std::all_of(std::begin(scales), std::end(scales), [](double x) { return std::isfinite(x) && x > 1e-300; }) ||
+  const double scales[] = {d.k_lin,
+                           std::sqrt(d.k_lin / r.m),
+                           undamped.duration,
+                           undamped.max_penetration,
+                           1e-13 * undamped.max_penetration,
+                           r.v * undamped.duration};
+  if (!std::all_of(std::begin(scales), std::end(scales),
+                   [](double x) { return std::isfinite(x) && x > 1e-300; }) ||
       !std::isfinite(d.c_lin) || !(undamped.duration < 1e12))
-    throw std::invalid_argument(fmt::format(
-        "--m, --v, --max-penetration/--duration: m = {:g} kg, v = {:g} m/s give k = {:g} N/m and a contact of {:g} s "
-        "and {:g} m, outside what double precision resolves; accepted: inputs giving a finite, positive stiffness, "
-        "duration and penetration", r.m, r.v, d.k_lin, undamped.duration, undamped.max_penetration));
+    throw std::invalid_argument(
+        fmt::format("--m, --v, --max-penetration/--duration: m = {:g} kg, v = {:g} m/s give k = {:g} N/m and "
+                    "a contact of {:g} s "
+                    "and {:g} m, outside what double precision resolves; accepted: inputs giving a finite, "
+                    "positive stiffness, "
+                    "duration and penetration",
+                    r.m, r.v, d.k_lin, undamped.duration, undamped.max_penetration));
 }
 
 ContactAdvice advise(const ContactRequest& r) {
@@ -161,7 +185,8 @@ ContactAdvice advise(const ContactRequest& r) {
   a.omega = std::sqrt(d.k_lin / r.m);
   a.zeta = d.c_lin / (2 * std::sqrt(d.k_lin * r.m));
   a.frequency_hz = a.omega / (2 * pi);
-  a.euler_max_dt = a.zeta < 1 ? 2 * a.zeta / a.omega : 2 / (a.omega * (a.zeta + std::sqrt(a.zeta * a.zeta - 1)));
+  a.euler_max_dt =
+      a.zeta < 1 ? 2 * a.zeta / a.omega : 2 / (a.omega * (a.zeta + std::sqrt(a.zeta * a.zeta - 1)));
   a.symplectic_max_dt = 2 * (std::sqrt(a.zeta * a.zeta + 1) - a.zeta) / a.omega;
   // The bound (contact_advisor.hpp) is exact for the undamped spring; a dashpot or a power law
   // breaks the conserved modified energy, so the step is then checked by the phase scan and

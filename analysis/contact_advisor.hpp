@@ -41,29 +41,29 @@
 namespace contact {
 
 struct ContactRequest {
-  double m = 1.0;                         // effective mass [kg]
-  double v = 1.0;                         // impact speed [m/s]
-  double e = 0.8;                         // target restitution
-  std::optional<double> max_penetration;  // [m] (exactly one of these two, or a Hertz material)
-  std::optional<double> duration;         // [s]
-  std::string law = "kelvin-voigt";       // see advisor_law_names()
+  double m = 1.0;                                      // effective mass [kg]
+  double v = 1.0;                                      // impact speed [m/s]
+  double e = 0.8;                                      // target restitution
+  std::optional<double> max_penetration;               // [m] (exactly one of these two, or a Hertz material)
+  std::optional<double> duration;                      // [s]
+  std::string law = "kelvin-voigt";                    // a name from law_names() (law_registry.hpp)
   DampingRule rule = DampingRule::LankaraniNikravesh;  // Hunt–Crossley laws
   // Hertz from a material instead of a requirement: sphere radius [m], Young's modulus [Pa],
   // Poisson ratio, against a rigid flat.
   std::optional<double> radius, young, poisson;
-  double energy_error = 0.01;  // per contact, for the advised game step
+  double energy_error = 0.01;       // per contact, for the advised game step
   double engine_step = 1.0 / 60.0;  // [s], for ODE/Bullet's ERP and CFM
-  double g = 9.81;  // [m/s^2], for Drake's penetration allowance
+  double g = 9.81;                  // [m/s^2], for Drake's penetration allowance
 };
 
 struct ContactAdvice {
   ContactLaw law;
-  double k_lin, c_lin;        // linearised at the maximum penetration [N/m], [N s/m]
-  double omega, zeta;         // sqrt(k_lin/m) [rad/s], c_lin / (2 sqrt(k_lin m))
-  double frequency_hz;        // omega / (2 pi)
-  double euler_max_dt;        // [s]; 0: no stable step
-  double symplectic_max_dt;   // [s]
-  double game_dt;             // semi-implicit Euler step for the energy error per contact [s]
+  double k_lin, c_lin;       // linearised at the maximum penetration [N/m], [N s/m]
+  double omega, zeta;        // sqrt(k_lin/m) [rad/s], c_lin / (2 sqrt(k_lin m))
+  double frequency_hz;       // omega / (2 pi)
+  double euler_max_dt;       // [s]; 0: no stable step
+  double symplectic_max_dt;  // [s]
+  double game_dt;            // semi-implicit Euler step for the energy error per contact [s]
   OdeErpCfm ode;
   MujocoSolref mujoco;
   MujocoDirect mujoco_direct;
@@ -71,10 +71,9 @@ struct ContactAdvice {
   DrakeContact drake;
   // The check, by simulation (contact_measurement.hpp) and by running the game step:
   double achieved_penetration, achieved_duration, achieved_restitution;
-  double game_energy_error;   // after one contact, worst over 32 entry phases, at game_dt
+  double game_energy_error;  // after one contact, worst over 32 entry phases, at game_dt
 };
 
-std::vector<std::string> advisor_law_names();
 // Throws std::invalid_argument naming the option, the value and the accepted range.
 void validate(const ContactRequest& request);
 ContactAdvice advise(const ContactRequest& request);

@@ -16,16 +16,16 @@ SpringContact measure_isolated_contact(const ContactLaw& law, double m, double V
   const SpringContact undamped = power_law_contact(m, stiffness(law), exponent(law), V);
   const double t_contact = undamped.duration;
   const double h0 = 1e-3 * V * t_contact;
+  const double t_end = h0 / V + 100 * t_contact;
   PenaltyOptions o;
-  o.t_end = h0 / V + 100 * t_contact;
-  o.sample_dt = o.t_end;
   o.integrator.rtol = rtol;
   o.integrator.atol = rtol * 1e-3 * undamped.max_penetration;
   o.integrator.max_steps = 1000000;
-  const RunResult r = run_penalty(BallDrop({m, 0.0, h0, -V, 1.0, law}), o);
+  const RunResult r =
+      run_penalty(BallDrop({m, 0.0, h0, -V, 1.0, law}), o, {.t_end = t_end, .sample_dt = t_end});
   if (!r.ok()) throw std::runtime_error(fmt::format("contact simulation failed: {}", r.message));
   if (r.contacts.empty() || !r.contacts.front().closed())
-    throw std::runtime_error(fmt::format("the contact did not end within {:g} s", o.t_end));
+    throw std::runtime_error(fmt::format("the contact did not end within {:g} s", t_end));
   const auto& c = r.contacts.front();
   return {c.duration(), c.max_penetration, c.v_out};
 }

@@ -13,7 +13,8 @@ namespace contact {
 
 PowerFit fit_power_law(const std::vector<double>& x, const std::vector<double>& y) {
   gsl::report_errors_by_return_code();
-  if (x.size() != y.size() || x.size() < 2) throw std::invalid_argument("fit_power_law: need two or more (x, y) pairs");
+  if (x.size() != y.size() || x.size() < 2)
+    throw std::invalid_argument("fit_power_law: need two or more (x, y) pairs");
   std::vector<double> lx, ly;
   for (std::size_t i = 0; i < x.size(); ++i) {
     if (!(x[i] > 0) || !(y[i] > 0)) throw std::invalid_argument("fit_power_law: x and y must be positive");
@@ -30,7 +31,8 @@ double observed_order(double h_prev, double err_prev, double h, double err) {
   return std::log(err_prev / err) / std::log(h_prev / h);
 }
 
-double fitted_order(const std::vector<double>& h, const std::vector<double>& err, double floor, std::size_t rows) {
+double fitted_order(const std::vector<double>& h, const std::vector<double>& err, double floor,
+                    std::size_t rows) {
   std::vector<double> x, y;
   for (std::size_t i = 0; i < h.size() && i < err.size(); ++i)
     if (err[i] > floor) {
@@ -46,9 +48,11 @@ double fitted_order(const std::vector<double>& h, const std::vector<double>& err
 
 LineFit fit_line(const std::vector<double>& x, const std::vector<double>& y) {
   gsl::report_errors_by_return_code();
-  if (x.size() != y.size() || x.size() < 2) throw std::invalid_argument("fit_line: need two or more (x, y) pairs");
+  if (x.size() != y.size() || x.size() < 2)
+    throw std::invalid_argument("fit_line: need two or more (x, y) pairs");
   for (std::size_t i = 0; i < x.size(); ++i)
-    if (!std::isfinite(x[i]) || !std::isfinite(y[i])) throw std::invalid_argument("fit_line: x and y must be finite");
+    if (!std::isfinite(x[i]) || !std::isfinite(y[i]))
+      throw std::invalid_argument("fit_line: x and y must be finite");
   double c0, c1, cov00, cov01, cov11, sumsq;
   gsl_fit_linear(x.data(), 1, y.data(), 1, x.size(), &c0, &c1, &cov00, &cov01, &cov11, &sumsq);
   return {c1, c0, std::sqrt(cov11)};
@@ -68,7 +72,8 @@ std::vector<double> log_grid(double lo, double hi, long per_decade) {
   // used to round to zero intervals and divide by zero (k = NaN).
   const long n = std::max(1L, std::lround(std::log10(hi / lo) * static_cast<double>(per_decade)));
   std::vector<double> grid;
-  for (long j = 0; j < n; ++j) grid.push_back(lo * std::pow(hi / lo, static_cast<double>(j) / static_cast<double>(n)));
+  for (long j = 0; j < n; ++j)
+    grid.push_back(lo * std::pow(hi / lo, static_cast<double>(j) / static_cast<double>(n)));
   grid.push_back(hi);
   return grid;
 }

@@ -6,9 +6,9 @@
 namespace contact {
 
 struct PowerFit {
-  double exponent;      // p
-  double coefficient;   // C
-  double exponent_sd;   // standard error of p from the fit's covariance
+  double exponent;     // p
+  double coefficient;  // C
+  double exponent_sd;  // standard error of p from the fit's covariance
   double r_squared;
 };
 
@@ -22,7 +22,8 @@ double observed_order(double h_prev, double err_prev, double h, double err);
 // The order fitted (fit_power_law) over the last `rows` points with err > floor: the finest rows
 // of a table ordered coarse to fine, inside the asymptotic range and above rounding. NaN when
 // fewer than two remain.
-double fitted_order(const std::vector<double>& h, const std::vector<double>& err, double floor, std::size_t rows);
+double fitted_order(const std::vector<double>& h, const std::vector<double>& err, double floor,
+                    std::size_t rows);
 
 // Points from lo to hi (0 < lo <= hi), evenly spaced in log, per_decade >= 1 of them per decade
 // (rounded; at least the two ends), the ends exact: lo * (hi/lo)^(j/n). lo == hi gives one point.

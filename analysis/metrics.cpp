@@ -14,7 +14,8 @@ RunMetrics compute_metrics(const RunResult& run) {
   RunMetrics m;
   const double scale = std::abs(run.energy0) > 0 ? std::abs(run.energy0) : 1.0;
   auto rel = [&](double E) { return (E - run.energy0) / scale; };
-  for (const auto& s : run.samples) m.max_energy_error = std::max(m.max_energy_error, std::abs(rel(s.energy)));
+  for (const auto& s : run.samples)
+    m.max_energy_error = std::max(m.max_energy_error, std::abs(rel(s.energy)));
   for (const auto& a : run.apexes) m.max_energy_error = std::max(m.max_energy_error, std::abs(rel(a.energy)));
   for (double d : energy_drifts(run)) m.max_energy_drift = std::max(m.max_energy_drift, std::abs(d));
   m.final_energy_error = run.samples.empty() ? kNaN : rel(run.samples.back().energy);

@@ -8,10 +8,10 @@
 namespace contact {
 
 struct RunMetrics {
-  double max_energy_error = 0;   // max |E - E0| / |E0| over samples and apexes
-  double max_energy_drift = 0;   // max |E0 - E - dissipated| / |E0|: the numerical part
-  double final_energy_error = 0; // (E(t_end) - E0) / |E0|
-  std::size_t contacts = 0;      // contacts begun
+  double max_energy_error = 0;    // max |E - E0| / |E0| over samples and apexes
+  double max_energy_drift = 0;    // max |E0 - E - dissipated| / |E0|: the numerical part
+  double final_energy_error = 0;  // (E(t_end) - E0) / |E0|
+  std::size_t contacts = 0;       // contacts begun
   // First contact (NaN when there is none or it never closed):
   double first_penetration = 0;  // [m]
   double first_duration = 0;     // [s]

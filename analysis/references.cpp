@@ -85,7 +85,9 @@ BallState hooke_ball_state(double m, double k, double h0, double v0, double g, d
   const double V = rigid.V, w = std::sqrt(k / m), s = g / (w * w);
   const double tc = hooke_contact(m, k, V, g).duration;
   const double tau = std::fmod(t - rigid.T1, tc + 2.0 * V / g);
-  if (tau < tc) return {-s + s * std::cos(w * tau) - V / w * std::sin(w * tau), -s * w * std::sin(w * tau) - V * std::cos(w * tau)};
+  if (tau < tc)
+    return {-s + s * std::cos(w * tau) - V / w * std::sin(w * tau),
+            -s * w * std::sin(w * tau) - V * std::cos(w * tau)};
   const double f = tau - tc;  // flight after leaving at speed V
   return {V * f - 0.5 * g * f * f, V - g * f};
 }
@@ -102,8 +104,10 @@ BallState rigid_ball_state(double h0, double v0, double g, double e, double t) {
   // once they are shorter than t's rounding, between the floating-point sum of the impact times
   // and t_inf.
   double n = 0.0;
-  if (e == 1.0) n = std::floor(s / period);
-  else if (e > 0.0) n = std::floor(std::log1p(-s * (1.0 - e) / (period * e)) / std::log(e));
+  if (e == 1.0)
+    n = std::floor(s / period);
+  else if (e > 0.0)
+    n = std::floor(std::log1p(-s * (1.0 - e) / (period * e)) / std::log(e));
   n = std::max(n, 0.0);
   const double en = std::pow(e, n);
   const double start = rigid.T1 + (e == 1.0 ? n * period : period * e * (1.0 - en) / (1.0 - e));

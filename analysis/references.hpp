@@ -22,14 +22,16 @@
 // Kelvin–Voigt contact (unclamped, F = k delta + c delta_dot), no gravity, zeta = c/(2 sqrt(km)) < 1,
 // w_d = w sqrt(1 - zeta^2):  delta(t) = (V/w_d) exp(-zeta w t) sin(w_d t), so
 //   restitution e = exp(-zeta pi / sqrt(1 - zeta^2)),  duration pi / w_d,
-//   max penetration at t_m = atan2(sqrt(1 - zeta^2), zeta) / w_d:  delta_max = (V/w_d) exp(-zeta w t_m) sin(w_d t_m).
+//   max penetration at t_m = atan2(sqrt(1 - zeta^2), zeta) / w_d:  delta_max = (V/w_d) exp(-zeta w t_m)
+//   sin(w_d t_m).
 //
 // Clamped Kelvin–Voigt (F = max(0, k delta + c delta_dot)), no gravity: the same motion until the
 // force reaches zero, k delta + c delta_dot = 0, i.e. with theta = w_d t and zeta = sin(a),
 //   tan(theta) = -2 zeta sqrt(1-zeta^2) / (1 - 2 zeta^2) = -tan(2a)  =>  theta* = pi - 2 asin(zeta).
 // There delta_dot = V exp(-zeta theta*/sqrt(1-zeta^2)) (cos theta* - zeta/sqrt(1-zeta^2) sin theta*)
 // and the bracket is -(cos 2a + 2 sin^2 a) = -1, so the ball leaves force-free at
-//   e_clamped = exp(-zeta (pi - 2 asin zeta) / sqrt(1 - zeta^2)) = e_target exp(2 zeta asin(zeta) / sqrt(1 - zeta^2)),
+//   e_clamped = exp(-zeta (pi - 2 asin zeta) / sqrt(1 - zeta^2)) = e_target exp(2 zeta asin(zeta) / sqrt(1 -
+//   zeta^2)),
 // always above the target the damping was tuned for (e.g. 0.8 -> 0.808, 0.5 -> 0.550, 0.1 -> 0.253).
 // The bodies still overlap there, by delta_r = (V/w_d) e_c exp(...) sin(theta*) = 2 zeta V e_c / w
 // (sin theta* = 2 zeta sqrt(1-zeta^2)), and the contact, which lasts until the overlap closes, ends
@@ -60,7 +62,7 @@ struct RigidBounces {
   double impact_time(std::size_t n) const;  // n = 1, 2, ...
   double apex_height(std::size_t n) const;  // after the n-th impact, n = 1, 2, ...
   double apex_time(std::size_t n) const;
-  double zeno_time() const;                 // +inf for e = 1
+  double zeno_time() const;  // +inf for e = 1
 };
 
 struct SpringContact {

@@ -43,7 +43,8 @@ std::string latex_escape(const std::string& s) {
 
 void Table::add_row(std::vector<Cell> row) {
   if (row.size() != columns_.size())
-    throw std::invalid_argument(fmt::format("table row has {} cells, header has {}", row.size(), columns_.size()));
+    throw std::invalid_argument(
+        fmt::format("table row has {} cells, header has {}", row.size(), columns_.size()));
   rows_.push_back(std::move(row));
 }
 

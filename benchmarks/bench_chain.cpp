@@ -22,8 +22,9 @@ void Chain(benchmark::State& state, LinearSolverKind solver) {
   p.law = Hooke{1e6};
   const BallChain chain(p);
   PenaltyOptions o;
-  o.t_end = kTEnd;
-  o.sample_dt = kTEnd;
+  SolveOptions o_span;
+  o_span.t_end = kTEnd;
+  o_span.sample_dt = kTEnd;
   o.integrator.rtol = 1e-6;
   o.integrator.atol = 1e-10;
   o.integrator.linear_solver = solver;
@@ -32,7 +33,7 @@ void Chain(benchmark::State& state, LinearSolverKind solver) {
   double seconds = 0;
   for (auto _ : state) {
     const auto t0 = std::chrono::steady_clock::now();
-    r = run_penalty(chain, o);
+    r = run_penalty(chain, o, o_span);
     seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
   state.counters["N"] = static_cast<double>(p.n);
@@ -46,10 +47,30 @@ void Chain(benchmark::State& state, LinearSolverKind solver) {
 
 }  // namespace
 
-BENCHMARK_CAPTURE(Chain, dense, LinearSolverKind::Dense)->RangeMultiplier(10)->Range(10, 1000)->Iterations(1)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(Chain, band, LinearSolverKind::Band)->RangeMultiplier(10)->Range(10, 100000)->Iterations(1)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(Chain, klu, LinearSolverKind::Klu)->RangeMultiplier(10)->Range(10, 100000)->Iterations(1)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(Chain, gmres, LinearSolverKind::Gmres)->RangeMultiplier(10)->Range(10, 100000)->Iterations(1)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(Chain, gmres_band, LinearSolverKind::GmresBandPreconditioned)->RangeMultiplier(10)->Range(10, 100000)->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(Chain, dense, LinearSolverKind::Dense)
+    ->RangeMultiplier(10)
+    ->Range(10, 1000)
+    ->Iterations(1)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(Chain, band, LinearSolverKind::Band)
+    ->RangeMultiplier(10)
+    ->Range(10, 100000)
+    ->Iterations(1)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(Chain, klu, LinearSolverKind::Klu)
+    ->RangeMultiplier(10)
+    ->Range(10, 100000)
+    ->Iterations(1)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(Chain, gmres, LinearSolverKind::Gmres)
+    ->RangeMultiplier(10)
+    ->Range(10, 100000)
+    ->Iterations(1)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(Chain, gmres_band, LinearSolverKind::GmresBandPreconditioned)
+    ->RangeMultiplier(10)
+    ->Range(10, 100000)
+    ->Iterations(1)
+    ->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();

@@ -33,31 +33,34 @@ void BallDrop_(benchmark::State& state, const std::string& method) {
   const double k = std::pow(10.0, static_cast<double>(state.range(0)));
   const BallDrop model({1.0, 9.81, 1.0, 0.0, 0.8, kelvin_voigt_for_restitution(k, 1.0, 0.8, false)});
   PenaltyOptions o;
-  o.t_end = 3.0;
-  o.sample_dt = 3.0;  // no dense output: the integration alone
+  SolveOptions o_span;
+  o_span.t_end = 3.0;
+  o_span.sample_dt = 3.0;  // no dense output: the integration alone
   o.integrator.method = method;
   o.integrator.rtol = 1e-6;
   o.integrator.atol = 1e-9;
   o.integrator.max_steps = 100000000;
   if (!integrator_info(method).adaptive) o.integrator.dt = 0.05 / std::sqrt(k);
   RunResult r;
-  for (auto _ : state) r = run_penalty(model, o);
+  for (auto _ : state) r = run_penalty(model, o, o_span);
   report(state, r);
 }
 
 void ApexTarget(benchmark::State& state, const std::string& method) {
   const BallDrop model({1.0, 9.81, 1.0, 0.0, 1.0, Hooke{1e6}});
   PenaltyOptions o;
-  o.t_end = 4.6;  // five bounces of 2 t0 = 0.9 s
-  o.sample_dt = 4.6;
+  SolveOptions o_span;
+  o_span.t_end = 4.6;  // five bounces of 2 t0 = 0.9 s
+  o_span.sample_dt = 4.6;
   o.integrator.method = method;
   o.integrator.rtol = std::pow(10.0, -static_cast<double>(state.range(0)));
   o.integrator.atol = o.integrator.rtol * 1e-2;
   o.integrator.max_steps = 10000000;
   RunResult r;
-  for (auto _ : state) r = run_penalty(model, o);
+  for (auto _ : state) r = run_penalty(model, o, o_span);
   double worst = 0;
-  for (std::size_t n = 0; n < 5 && n < r.apexes.size(); ++n) worst = std::max(worst, std::abs(r.apexes[n].gap - 1.0));
+  for (std::size_t n = 0; n < 5 && n < r.apexes.size(); ++n)
+    worst = std::max(worst, std::abs(r.apexes[n].gap - 1.0));
   report(state, r);
   state.counters["apexes"] = static_cast<double>(r.apexes.size());
   state.counters["apex_error_m"] = worst;
@@ -67,17 +70,19 @@ void ExactBounces(benchmark::State& state) {
   // e = 0.9: about 270 impacts before the rest guard (rest speed 1e-12 m/s) ends the cascade.
   const BallDrop model({1.0, 9.81, 1.0, 0.0, 0.9, Hooke{1e6}});
   EventOptions o;
-  o.t_end = 10.0;
-  o.sample_dt = 10.0;
+  SolveOptions o_span;
+  o_span.t_end = 10.0;
+  o_span.sample_dt = 10.0;
   o.rest_speed = 1e-12;
   long impacts = 0;
   RunResult r;
   for (auto _ : state) {
-    r = run_event_driven(model, model, o);
+    r = run_event_driven(model, model, o, o_span);
     impacts += static_cast<long>(r.contacts.size());
   }
   state.counters["impacts"] = static_cast<double>(r.contacts.size());
-  state.counters["impacts_per_s"] = benchmark::Counter(static_cast<double>(impacts), benchmark::Counter::kIsRate);
+  state.counters["impacts_per_s"] =
+      benchmark::Counter(static_cast<double>(impacts), benchmark::Counter::kIsRate);
 }
 
 void register_all() {
@@ -88,7 +93,9 @@ void register_all() {
     b->DenseRange(2, k_max, 1)->Unit(benchmark::kMillisecond)->Iterations(info.adaptive ? 3 : 1);
     if (info.adaptive) {
       benchmark::RegisterBenchmark(("ApexTarget/" + info.name).c_str(), ApexTarget, info.name)
-          ->DenseRange(8, 12, 2)->Unit(benchmark::kMillisecond)->Iterations(1);
+          ->DenseRange(8, 12, 2)
+          ->Unit(benchmark::kMillisecond)
+          ->Iterations(1);
     }
   }
   benchmark::RegisterBenchmark("ExactBounces", ExactBounces)->Unit(benchmark::kMicrosecond);

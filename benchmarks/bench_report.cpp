@@ -71,27 +71,44 @@ int main(int argc, char** argv) {
   };
 
   fmt::print("# Benchmarks\n\nMachine: {}, {} CPUs at {} MHz; library build: {}; run {}.\n\n", cpu_model(),
-             context.value("num_cpus", 0), context.value("mhz_per_cpu", 0), context.value("library_build_type", "?"),
-             context.value("date", "?"));
+             context.value("num_cpus", 0), context.value("mhz_per_cpu", 0),
+             context.value("library_build_type", "?"), context.value("date", "?"));
 
   // One table per family: variant, argument, time and every counter.
   std::map<std::string, std::vector<const Row*>> families;
   for (const auto& r : rows) families[r.family].push_back(&r);
-  const std::vector<std::string> skip = {"name", "family_index", "per_family_instance_index", "run_name", "run_type",
-                                         "repetitions", "repetition_index", "threads", "iterations", "real_time",
-                                         "cpu_time", "time_unit", "error_occurred", "error_message"};
+  const std::vector<std::string> skip = {"name",
+                                         "family_index",
+                                         "per_family_instance_index",
+                                         "run_name",
+                                         "run_type",
+                                         "repetitions",
+                                         "repetition_index",
+                                         "threads",
+                                         "iterations",
+                                         "real_time",
+                                         "cpu_time",
+                                         "time_unit",
+                                         "error_occurred",
+                                         "error_message"};
   for (const auto& [family, list] : families) {
     std::vector<std::string> counters;
     for (const auto& [k, v] : list.front()->data.items())
       if (std::find(skip.begin(), skip.end(), k) == skip.end()) counters.push_back(k);
-    fmt::print("## {}\n\n| variant | arg | time | {} |\n|---|---|---|{}\n", family, fmt::join(counters, " | "),
-               std::string(counters.size(), ' ') + [&] { std::string s; for (std::size_t i = 0; i < counters.size(); ++i) s += "---|"; return s; }());
+    fmt::print(
+        "## {}\n\n| variant | arg | time | {} |\n|---|---|---|{}\n", family, fmt::join(counters, " | "),
+        std::string(counters.size(), ' ') + [&] {
+          std::string s;
+          for (std::size_t i = 0; i < counters.size(); ++i) s += "---|";
+          return s;
+        }());
     for (const Row* r : list) {
       std::string cells;
       for (const auto& c : counters) cells += fmt::format(" {:.4g} |", num(r->data, c.c_str()));
-      const std::string time = r->data.value("error_occurred", false)
-                                   ? "failed: " + r->data.value("error_message", std::string())
-                                   : fmt::format("{:.4g} {}", num(r->data, "real_time"), r->data.value("time_unit", ""));
+      const std::string time =
+          r->data.value("error_occurred", false)
+              ? "failed: " + r->data.value("error_message", std::string())
+              : fmt::format("{:.4g} {}", num(r->data, "real_time"), r->data.value("time_unit", ""));
       fmt::print("| {} | {} | {} |{}\n", r->variant, r->arg, time, cells);
     }
     fmt::print("\n");
@@ -99,12 +116,15 @@ int main(int argc, char** argv) {
 
   fmt::print("## Targets\n\n");
   // 1. CVODE BDF right-hand sides against SciPy's BDF on the same ball drop.
-  if (const json *lo = find("BallDrop", "cvode-bdf", 2), *hi = find("BallDrop", "cvode-bdf", 8); lo && hi) {
+  if (const json* lo = find("BallDrop", "cvode-bdf", 2), *hi = find("BallDrop", "cvode-bdf", 8); lo && hi) {
     const double a = num(*lo, "rhs_evals"), b = num(*hi, "rhs_evals");
-    fmt::print("- CVODE BDF penalty ball drop, rhs evaluations at k = 1e2 and 1e8: {:.0f} and {:.0f} "
-               "(SciPy BDF, measured elsewhere: 549 and 888): {}\n", a, b, verdict(a < 549 && b < 888));
+    fmt::print(
+        "- CVODE BDF penalty ball drop, rhs evaluations at k = 1e2 and 1e8: {:.0f} and {:.0f} "
+        "(SciPy BDF, measured elsewhere: 549 and 888): {}\n",
+        a, b, verdict(a < 549 && b < 888));
   }
-  if (const json *k3 = find("BallDrop", "cvode-bdf", 3), *k10 = find("BallDrop", "cvode-bdf", 10); k3 && k10) {
+  if (const json* k3 = find("BallDrop", "cvode-bdf", 3), *k10 = find("BallDrop", "cvode-bdf", 10);
+      k3 && k10) {
     const double ratio = num(*k10, "steps_per_contact") / num(*k3, "steps_per_contact");
     fmt::print("- CVODE BDF steps per contact, k = 1e10 over k = 1e3: {:.2f} (target <= 1.5): {}\n", ratio,
                verdict(ratio <= 1.5));
@@ -120,7 +140,8 @@ int main(int argc, char** argv) {
              meets.empty() ? " **not met**" : "");
   if (const json* e = find("ExactBounces", "", 0)) {
     const double rate = num(*e, "impacts_per_s");
-    fmt::print("- event-driven closed form: {:.3g} impacts per second (target >= 1e6): {}\n", rate, verdict(rate >= 1e6));
+    fmt::print("- event-driven closed form: {:.3g} impacts per second (target >= 1e6): {}\n", rate,
+               verdict(rate >= 1e6));
   }
   // 3. The chain: linear growth in N for band and KLU, and the speed-up over dense at N = 1e3.
   for (const char* solver : {"band", "klu"}) {
@@ -132,10 +153,12 @@ int main(int argc, char** argv) {
       }
     if (n.size() >= 2) {
       const double p = contact::fit_power_law(n, t).exponent;
-      fmt::print("- chain, {}: time per simulated second grows as N^{:.2f} from N = 1e3 to 1e5 (target: linear): {}\n",
-                 solver, p, verdict(p < 1.2));
+      fmt::print(
+          "- chain, {}: time per simulated second grows as N^{:.2f} from N = 1e3 to 1e5 (target: linear): "
+          "{}\n",
+          solver, p, verdict(p < 1.2));
     }
-    if (const json *d = find("Chain", "dense", 1000), *s = find("Chain", solver, 1000); d && s) {
+    if (const json* d = find("Chain", "dense", 1000), *s = find("Chain", solver, 1000); d && s) {
       const double speedup = num(*d, "time_per_sim_s") / num(*s, "time_per_sim_s");
       fmt::print("- chain, N = 1e3: {} is {:.0f}x faster than dense (target >= 100x): {}\n", solver, speedup,
                  verdict(speedup >= 100));

@@ -13,13 +13,15 @@
 // apexes.csv, samples.csv, stats.csv, heights.{png,pdf,gp}, meta.json; with --sweep,
 // sweep.{csv,md,tex}, penetration.{png,pdf,gp} (first penetration against k) and meta.json.
 // Exit codes: 0 success, 1 solver failure (status, time reached and message on stderr), 2 bad input.
-#include "process.hpp"
-#include "ball_drop_methods.hpp"
-#include "cli.hpp"
+#include "ball_drop.hpp"
+#include "experiment.hpp"
 #include "figure.hpp"
 #include "fit.hpp"
+#include "law_registry.hpp"
+#include "method_registry.hpp"
 #include "metrics.hpp"
 #include "output.hpp"
+#include "process.hpp"
 #include "progress.hpp"
 #include "references.hpp"
 #include "table.hpp"
@@ -49,7 +51,6 @@ struct Options {
   bool sweep = false;
   double k_min = 1e2, k_max = 1e8;
   long per_decade = 1;
-  std::string out = "results/ball_drop";
 };
 
 // The absolute tolerance scaled to the drop: 1e-10 per metre of its height scale
@@ -62,39 +63,73 @@ double scaled_atol(const Options& o) {
   return 1e-10 * L;
 }
 
-BallDropSettings settings_for(const Options& o, double k) {
-  BallDropSettings s;
-  s.model = {o.m, o.g, o.h0, o.v0, o.e, make_law(o.law, k, o.m, o.e)};
-  s.t_end = o.t_end;
-  s.sample_dt = o.sample_dt;
-  s.dt = o.dt;
-  s.integrator.method = o.integrator;
-  s.integrator.rtol = o.rtol;
-  s.integrator.atol = scaled_atol(o);
-  s.integrator.max_steps = o.max_steps;
-  s.integrator.jacobian = o.jacobian == "dq" ? JacobianMode::DifferenceQuotient : JacobianMode::Analytic;
-  s.integrator.linear_solver = parse_linear_solver(o.linear_solver);
+double impact_speed(const Options& o) { return std::sqrt(o.v0 * o.v0 + 2 * o.g * o.h0); }
+
+ContactLaw law_for(const Options& o, double k) {
+  const double V = impact_speed(o);
+  return make_law(o.law, {.k = k, .m = o.m, .e = o.e, .v = V > 0 ? V : 1.0});
+}
+
+Method method_for(const Options& o, const std::string& name) {
+  Method m{.name = name, .dt = o.dt, .rest_speed = o.rest_speed};
+  m.integrator.method = o.integrator;
+  m.integrator.rtol = o.rtol;
+  m.integrator.atol = scaled_atol(o);
+  m.integrator.max_steps = o.max_steps;
+  m.integrator.jacobian = o.jacobian == "dq" ? JacobianMode::DifferenceQuotient : JacobianMode::Analytic;
+  m.integrator.linear_solver = parse_linear_solver(o.linear_solver);
   // Fixed-step integrators run at --dt; adaptive ones control their own step.
-  s.integrator.dt = integrator_info(o.integrator).adaptive ? 0.0 : o.dt;
-  s.rest_speed = o.rest_speed;
-  s.limits.max_records = o.max_records;
-  return s;
+  m.integrator.dt = integrator_info(o.integrator).adaptive ? 0.0 : o.dt;
+  return m;
+}
+
+RunResult run(const Options& o, const std::string& method, double k) {
+  const BallDrop model({o.m, o.g, o.h0, o.v0, o.e, law_for(o, k)});
+  return solve(model, method_for(o, method),
+               {.t_end = o.t_end, .sample_dt = o.sample_dt, .limits = {.max_records = o.max_records}});
+}
+
+// Every method that can run the ball drop.
+std::vector<std::string> ball_methods() {
+  const BallDrop probe({});
+  std::vector<std::string> names;
+  for (const auto& m : method_registry())
+    if (m.can_run(probe)) names.push_back(m.name);
+  return names;
 }
 
 std::vector<std::string> chosen_methods(const Options& o) {
-  return o.methods == "all" ? ball_drop_method_names() : cli::split_list(o.methods);
+  return o.methods == "all" ? ball_methods() : cli::split_list(o.methods);
 }
 
 // Metric and cost columns shared by the comparison and sweep tables.
-const std::vector<std::string> kMetricColumns = {
-    "status", "contacts", "first_penetration_m", "first_duration_s", "first_restitution",
-    "first_apex_m", "max_energy_change_rel", "energy_drift_rel", "steps", "rhs_evals", "jac_evals", "wall_time_s"};
+const std::vector<std::string> kMetricColumns = {"status",
+                                                 "contacts",
+                                                 "first_penetration_m",
+                                                 "first_duration_s",
+                                                 "first_restitution",
+                                                 "first_apex_m",
+                                                 "max_energy_change_rel",
+                                                 "energy_drift_rel",
+                                                 "steps",
+                                                 "rhs_evals",
+                                                 "jac_evals",
+                                                 "wall_time_s"};
 
 std::vector<Table::Cell> metric_cells(const RunResult& r) {
   const RunMetrics m = compute_metrics(r);
-  return {std::string(to_string(r.status)), static_cast<long>(m.contacts), m.first_penetration,
-          m.first_duration, m.first_restitution, m.first_apex, m.max_energy_error, m.max_energy_drift, r.stats.steps,
-          r.stats.rhs_evals, r.stats.jac_evals, r.stats.wall_time_s};
+  return {std::string(to_string(r.status)),
+          static_cast<long>(m.contacts),
+          m.first_penetration,
+          m.first_duration,
+          m.first_restitution,
+          m.first_apex,
+          m.max_energy_error,
+          m.max_energy_drift,
+          r.stats.steps,
+          r.stats.rhs_evals,
+          r.stats.jac_evals,
+          r.stats.wall_time_s};
 }
 
 void add_run_files(const RunResult& r, Table& contacts, Table& apexes, Table& samples, Table& stats) {
@@ -106,18 +141,19 @@ void add_run_files(const RunResult& r, Table& contacts, Table& apexes, Table& sa
   for (const auto& s : r.samples) samples.add_row({r.method, s.t, s.y[0], s.y[1], s.energy, s.dissipated});
   const auto& st = r.stats;
   stats.add_row({r.method, std::string(to_string(r.status)), r.t_reached, st.steps, st.failed_steps,
-                 st.rhs_evals, st.jac_evals, st.newton_iters, st.linear_setups, st.root_evals,
-                 st.events, st.restarts, st.wall_time_s, r.message});
+                 st.rhs_evals, st.jac_evals, st.newton_iters, st.linear_setups, st.root_evals, st.events,
+                 st.restarts, st.wall_time_s, r.message});
 }
 
 // The first contact in closed form where one exists for the law: Hooke exactly (with gravity),
 // unclamped Kelvin–Voigt in its gravity-free limit (error O(g / (w V))), else NaN.
 SpringContact closed_form_contact(const Options& o, double k) {
   const double nan = std::nan("");
-  const double V = std::sqrt(o.v0 * o.v0 + 2 * o.g * o.h0);
+  const double V = impact_speed(o);
   if (std::isnan(k) || !(V > 0)) return {nan, nan, nan};
   if (o.law == "hooke") return hooke_contact(o.m, k, V, o.g);
-  if (o.law == "kelvin-voigt" && o.e > 0) return kelvin_voigt_contact(o.m, k, damping_ratio_for_restitution(o.e), V);
+  if (o.law == "kelvin-voigt" && o.e > 0)
+    return kelvin_voigt_contact(o.m, k, damping_ratio_for_restitution(o.e), V);
   return {nan, nan, nan};
 }
 
@@ -126,15 +162,17 @@ std::string references(const Options& o) {
   std::string s;
   if (o.g > 0) {
     const RigidBounces rigid(o.h0, o.v0, o.g, o.e);
-    s += fmt::format("rigid (Newton, e = {:g}): first impact {:.6g} s, first apex e^2 h0 = {:.6g} m, Zeno time {:.6g} s\n",
-                     o.e, rigid.T1, rigid.apex_height(1), rigid.zeno_time());
+    s += fmt::format(
+        "rigid (Newton, e = {:g}): first impact {:.6g} s, first apex e^2 h0 = {:.6g} m, Zeno time {:.6g} s\n",
+        o.e, rigid.T1, rigid.apex_height(1), rigid.zeno_time());
   }
   if (o.law == "hooke") s += "closed forms: Hooke spring with gravity (exact); restitution 1\n";
-  if (o.law == "kelvin-voigt") s += "closed forms: Kelvin–Voigt without gravity (error O(g / (omega V))); restitution e\n";
+  if (o.law == "kelvin-voigt")
+    s += "closed forms: Kelvin–Voigt without gravity (error O(g / (omega V))); restitution e\n";
   return s;
 }
 
-int run_single(const Options& o, OutputSet& out) {
+void run_single(const Options& o, OutputSet& out) {
   Table comparison([] {
     std::vector<std::string> c{"method"};
     c.insert(c.end(), kMetricColumns.begin(), kMetricColumns.end());
@@ -152,37 +190,42 @@ int run_single(const Options& o, OutputSet& out) {
   Series heights;
   for (const auto& name : methods) {
     progress.step(name);
-    const RunResult r = run_ball_drop(name, settings_for(o, o.k));
+    const RunResult r = run(o, name, o.k);
     std::string rows;
     for (const auto& smp : r.samples) rows += fmt::format("{},{}\n", smp.t, smp.y[0]);
     heights.add(rows, fmt::format("using 1:2 with lines title '{}'", name));
     if (!r.ok()) {
       ++failures;
-      std::cerr << fmt::format("ball_drop: {} failed: {} at t = {:.9g} s: {}\n", name,
-                               to_string(r.status), r.t_reached, r.message);
+      std::cerr << fmt::format("ball_drop: {} failed: {} at t = {:.9g} s: {}\n", name, to_string(r.status),
+                               r.t_reached, r.message);
     }
     std::vector<Table::Cell> row{name};
     for (auto& c : metric_cells(r)) row.push_back(std::move(c));
     comparison.add_row(std::move(row));
     add_run_files(r, contacts, apexes, samples, stats);
   }
-  fmt::print("Ball drop: m = {:g} kg, g = {:g} m/s^2, h0 = {:g} m, v0 = {:g} m/s, e = {:g}, law {}, dt = {:g} s, rtol = {:g}, atol = {:g}, t_end = {:g} s\n\n",
-             o.m, o.g, o.h0, o.v0, o.e, describe(make_law(o.law, o.k, o.m, o.e)), o.dt, o.rtol, scaled_atol(o), o.t_end);
+  fmt::print(
+      "Ball drop: m = {:g} kg, g = {:g} m/s^2, h0 = {:g} m, v0 = {:g} m/s, e = {:g}, law {}, dt = {:g} s, "
+      "rtol = {:g}, atol = {:g}, t_end = {:g} s\n\n",
+      o.m, o.g, o.h0, o.v0, o.e, describe(law_for(o, o.k)), o.dt, o.rtol, scaled_atol(o), o.t_end);
   fmt::print("{}\n{}", comparison.to_markdown(), references(o));
   if (const SpringContact c = closed_form_contact(o, o.k); !std::isnan(c.duration))
     fmt::print("closed-form first contact at k = {:g}: duration {:.6g} s, max penetration {:.6g} m\n", o.k,
                c.duration, c.max_penetration);
-  if (failures > 0) return cli::kExitFailure;
+  if (failures > 0)
+    throw std::runtime_error(fmt::format("{} of {} methods failed", failures, methods.size()));
   out.add_table("comparison", comparison);
   out.add("contacts.csv", contacts.to_csv());
   out.add("apexes.csv", apexes.to_csv());
   out.add("samples.csv", samples.to_csv());
   out.add("stats.csv", stats.to_csv());
-  render({"heights", heights.data(), "set xlabel 't [s]'\nset ylabel 'height [m]'\nset key outside below\nset grid\nplot " + heights.plot()}, out);
-  return 0;
+  render({"heights", heights.data(),
+          "set xlabel 't [s]'\nset ylabel 'height [m]'\nset key outside below\nset grid\nplot " +
+              heights.plot()},
+         out);
 }
 
-int run_sweep(const Options& o, OutputSet& out) {
+void run_sweep(const Options& o, OutputSet& out) {
   const std::vector<double> ks = log_grid(o.k_min, o.k_max, o.per_decade);
 
   std::vector<std::string> columns{"k_N_per_m", "method", "omega_dt", "closed_form_penetration_m",
@@ -191,22 +234,22 @@ int run_sweep(const Options& o, OutputSet& out) {
   Table sweep(columns);
   std::vector<std::pair<double, MethodInfo>> runs;
   for (double k : ks)
-    for (const auto& m : ball_drop_methods())
-      if (m.uses_stiffness) runs.emplace_back(k, m);
-  for (const auto& m : ball_drop_methods())
-    if (!m.uses_stiffness) runs.emplace_back(std::nan(""), m);
+    for (const auto& name : ball_methods())
+      if (method_info(name).uses_contact_law) runs.emplace_back(k, method_info(name));
+  for (const auto& name : ball_methods())
+    if (!method_info(name).uses_contact_law) runs.emplace_back(std::nan(""), method_info(name));
 
   Progress progress("ball_drop sweep", runs.size());
   std::map<std::string, std::string> penetration;  // method -> "k,first penetration,closed form" lines
   for (const auto& [k, m] : runs) {
     progress.step(fmt::format("k = {:g}, {}", k, m.name));
-    const RunResult r = run_ball_drop(m.name, settings_for(o, std::isnan(k) ? o.k : k));
+    const RunResult r = run(o, m.name, std::isnan(k) ? o.k : k);
     // A sweep charts where methods break, so a failed run is a row, not the end of the sweep;
     // but it is said, on stderr, with its status, time and message.
     if (!r.ok())
-      std::cerr << fmt::format("ball_drop: sweep: k = {:g}, {}: {} at t = {:.9g} s: {}\n", k, m.name, to_string(r.status),
-                               r.t_reached, r.message);
-    const bool game = m.name.rfind("game", 0) == 0;
+      std::cerr << fmt::format("ball_drop: sweep: k = {:g}, {}: {} at t = {:.9g} s: {}\n", k, m.name,
+                               to_string(r.status), r.t_reached, r.message);
+    const bool game = m.fixed_step;
     const SpringContact ref = closed_form_contact(o, k);
     std::vector<Table::Cell> row{std::isnan(k) ? Table::Cell(std::string("any")) : Table::Cell(k), m.name,
                                  game && !std::isnan(k) ? std::sqrt(k / o.m) * o.dt : std::nan(""),
@@ -214,94 +257,83 @@ int run_sweep(const Options& o, OutputSet& out) {
     for (auto& c : metric_cells(r)) row.push_back(std::move(c));
     sweep.add_row(std::move(row));
     if (!std::isnan(k) && !r.contacts.empty())
-      penetration[m.name] += fmt::format("{},{},{}\n", k, r.contacts.front().max_penetration, ref.max_penetration);
+      penetration[m.name] +=
+          fmt::format("{},{},{}\n", k, r.contacts.front().max_penetration, ref.max_penetration);
   }
   Series series;
-  for (const auto& [name, rows] : penetration) series.add(rows, fmt::format("using 1:2 with points title '{}'", name));
+  for (const auto& [name, rows] : penetration)
+    series.add(rows, fmt::format("using 1:2 with points title '{}'", name));
   if (!series.empty())
     render({"penetration", series.data(),
             "set logscale xy\nset format x '10^{%L}'\nset format y '10^{%L}'\nset xlabel 'k [N/m]'\n"
             "set ylabel 'first penetration [m]'\nset key bottom left\nset grid\nplot " +
                 series.plot() + ", 'data.csv' index 0 using 1:3 with lines lc black title 'closed form'"},
            out);
-  fmt::print("Ball drop, k sweep: law {}, e = {:g}, dt = {:g} s, rtol = {:g}, atol = {:g}, t_end = {:g} s\n\n",
-             o.law, o.e, o.dt, o.rtol, scaled_atol(o), o.t_end);
+  fmt::print(
+      "Ball drop, k sweep: law {}, e = {:g}, dt = {:g} s, rtol = {:g}, atol = {:g}, t_end = {:g} s\n\n",
+      o.law, o.e, o.dt, o.rtol, scaled_atol(o), o.t_end);
   fmt::print("{}\n{}", sweep.to_markdown(), references(o));
   out.add_table("sweep", sweep);
-  return 0;
 }
 
 }  // namespace
 
 int program(int argc, char** argv) {
   Options o;
-  CLI::App app{"The ball drop resolved three ways: penalty springs under CVODE, game-style "
-               "fixed-step integration, event-driven impulses.", "ball_drop"};
-  app.option_defaults()->always_capture_default();
-  std::vector<std::string> method_names = ball_drop_method_names();
-  method_names.insert(method_names.begin(), "all");
+  Experiment app("ball_drop",
+                 "The ball drop resolved three ways: penalty springs under CVODE, game-style "
+                 "fixed-step integration, event-driven impulses.",
+                 "results/ball_drop");
+  std::vector<std::string> method_names = ball_methods();
   std::string method_help = "methods to run, comma-separated or 'all':";
-  for (const auto& m : ball_drop_methods()) method_help += fmt::format("\n  {:<24}{}", m.name, m.description);
-  app.add_option("--method", o.methods, method_help)->check(cli::one_of(method_names, true));
-  app.add_option("--law", o.law, "penalty contact law (Kelvin–Voigt damping tuned to --e; Hooke is undamped)")
-      ->check(cli::one_of(law_names()));
-  app.add_option("--k", o.k, "contact stiffness [N/m]")->check(cli::positive());
-  app.add_option("--e", o.e, "coefficient of restitution")->check(cli::real_in(0, 1, false, false));
-  app.add_option("--m", o.m, "ball mass [kg]")->check(cli::positive());
-  app.add_option("--g", o.g, "gravity [m/s^2]")->check(cli::non_negative());
-  app.add_option("--h0", o.h0, "initial height [m]")->check(cli::positive());
-  app.add_option("--v0", o.v0, "initial vertical velocity [m/s], negative downwards")->check(cli::finite());
-  app.add_option("--dt", o.dt, "fixed step of the game methods [s]")->check(cli::positive());
-  app.add_option("--rtol", o.rtol, "relative tolerance of adaptive integrators")->check(cli::real_in(0, 1, true, true));
-  app.add_option("--atol", o.atol, "absolute tolerance of adaptive integrators [m, m/s]; 0: 1e-10 per metre of the drop's height scale h0 + v0^2/(2g)")->check(cli::non_negative());
-  app.add_option("--t-end", o.t_end, "final time [s]")->check(cli::positive());
-  app.add_option("--sample-dt", o.sample_dt, "spacing of samples.csv [s]")->check(cli::positive());
-  app.add_option("--integrator", o.integrator, "ODE integrator of the penalty and event-ode methods")
-      ->check(cli::one_of(integrator_names()));
-  app.add_option("--linear-solver", o.linear_solver, "linear solver of implicit SUNDIALS integrators")
-      ->check(cli::one_of(linear_solver_names()));
-  app.add_option("--jacobian", o.jacobian, "Jacobian of implicit integrators (penalty-dq always uses dq)")
-      ->check(cli::one_of({"analytic", "dq"}));
-  app.add_option("--max-steps", o.max_steps, "integrator steps allowed between outputs")->check(cli::integer_at_least(1));
-  app.add_option("--max-records", o.max_records,
-                 "contact records and apexes a run may keep before it fails (a game ball in a bouncing limit "
-                 "cycle adds two every ~14 ms)")
-      ->check(cli::integer_in(1, 100'000'000));
-  app.add_option("--rest-speed", o.rest_speed, "event-driven: outgoing speed below which the ball rests [m/s]")
-      ->check(cli::positive());
+  for (const auto& m : method_names)
+    method_help += fmt::format("\n  {:<28}{}", m, method_info(m).description);
+  method_names.insert(method_names.begin(), "all");
+  app.add("--method", o.methods, method_help, cli::one_of(method_names, true));
+  app.add("--law", o.law, "penalty contact law (damping tuned to --e at the impact speed; Hooke is undamped)",
+          cli::one_of(law_names()));
+  app.add("--k", o.k, "contact stiffness [N/m]", cli::positive());
+  app.add("--e", o.e, "coefficient of restitution", cli::real_in(0, 1, false, false));
+  app.add("--m", o.m, "ball mass [kg]", cli::positive());
+  app.add("--g", o.g, "gravity [m/s^2]", cli::non_negative());
+  app.add("--h0", o.h0, "initial height [m]", cli::positive());
+  app.add("--v0", o.v0, "initial vertical velocity [m/s], negative downwards", cli::finite());
+  app.add("--dt", o.dt, "fixed step of the game methods [s]", cli::positive());
+  app.add("--rtol", o.rtol, "relative tolerance of adaptive integrators", cli::real_in(0, 1, true, true));
+  app.add("--atol", o.atol,
+          "absolute tolerance of adaptive integrators [m, m/s]; 0: 1e-10 per metre of the drop's height "
+          "scale h0 + v0^2/(2g)",
+          cli::non_negative());
+  app.add("--t-end", o.t_end, "final time [s]", cli::positive());
+  app.add("--sample-dt", o.sample_dt, "spacing of samples.csv [s]", cli::positive());
+  app.add("--integrator", o.integrator, "ODE integrator of the penalty and event-ode methods",
+          cli::one_of(integrator_names()));
+  app.add("--linear-solver", o.linear_solver, "linear solver of implicit SUNDIALS integrators",
+          cli::one_of(linear_solver_names()));
+  app.add("--jacobian", o.jacobian, "Jacobian of implicit integrators (penalty-dq always uses dq)",
+          cli::one_of({"analytic", "dq"}));
+  app.add("--max-steps", o.max_steps, "integrator steps allowed between outputs", cli::integer_at_least(1));
+  app.add("--max-records", o.max_records,
+          "contact records and apexes a run may keep before it fails (a game ball in a bouncing limit "
+          "cycle adds two every ~14 ms)",
+          cli::integer_in(1, 100'000'000));
+  app.add("--rest-speed", o.rest_speed, "event-driven: outgoing speed below which the ball rests [m/s]",
+          cli::positive());
   app.add_flag("--sweep", o.sweep, "run every method for k from --k-min to --k-max and print one table");
-  app.add_option("--k-min", o.k_min, "sweep: smallest k [N/m]")->check(cli::positive());
-  app.add_option("--k-max", o.k_max, "sweep: largest k [N/m]")->check(cli::positive());
-  app.add_option("--per-decade", o.per_decade, "sweep: points per decade of k")->check(cli::integer_at_least(1));
-  app.add_option("--out", o.out, "output directory");
+  app.add("--k-min", o.k_min, "sweep: smallest k [N/m]", cli::positive());
+  app.add("--k-max", o.k_max, "sweep: largest k [N/m]", cli::positive());
+  app.add("--per-decade", o.per_decade, "sweep: points per decade of k", cli::integer_at_least(1));
 
-  if (const int code = cli::parse(app, argc, argv); code >= 0) return code;
-  if (o.sweep && !(o.k_max >= o.k_min)) {
-    std::cerr << fmt::format("ball_drop: --k-max: value '{:g}' is below --k-min = {:g}; accepted range [k-min, inf)\n", o.k_max, o.k_min);
-    return cli::kExitBadInput;
-  }
-  if (const auto err = check_output_dir(o.out); !err.empty()) {
-    std::cerr << "ball_drop: " << err << "\n";
-    return cli::kExitBadInput;
-  }
-  try {
-    validate(settings_for(o, o.k).integrator);
-  } catch (const std::invalid_argument& e) {
-    std::cerr << "ball_drop: " << e.what() << "\n";
-    return cli::kExitBadInput;
-  }
-
-  const auto start = std::chrono::steady_clock::now();
-  OutputSet out;
-  int code = 0;
-  try {
-    code = o.sweep ? run_sweep(o, out) : run_single(o, out);
-  } catch (const std::exception& ex) {  // the figures: gnuplot missing or failing
-    std::cerr << "ball_drop: " << ex.what() << "\n";
-    return cli::kExitFailure;
-  }
-  if (code != 0) return code;
-  return write_outputs(out, app, argc, argv, start, o.out);
+  return app.run(argc, argv, [&](OutputSet& files) {
+    if (o.sweep && !(o.k_max >= o.k_min))
+      throw std::invalid_argument(fmt::format(
+          "--k-max: value '{:g}' is below --k-min = {:g}; accepted range [k-min, inf)", o.k_max, o.k_min));
+    validate(method_for(o, "penalty").integrator);
+    if (o.sweep)
+      run_sweep(o, files);
+    else
+      run_single(o, files);
+  });
 }
 
 int main(int argc, char** argv) { return contact::guarded_main("ball_drop", argc, argv, program); }

@@ -1,10 +1,12 @@
 #pragma once
-// Command-line helpers shared by every experiment (CLI11).
+// Command-line options for every executable, without CLI11 in the header (it costs most of an
+// experiment's compile time; only cli.cpp includes it).
 // Contract: --help lists each option with its default and accepted range; bad input prints one
 // line naming the option, the value given and the accepted range, and exits with code 2 before
 // anything is written.
-#include <CLI/CLI.hpp>
-
+#include <cmath>
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -13,28 +15,62 @@ namespace contact::cli {
 inline constexpr int kExitBadInput = 2;
 inline constexpr int kExitFailure = 1;
 
+// A check of one value as typed: `description` is shown in --help; `error` returns "" when the
+// value is accepted, else the message (naming the value and what is accepted).
+struct Check {
+  std::string description;
+  std::function<std::string(const std::string&)> error;
+};
+
 // A real number in an interval; `lo_open`/`hi_open` exclude the ends. Rejects NaN, infinities
 // and text that is not entirely a number.
-CLI::Validator real_in(double lo, double hi, bool lo_open, bool hi_open);
-inline CLI::Validator positive() { return real_in(0, HUGE_VAL, true, true); }
-inline CLI::Validator non_negative() { return real_in(0, HUGE_VAL, false, true); }
-inline CLI::Validator finite() { return real_in(-HUGE_VAL, HUGE_VAL, true, true); }
+Check real_in(double lo, double hi, bool lo_open, bool hi_open);
+inline Check positive() { return real_in(0, HUGE_VAL, true, true); }
+inline Check non_negative() { return real_in(0, HUGE_VAL, false, true); }
+inline Check finite() { return real_in(-HUGE_VAL, HUGE_VAL, true, true); }
 // A whole number >= lo (and <= hi).
-CLI::Validator integer_at_least(long lo);
-CLI::Validator integer_in(long lo, long hi);
+Check integer_at_least(long lo);
+Check integer_in(long lo, long hi);
 // One of the names, or a comma-separated list of them when `list` is set.
-CLI::Validator one_of(std::vector<std::string> names, bool list = false);
+Check one_of(std::vector<std::string> names, bool list = false);
+Check existing_file();
+Check existing_folder();
 
-// Parses argv. Returns -1 to go on, or the exit code to return: 0 after --help, 2 after an
-// error (its one-line message already printed on stderr).
-int parse(CLI::App& app, int argc, char** argv);
-
-// Splits "a,b,c", keeping empty items ("a,,b" and "a," have one), so that validators refuse them.
+// Splits "a,b,c", keeping empty items ("a,,b" and "a," have one), so that checks refuse them.
 std::vector<std::string> split_list(const std::string& s);
 
-// A comma-separated list of reals, each checked by `item`; an empty item is refused with the
-// option's name. (CLI11's own delimiter drops empty items silently.)
-CLI::Option* add_real_list(CLI::App& app, const std::string& name, std::vector<double>& values,
-                           const std::string& help, const CLI::Validator& item);
+// The options of one program. Values are bound to the caller's variables, whose values at
+// declaration are the defaults --help shows.
+class Options {
+ public:
+  Options(std::string program, std::string description);
+  ~Options();
+  Options(const Options&) = delete;
+  Options& operator=(const Options&) = delete;
+
+  void add(const std::string& flag, double& value, const std::string& help, const Check& check = {});
+  void add(const std::string& flag, long& value, const std::string& help, const Check& check = {});
+  void add(const std::string& flag, std::string& value, const std::string& help, const Check& check = {});
+  // Exactly `count` values after the flag, each checked (e.g. --half-extents 0.3 0.2 0.1).
+  void add(const std::string& flag, std::vector<double>& values, std::size_t count, const std::string& help,
+           const Check& each);
+  // A comma-separated list of reals, each checked; an empty item is refused with the option's name.
+  void add_list(const std::string& flag, std::vector<double>& values, const std::string& help,
+                const Check& each);
+  void add_flag(const std::string& flag, bool& value, const std::string& help);
+
+  // Parses argv. Returns -1 to go on, or the exit code to return: 0 after --help, 2 after an
+  // error (its one-line message already printed on stderr).
+  int parse(int argc, char** argv);
+  bool given(const std::string& flag) const;
+  const std::string& program() const { return program_; }
+  // Every option with its value as given or its default, as JSON text ({"name": value, ...}).
+  std::string values_json() const;
+
+ private:
+  struct Impl;
+  std::string program_;
+  std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace contact::cli

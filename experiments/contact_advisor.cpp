@@ -7,10 +7,11 @@
 // Derivations: analysis/contact_advisor.hpp and models/engine_conventions.hpp.
 // Outputs in --out (default results/contact_advisor): advice.{csv,md,tex}, meta.json.
 // Exit codes: 0 success, 1 the check's simulation failed, 2 bad input.
-#include "process.hpp"
-#include "cli.hpp"
 #include "contact_advisor.hpp"
+#include "experiment.hpp"
+#include "law_registry.hpp"
 #include "output.hpp"
+#include "process.hpp"
 #include "table.hpp"
 
 #include <fmt/format.h>
@@ -23,89 +24,75 @@ using namespace contact;
 int program(int argc, char** argv) {
   ContactRequest r;
   double max_penetration = 0, duration = 0, radius = 0, young = 0, poisson = 0;
-  std::string rule = "lankarani-nikravesh", out = "results/contact_advisor";
-  CLI::App app{"Contact parameters and steps for a required penetration or duration and restitution, "
-               "in this project's laws and in popular engines' conventions.", "contact_advisor"};
-  app.option_defaults()->always_capture_default();
-  app.add_option("--m", r.m, "effective mass of the contact [kg]")->check(cli::positive());
-  app.add_option("--v", r.v, "impact speed [m/s]")->check(cli::positive());
-  app.add_option("--e", r.e, "target coefficient of restitution")->check(cli::real_in(0, 1, false, false));
-  auto* pen = app.add_option("--max-penetration", max_penetration, "required maximum penetration [m]")->check(cli::positive());
-  auto* dur = app.add_option("--duration", duration, "required contact duration [s]")->check(cli::positive());
-  app.add_option("--law", r.law, "contact law")->check(cli::one_of(advisor_law_names()));
-  app.add_option("--rule", rule, "damping rule of the Hunt-Crossley laws")
-      ->check(cli::one_of({"hunt-crossley", "lankarani-nikravesh", "flores", "gonthier"}));
-  auto* rad = app.add_option("--radius", radius, "hertz from a material: sphere radius [m]")->check(cli::positive());
-  auto* yng = app.add_option("--young", young, "hertz from a material: Young's modulus [Pa]")->check(cli::positive());
-  auto* poi = app.add_option("--poisson", poisson, "hertz from a material: Poisson ratio")
-                  ->check(cli::real_in(-1, 0.5, true, true));
-  app.add_option("--energy-error", r.energy_error, "energy error per contact the game step may cost")
-      ->check(cli::real_in(0, 1, true, true));
-  app.add_option("--engine-step", r.engine_step, "engine time step for ERP and CFM [s]")->check(cli::positive());
-  app.add_option("--g", r.g, "gravity for Drake's penetration allowance [m/s^2]")->check(cli::positive());
-  app.add_option("--out", out, "output directory");
-  if (const int code = cli::parse(app, argc, argv); code >= 0) return code;
-  if (pen->count()) r.max_penetration = max_penetration;
-  if (dur->count()) r.duration = duration;
-  if (rad->count()) r.radius = radius;
-  if (yng->count()) r.young = young;
-  if (poi->count()) r.poisson = poisson;
-  for (auto k : {DampingRule::HuntCrossley, DampingRule::LankaraniNikravesh, DampingRule::Flores, DampingRule::Gonthier})
-    if (to_string(k) == rule) r.rule = k;
-  try {
+  std::string rule = "lankarani-nikravesh";
+  Experiment app("contact_advisor",
+                 "Contact parameters and steps for a required penetration or duration and restitution, "
+                 "in this project's laws and in popular engines' conventions.",
+                 "results/contact_advisor");
+  app.add("--m", r.m, "effective mass of the contact [kg]", cli::positive());
+  app.add("--v", r.v, "impact speed [m/s]", cli::positive());
+  app.add("--e", r.e, "target coefficient of restitution", cli::real_in(0, 1, false, false));
+  app.add("--max-penetration", max_penetration, "required maximum penetration [m]", cli::positive());
+  app.add("--duration", duration, "required contact duration [s]", cli::positive());
+  app.add("--law", r.law, "contact law", cli::one_of(law_names()));
+  app.add("--rule", rule, "damping rule of the Hunt-Crossley laws",
+          cli::one_of({"hunt-crossley", "lankarani-nikravesh", "flores", "gonthier"}));
+  app.add("--radius", radius, "hertz from a material: sphere radius [m]", cli::positive());
+  app.add("--young", young, "hertz from a material: Young's modulus [Pa]", cli::positive());
+  app.add("--poisson", poisson, "hertz from a material: Poisson ratio", cli::real_in(-1, 0.5, true, true));
+  app.add("--energy-error", r.energy_error, "energy error per contact the game step may cost",
+          cli::real_in(0, 1, true, true));
+  app.add("--engine-step", r.engine_step, "engine time step for ERP and CFM [s]", cli::positive());
+  app.add("--g", r.g, "gravity for Drake's penetration allowance [m/s^2]", cli::positive());
+  return app.run(argc, argv, [&](OutputSet& files) {
+    if (app.given("--max-penetration")) r.max_penetration = max_penetration;
+    if (app.given("--duration")) r.duration = duration;
+    if (app.given("--radius")) r.radius = radius;
+    if (app.given("--young")) r.young = young;
+    if (app.given("--poisson")) r.poisson = poisson;
+    for (auto k : {DampingRule::HuntCrossley, DampingRule::LankaraniNikravesh, DampingRule::Flores,
+                   DampingRule::Gonthier})
+      if (to_string(k) == rule) r.rule = k;
     validate(r);
-  } catch (const std::invalid_argument& e) {
-    std::cerr << "contact_advisor: " << e.what() << "\n";
-    return cli::kExitBadInput;
-  }
-  if (const auto err = check_output_dir(out); !err.empty()) {
-    std::cerr << "contact_advisor: " << err << "\n";
-    return cli::kExitBadInput;
-  }
-
-  const auto start = std::chrono::steady_clock::now();
-  ContactAdvice a;
-  try {
-    a = advise(r);
-  } catch (const std::exception& e) {
-    std::cerr << "contact_advisor: " << e.what() << "\n";
-    return cli::kExitFailure;
-  }
-  const double nan = std::nan("");
-  Table t({"quantity", "value", "unit", "note"});
-  auto row = [&](const std::string& q, double v, const std::string& unit, const std::string& note = "") {
-    t.add_row({q, v, unit, note});
-  };
-  t.add_row({"law", nan, "", describe(a.law)});
-  row("k_lin", a.k_lin, "N/m", "stiffness, linearised at the maximum penetration");
-  row("c_lin", a.c_lin, "N s/m", "damping, linearised at the maximum penetration");
-  row("omega", a.omega, "rad/s", "contact frequency sqrt(k/m)");
-  row("frequency", a.frequency_hz, "Hz", "");
-  row("zeta", a.zeta, "", "damping ratio");
-  row("euler_max_dt", a.euler_max_dt, "s", "largest stable explicit Euler step (0: none)");
-  row("symplectic_max_dt", a.symplectic_max_dt, "s", "largest stable semi-implicit Euler step");
-  row("game_dt", a.game_dt, "s", fmt::format("semi-implicit Euler step for an energy error of {:g} per contact", r.energy_error));
-  row("ode_erp", a.ode.erp, "", fmt::format("ODE/Bullet at step {:g} s", r.engine_step));
-  row("ode_cfm", a.ode.cfm, "m/(N s)", fmt::format("ODE/Bullet at step {:g} s", r.engine_step));
-  row("mujoco_timeconst", a.mujoco.timeconst, "s", "solref[0], impedance 1");
-  row("mujoco_dampratio", a.mujoco.dampratio, "", "solref[1]");
-  row("mujoco_stiffness", a.mujoco_direct.stiffness, "1/s^2", "solref = (-stiffness, -damping)");
-  row("mujoco_damping", a.mujoco_direct.damping, "1/s", "");
-  row("box2d_hertz", a.box2d.hertz, "Hz", "contact hertz");
-  row("box2d_damping_ratio", a.box2d.damping_ratio, "", "");
-  row("drake_penetration_allowance", a.drake.penetration_allowance, "m", fmt::format("at g = {:g} m/s^2", r.g));
-  row("drake_dissipation", a.drake.dissipation, "s/m", "Hunt-Crossley d Drake derives from it");
-  row("requested_penetration", r.max_penetration.value_or(nan), "m", "");
-  row("achieved_penetration", a.achieved_penetration, "m", "simulated");
-  row("requested_duration", r.duration.value_or(nan), "s", "");
-  row("achieved_duration", a.achieved_duration, "s", "simulated");
-  row("requested_restitution", r.e, "", "");
-  row("achieved_restitution", a.achieved_restitution, "", "simulated");
-  row("game_energy_error", a.game_energy_error, "", "simulated after one contact at game_dt, worst of 32 entry phases");
-  fmt::print("Contact advice: m = {:g} kg, v = {:g} m/s, e = {:g}, law {}\n\n{}", r.m, r.v, r.e, r.law, t.to_markdown(6));
-  OutputSet files;
-  files.add_table("advice", t);
-  return write_outputs(files, app, argc, argv, start, out);
+    const ContactAdvice a = advise(r);
+    const double nan = std::nan("");
+    Table t({"quantity", "value", "unit", "note"});
+    auto row = [&](const std::string& q, double v, const std::string& unit, const std::string& note = "") {
+      t.add_row({q, v, unit, note});
+    };
+    t.add_row({"law", nan, "", describe(a.law)});
+    row("k_lin", a.k_lin, "N/m", "stiffness, linearised at the maximum penetration");
+    row("c_lin", a.c_lin, "N s/m", "damping, linearised at the maximum penetration");
+    row("omega", a.omega, "rad/s", "contact frequency sqrt(k/m)");
+    row("frequency", a.frequency_hz, "Hz", "");
+    row("zeta", a.zeta, "", "damping ratio");
+    row("euler_max_dt", a.euler_max_dt, "s", "largest stable explicit Euler step (0: none)");
+    row("symplectic_max_dt", a.symplectic_max_dt, "s", "largest stable semi-implicit Euler step");
+    row("game_dt", a.game_dt, "s",
+        fmt::format("semi-implicit Euler step for an energy error of {:g} per contact", r.energy_error));
+    row("ode_erp", a.ode.erp, "", fmt::format("ODE/Bullet at step {:g} s", r.engine_step));
+    row("ode_cfm", a.ode.cfm, "m/(N s)", fmt::format("ODE/Bullet at step {:g} s", r.engine_step));
+    row("mujoco_timeconst", a.mujoco.timeconst, "s", "solref[0], impedance 1");
+    row("mujoco_dampratio", a.mujoco.dampratio, "", "solref[1]");
+    row("mujoco_stiffness", a.mujoco_direct.stiffness, "1/s^2", "solref = (-stiffness, -damping)");
+    row("mujoco_damping", a.mujoco_direct.damping, "1/s", "");
+    row("box2d_hertz", a.box2d.hertz, "Hz", "contact hertz");
+    row("box2d_damping_ratio", a.box2d.damping_ratio, "", "");
+    row("drake_penetration_allowance", a.drake.penetration_allowance, "m",
+        fmt::format("at g = {:g} m/s^2", r.g));
+    row("drake_dissipation", a.drake.dissipation, "s/m", "Hunt-Crossley d Drake derives from it");
+    row("requested_penetration", r.max_penetration.value_or(nan), "m", "");
+    row("achieved_penetration", a.achieved_penetration, "m", "simulated");
+    row("requested_duration", r.duration.value_or(nan), "s", "");
+    row("achieved_duration", a.achieved_duration, "s", "simulated");
+    row("requested_restitution", r.e, "", "");
+    row("achieved_restitution", a.achieved_restitution, "", "simulated");
+    row("game_energy_error", a.game_energy_error, "",
+        "simulated after one contact at game_dt, worst of 32 entry phases");
+    fmt::print("Contact advice: m = {:g} kg, v = {:g} m/s, e = {:g}, law {}\n\n{}", r.m, r.v, r.e, r.law,
+               t.to_markdown(6));
+    files.add_table("advice", t);
+  });
 }
 
 int main(int argc, char** argv) { return contact::guarded_main("contact_advisor", argc, argv, program); }

@@ -7,11 +7,11 @@
 // depend on K or V for these laws (dimensional analysis: e depends on chi V and n only).
 // Outputs in --out (default results/contact_laws): restitution.{csv,md,tex},
 // restitution.{png,pdf,gp}, meta.json. Exit codes: 0, 1 simulation failure, 2 bad input.
-#include "process.hpp"
-#include "cli.hpp"
 #include "contact_measurement.hpp"
+#include "experiment.hpp"
 #include "figure.hpp"
 #include "output.hpp"
+#include "process.hpp"
 #include "progress.hpp"
 #include "table.hpp"
 
@@ -34,72 +34,65 @@ struct LawCase {
 int program(int argc, char** argv) {
   double m = 1.0, v = 1.0, depth = 1e-3;
   long points = 10;
-  std::string out = "results/contact_laws";
-  CLI::App app{"Restitution each contact law achieves against the target it was tuned for.", "contact_laws"};
-  app.option_defaults()->always_capture_default();
-  app.add_option("--m", m, "mass [kg]")->check(cli::positive());
-  app.add_option("--v", v, "impact speed [m/s]")->check(cli::positive());
-  app.add_option("--depth", depth, "undamped penetration the stiffness is chosen for [m]")->check(cli::positive());
-  app.add_option("--points", points, "target restitutions, evenly spaced in (0, 1]")->check(cli::integer_at_least(2));
-  app.add_option("--out", out, "output directory");
-  if (const int code = cli::parse(app, argc, argv); code >= 0) return code;
-  if (const auto err = check_output_dir(out); !err.empty()) {
-    std::cerr << "contact_laws: " << err << "\n";
-    return cli::kExitBadInput;
-  }
-  const auto start = std::chrono::steady_clock::now();
+  Experiment app("contact_laws", "Restitution each contact law achieves against the target it was tuned for.",
+                 "results/contact_laws");
+  app.add("--m", m, "mass [kg]", cli::positive());
+  app.add("--v", v, "impact speed [m/s]", cli::positive());
+  app.add("--depth", depth, "undamped penetration the stiffness is chosen for [m]", cli::positive());
+  app.add("--points", points, "target restitutions, evenly spaced in (0, 1]", cli::integer_at_least(2));
+  return app.run(argc, argv, [&](OutputSet& files) {
+    std::vector<LawCase> cases;
+    const double k_lin = m * v * v / (depth * depth);  // Hooke: V sqrt(m/k) = depth
+    cases.push_back({"kelvin-voigt",
+                     [&](double e) { return ContactLaw{kelvin_voigt_for_restitution(k_lin, m, e, false)}; }});
+    cases.push_back({"kelvin-voigt-clamped",
+                     [&](double e) { return ContactLaw{kelvin_voigt_for_restitution(k_lin, m, e, true)}; }});
+    for (double n : {1.0, 1.5}) {
+      const double K = (n + 1) * m * v * v / (2 * std::pow(depth, n + 1));  // power law: depth
+      for (auto rule : {DampingRule::HuntCrossley, DampingRule::LankaraniNikravesh, DampingRule::Flores,
+                        DampingRule::Gonthier})
+        cases.push_back({fmt::format("{} n={}", to_string(rule), n == 1.0 ? "1" : "3/2"), [=](double e) {
+                           return ContactLaw{HuntCrossley{K, n, damping_factor(rule, e, v)}};
+                         }});
+    }
 
-  std::vector<LawCase> cases;
-  const double k_lin = m * v * v / (depth * depth);  // Hooke: V sqrt(m/k) = depth
-  cases.push_back({"kelvin-voigt", [&](double e) { return ContactLaw{kelvin_voigt_for_restitution(k_lin, m, e, false)}; }});
-  cases.push_back({"kelvin-voigt-clamped", [&](double e) { return ContactLaw{kelvin_voigt_for_restitution(k_lin, m, e, true)}; }});
-  for (double n : {1.0, 1.5}) {
-    const double K = (n + 1) * m * v * v / (2 * std::pow(depth, n + 1));  // power law: depth
-    for (auto rule : {DampingRule::HuntCrossley, DampingRule::LankaraniNikravesh, DampingRule::Flores, DampingRule::Gonthier})
-      cases.push_back({fmt::format("{} n={}", to_string(rule), n == 1.0 ? "1" : "3/2"),
-                       [=](double e) { return ContactLaw{HuntCrossley{K, n, damping_factor(rule, e, v)}}; }});
-  }
-
-  Table table({"law", "target_e", "achieved_e", "miss"});
-  Progress progress("contact_laws", cases.size() * static_cast<std::size_t>(points));
-  std::string data = "law,target_e,achieved_e\n";
-  for (const auto& c : cases) {
-    for (long j = 1; j <= points; ++j) {
-      const double e = static_cast<double>(j) / static_cast<double>(points);
-      progress.step(fmt::format("{} e = {:g}", c.label, e));
-      double achieved;
-      try {
-        achieved = measure_isolated_contact(c.make(e), m, v).exit_speed / v;
-      } catch (const std::exception& ex) {
-        std::cerr << fmt::format("contact_laws: {} at e = {:g}: {}\n", c.label, e, ex.what());
-        return cli::kExitFailure;
+    Table table({"law", "target_e", "achieved_e", "miss"});
+    Progress progress("contact_laws", cases.size() * static_cast<std::size_t>(points));
+    std::string data = "law,target_e,achieved_e\n";
+    for (const auto& c : cases) {
+      for (long j = 1; j <= points; ++j) {
+        const double e = static_cast<double>(j) / static_cast<double>(points);
+        progress.step(fmt::format("{} e = {:g}", c.label, e));
+        double achieved;
+        try {
+          achieved = measure_isolated_contact(c.make(e), m, v).exit_speed / v;
+        } catch (const std::exception& ex) {
+          throw std::runtime_error(fmt::format("{} at e = {:g}: {}", c.label, e, ex.what()));
+        }
+        table.add_row({c.label, e, achieved, achieved - e});
       }
-      table.add_row({c.label, e, achieved, achieved - e});
     }
-  }
-  // The figure: one curve per law, blocks separated by blank lines for gnuplot's index.
-  std::string blocks;
-  for (std::size_t i = 0; i < cases.size(); ++i) {
-    for (long j = 0; j < points; ++j) {
-      const auto& row = table.rows()[i * static_cast<std::size_t>(points) + static_cast<std::size_t>(j)];
-      blocks += fmt::format("{},{},{}\n", cases[i].label, std::get<double>(row[1]), std::get<double>(row[2]));
+    // The figure: one curve per law, blocks separated by blank lines for gnuplot's index.
+    std::string blocks;
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+      for (long j = 0; j < points; ++j) {
+        const auto& row = table.rows()[i * static_cast<std::size_t>(points) + static_cast<std::size_t>(j)];
+        blocks +=
+            fmt::format("{},{},{}\n", cases[i].label, std::get<double>(row[1]), std::get<double>(row[2]));
+      }
+      blocks += "\n\n";
     }
-    blocks += "\n\n";
-  }
-  std::string plot = "set xlabel 'target restitution'\nset ylabel 'achieved restitution'\nset key right bottom\n"
-                     "set grid\nset xrange [0:1]\nset yrange [0:1.05]\nplot x title 'target' with lines dashtype 2 lc rgb 'black'";
-  for (std::size_t i = 0; i < cases.size(); ++i)
-    plot += fmt::format(", 'data.csv' index {} using 2:3 with linespoints title '{}'", i, cases[i].label);
-  OutputSet files;
-  files.add_table("restitution", table);
-  try {
+    std::string plot =
+        "set xlabel 'target restitution'\nset ylabel 'achieved restitution'\nset key right bottom\n"
+        "set grid\nset xrange [0:1]\nset yrange [0:1.05]\nplot x title 'target' with lines dashtype 2 lc rgb "
+        "'black'";
+    for (std::size_t i = 0; i < cases.size(); ++i)
+      plot += fmt::format(", 'data.csv' index {} using 2:3 with linespoints title '{}'", i, cases[i].label);
+    files.add_table("restitution", table);
     render({"restitution", blocks, plot}, files);
-  } catch (const std::exception& ex) {
-    std::cerr << "contact_laws: " << ex.what() << "\n";
-    return cli::kExitFailure;
-  }
-  fmt::print("Restitution achieved against the target (m = {:g} kg, v = {:g} m/s, no gravity)\n\n{}", m, v, table.to_markdown());
-  return write_outputs(files, app, argc, argv, start, out);
+    fmt::print("Restitution achieved against the target (m = {:g} kg, v = {:g} m/s, no gravity)\n\n{}", m, v,
+               table.to_markdown());
+  });
 }
 
 int main(int argc, char** argv) { return contact::guarded_main("contact_laws", argc, argv, program); }

@@ -8,14 +8,15 @@
 // of k) and the least-squares exponent (GSL) over all rows.
 // Outputs in --out (default results/convergence_k): convergence_k.{csv,md,tex}, rates.{csv,md,tex},
 // errors.{png,pdf,gp}, meta.json. Exit codes: 0, 1 solver failure, 2 bad input.
-#include "process.hpp"
 #include "ball_drop.hpp"
-#include "cli.hpp"
-#include "event_driven.hpp"
+#include "experiment.hpp"
 #include "figure.hpp"
 #include "fit.hpp"
+#include "law_registry.hpp"
+#include "method_registry.hpp"
 #include "output.hpp"
 #include "penalty.hpp"
+#include "process.hpp"
 #include "progress.hpp"
 #include "table.hpp"
 
@@ -30,100 +31,84 @@ using namespace contact;
 int program(int argc, char** argv) {
   double e = 0.8, k_min = 1e3, k_max = 1e9;
   long bounces = 3, per_decade = 1;
-  std::string out = "results/convergence_k";
-  CLI::App app{"Penalty bounce times and apex heights approaching the rigid ones as k grows.", "convergence_k"};
-  app.option_defaults()->always_capture_default();
-  app.add_option("--e", e, "coefficient of restitution")->check(cli::real_in(0, 1, true, false));
-  app.add_option("--k-min", k_min, "smallest k [N/m]")->check(cli::positive());
-  app.add_option("--k-max", k_max, "largest k [N/m]")->check(cli::positive());
-  app.add_option("--per-decade", per_decade, "points per decade of k")->check(cli::integer_at_least(1));
-  app.add_option("--bounces", bounces, "bounces compared")->check(cli::integer_at_least(1));
-  app.add_option("--out", out, "output directory");
-  if (const int code = cli::parse(app, argc, argv); code >= 0) return code;
-  if (!(k_max > k_min)) {
-    std::cerr << fmt::format("convergence_k: --k-max: value '{:g}' is not above --k-min = {:g}; accepted range (k-min, inf)\n", k_max, k_min);
-    return cli::kExitBadInput;
-  }
-  if (const auto err = check_output_dir(out); !err.empty()) {
-    std::cerr << "convergence_k: " << err << "\n";
-    return cli::kExitBadInput;
-  }
-  const auto start = std::chrono::steady_clock::now();
-  const double m = 1.0, g = 9.81, h0 = 1.0;
-  // Long enough for `bounces` impacts and apexes: T_{n+1} = T_n + 2 e^n t0.
-  const double t0 = std::sqrt(2 * h0 / g);
-  double t_end = t0;
-  for (long n = 0; n <= bounces; ++n) t_end += 2 * std::pow(e, static_cast<double>(n)) * t0;
-  t_end += 0.1;
+  Experiment app("convergence_k",
+                 "Penalty bounce times and apex heights approaching the rigid ones as k grows.",
+                 "results/convergence_k");
+  app.add("--e", e, "coefficient of restitution", cli::real_in(0, 1, true, false));
+  app.add("--k-min", k_min, "smallest k [N/m]", cli::positive());
+  app.add("--k-max", k_max, "largest k [N/m]", cli::positive());
+  app.add("--per-decade", per_decade, "points per decade of k", cli::integer_at_least(1));
+  app.add("--bounces", bounces, "bounces compared", cli::integer_at_least(1));
+  return app.run(argc, argv, [&](OutputSet& files) {
+    if (!(k_max > k_min)) {
+      throw std::invalid_argument(fmt::format(
+          "--k-max: value '{:g}' is not above --k-min = {:g}; accepted range (k-min, inf)", k_max, k_min));
+    }
+    const double m = 1.0, g = 9.81, h0 = 1.0;
+    // Long enough for `bounces` impacts and apexes: T_{n+1} = T_n + 2 e^n t0.
+    const double t0 = std::sqrt(2 * h0 / g);
+    double t_end = t0;
+    for (long n = 0; n <= bounces; ++n) t_end += 2 * std::pow(e, static_cast<double>(n)) * t0;
+    t_end += 0.1;
 
-  const BallDrop rigid_model({m, g, h0, 0.0, e, Hooke{1.0}});
-  EventOptions eo;
-  eo.t_end = eo.sample_dt = t_end;
-  const RunResult rigid = run_event_driven(rigid_model, rigid_model, eo);
-  const auto nb = static_cast<std::size_t>(bounces);
-  if (!rigid.ok() || rigid.contacts.size() < nb || rigid.apexes.size() < nb) {
-    std::cerr << "convergence_k: the rigid reference did not reach the requested bounces\n";
-    return cli::kExitFailure;
-  }
-  Table table({"k_N_per_m", "impact_time_error_s", "order_time", "apex_height_error_rel", "order_apex", "rhs_evals"});
-  std::vector<double> ks, time_err, apex_err;
-  const std::vector<double> grid = log_grid(k_min, k_max, per_decade);
-  Progress progress("convergence_k", grid.size());
-  std::string data;
-  for (const double k : grid) {
-    progress.step(fmt::format("k = {:.3g}", k));
-    PenaltyOptions o;
-    o.t_end = o.sample_dt = t_end;
-    o.integrator.rtol = 1e-11;
-    o.integrator.atol = 1e-13;
-    o.integrator.max_steps = 1000000;
-    const RunResult r = run_penalty(BallDrop({m, g, h0, 0.0, e, kelvin_voigt_for_restitution(k, m, e, false)}), o);
-    if (!r.ok()) {
-      std::cerr << fmt::format("convergence_k: k = {:g}: {} at t = {:.9g} s: {}\n", k, to_string(r.status), r.t_reached, r.message);
-      return cli::kExitFailure;
+    const BallDrop rigid_model({m, g, h0, 0.0, e, Hooke{1.0}});
+    const SolveOptions span{.t_end = t_end, .sample_dt = t_end};
+    const RunResult rigid = solve(rigid_model, {.name = "event-exact"}, span);
+    const auto nb = static_cast<std::size_t>(bounces);
+    if (!rigid.ok() || rigid.contacts.size() < nb || rigid.apexes.size() < nb)
+      throw std::runtime_error("the rigid reference did not reach the requested bounces");
+    Table table({"k_N_per_m", "impact_time_error_s", "order_time", "apex_height_error_rel", "order_apex",
+                 "rhs_evals"});
+    std::vector<double> ks, time_err, apex_err;
+    const std::vector<double> grid = log_grid(k_min, k_max, per_decade);
+    Progress progress("convergence_k", grid.size());
+    std::string data;
+    for (const double k : grid) {
+      progress.step(fmt::format("k = {:.3g}", k));
+      Method penalty{.name = "penalty"};
+      penalty.integrator.rtol = 1e-11;
+      penalty.integrator.atol = 1e-13;
+      penalty.integrator.max_steps = 1000000;
+      const BallDrop model({m, g, h0, 0.0, e, make_law("kelvin-voigt", {.k = k, .m = m, .e = e})});
+      const RunResult r = require(solve(model, penalty, span), fmt::format("k = {:g}", k));
+      if (r.contacts.size() < nb || r.apexes.size() < nb) {
+        // The penalty ball bounces lower than the rigid one at low k (its contacts take time): it
+        // may not make --bounces bounces before the rigid reference's end time.
+        throw std::runtime_error(
+            fmt::format("k = {:g}: the penalty run made {} contacts and {} apexes by t = {:.6g} s, "
+                        "fewer than the {} bounces compared; lower --bounces or raise --k-min",
+                        k, r.contacts.size(), r.apexes.size(), t_end, nb));
+      }
+      double te = 0, ae = 0;
+      for (std::size_t b = 0; b < nb; ++b) {
+        te = std::max(te, std::abs(r.contacts[b].t_begin - rigid.contacts[b].t_begin));
+        ae = std::max(ae, std::abs(r.apexes[b].gap - rigid.apexes[b].gap) / h0);
+      }
+      const double order_t = ks.empty() ? std::nan("") : observed_order(ks.back(), time_err.back(), k, te);
+      const double order_a = ks.empty() ? std::nan("") : observed_order(ks.back(), apex_err.back(), k, ae);
+      ks.push_back(k);
+      time_err.push_back(te);
+      apex_err.push_back(ae);
+      table.add_row({k, te, order_t, ae, order_a, r.stats.rhs_evals});
+      data += fmt::format("{},{},{}\n", k, te, ae);
     }
-    if (r.contacts.size() < nb || r.apexes.size() < nb) {
-      // The penalty ball bounces lower than the rigid one at low k (its contacts take time): it
-      // may not make --bounces bounces before the rigid reference's end time.
-      std::cerr << fmt::format("convergence_k: k = {:g}: the penalty run made {} contacts and {} apexes by t = {:.6g} s, "
-                               "fewer than the {} bounces compared; lower --bounces or raise --k-min\n",
-                               k, r.contacts.size(), r.apexes.size(), t_end, nb);
-      return cli::kExitFailure;
-    }
-    double te = 0, ae = 0;
-    for (std::size_t b = 0; b < nb; ++b) {
-      te = std::max(te, std::abs(r.contacts[b].t_begin - rigid.contacts[b].t_begin));
-      ae = std::max(ae, std::abs(r.apexes[b].gap - rigid.apexes[b].gap) / h0);
-    }
-    const double order_t = ks.empty() ? std::nan("") : observed_order(ks.back(), time_err.back(), k, te);
-    const double order_a = ks.empty() ? std::nan("") : observed_order(ks.back(), apex_err.back(), k, ae);
-    ks.push_back(k);
-    time_err.push_back(te);
-    apex_err.push_back(ae);
-    table.add_row({k, te, order_t, ae, order_a, r.stats.rhs_evals});
-    data += fmt::format("{},{},{}\n", k, te, ae);
-  }
-  const PowerFit ft = fit_power_law(ks, time_err), fa = fit_power_law(ks, apex_err);
-  Table rates({"quantity", "fitted_exponent", "exponent_sd", "expected"});
-  rates.add_row({std::string("impact_time_error"), ft.exponent, ft.exponent_sd, -0.5});
-  rates.add_row({std::string("apex_height_error"), fa.exponent, fa.exponent_sd, -0.5});
-  OutputSet files;
-  files.add_table("convergence_k", table);
-  files.add_table("rates", rates);
-  try {
-    render({"errors", data,
-            "set logscale xy\nset format x '10^{%L}'\nset format y '10^{%L}'\nset xlabel 'k [N/m]'\nset ylabel 'error'\n"
-            "set key bottom left\nset grid\nplot 'data.csv' using 1:2 with linespoints title 'impact time [s]', "
-            "'' using 1:3 with linespoints title 'apex height / h0'"
-            ""},
-           files);
-  } catch (const std::exception& ex) {
-    std::cerr << "convergence_k: " << ex.what() << "\n";
-    return cli::kExitFailure;
-  }
-  fmt::print("Penalty -> rigid as k grows (e = {:g}, first {} bounces)\n\n{}\nFitted rates:\n\n{}", e, bounces, table.to_markdown(),
-             rates.to_markdown());
-  return write_outputs(files, app, argc, argv, start, out);
+    const PowerFit ft = fit_power_law(ks, time_err), fa = fit_power_law(ks, apex_err);
+    Table rates({"quantity", "fitted_exponent", "exponent_sd", "expected"});
+    rates.add_row({std::string("impact_time_error"), ft.exponent, ft.exponent_sd, -0.5});
+    rates.add_row({std::string("apex_height_error"), fa.exponent, fa.exponent_sd, -0.5});
+    files.add_table("convergence_k", table);
+    files.add_table("rates", rates);
+    render(
+        {"errors", data,
+         "set logscale xy\nset format x '10^{%L}'\nset format y '10^{%L}'\nset xlabel 'k [N/m]'\nset ylabel "
+         "'error'\n"
+         "set key bottom left\nset grid\nplot 'data.csv' using 1:2 with linespoints title 'impact time [s]', "
+         "'' using 1:3 with linespoints title 'apex height / h0'"
+         ""},
+        files);
+    fmt::print("Penalty -> rigid as k grows (e = {:g}, first {} bounces)\n\n{}\nFitted rates:\n\n{}", e,
+               bounces, table.to_markdown(), rates.to_markdown());
+  });
 }
 
 int main(int argc, char** argv) { return contact::guarded_main("convergence_k", argc, argv, program); }

@@ -11,15 +11,14 @@
 // (|error| against t for the ball), rigid_energy.{png,pdf,gp} (largest |error| per scene at the first
 // --rigid-dts and last --rigid-rtols),
 // meta.json. Exit codes: 0, 1 solver failure, 2 bad input.
-#include "process.hpp"
-#include "ball_drop_methods.hpp"
-#include "cli.hpp"
+#include "ball_drop.hpp"
+#include "experiment.hpp"
 #include "figure.hpp"
 #include "fit.hpp"
 #include "metrics.hpp"
 #include "output.hpp"
+#include "process.hpp"
 #include "progress.hpp"
-#include "rigid_methods.hpp"
 #include "rigid_scenes.hpp"
 #include "sweep_setting.hpp"
 #include "table.hpp"
@@ -60,7 +59,9 @@ DriftRow drift_of(const RunResult& r) {
   row.final_error = err.back();
   row.rate = fit.slope;
   row.rate_sd = fit.slope_sd;
-  row.verdict = std::abs(row.final_error) < kConserved ? "conserves" : row.final_error > 0 ? "gains" : "loses";
+  row.verdict = std::abs(row.final_error) < kConserved ? "conserves"
+                : row.final_error > 0                  ? "gains"
+                                                       : "loses";
   return row;
 }
 
@@ -69,114 +70,121 @@ DriftRow drift_of(const RunResult& r) {
 int program(int argc, char** argv) {
   double k = 1e5;
   long bounces = 100;
-  std::vector<double> dts{1e-3, 1e-4}, rtols{1e-4, 1e-6, 1e-8}, rigid_dts{1e-4, 1e-5}, rigid_rtols{1e-6, 1e-8};
-  std::string scenes = "all", out = "results/energy_drift";
-  CLI::App app{"Energy drift of every method over long undamped ball drops and the rigid-body scenes.", "energy_drift"};
-  app.option_defaults()->always_capture_default();
-  app.add_option("--k", k, "penalty stiffness of the ball [N/m]")->check(cli::positive());
-  app.add_option("--bounces", bounces, "bounces of the rigid ball solution to run")->check(cli::integer_at_least(1));
-  cli::add_real_list(app, "--dts", dts, "ball game steps [s], comma-separated", cli::positive());
-  cli::add_real_list(app, "--rtols", rtols, "ball relative tolerances, comma-separated", cli::real_in(0, 1, true, true));
-  cli::add_real_list(app, "--rigid-dts", rigid_dts, "rigid-scene game steps [s]", cli::positive());
-  cli::add_real_list(app, "--rigid-rtols", rigid_rtols, "rigid-scene relative tolerances", cli::real_in(0, 1, true, true));
+  std::vector<double> dts{1e-3, 1e-4}, rtols{1e-4, 1e-6, 1e-8}, rigid_dts{1e-4, 1e-5},
+      rigid_rtols{1e-6, 1e-8};
+  std::string scenes = "all";
+  Experiment app("energy_drift",
+                 "Energy drift of every method over long undamped ball drops and the rigid-body scenes.",
+                 "results/energy_drift");
+  app.add("--k", k, "penalty stiffness of the ball [N/m]", cli::positive());
+  app.add("--bounces", bounces, "bounces of the rigid ball solution to run", cli::integer_at_least(1));
+  app.add_list("--dts", dts, "ball game steps [s], comma-separated", cli::positive());
+  app.add_list("--rtols", rtols, "ball relative tolerances, comma-separated", cli::real_in(0, 1, true, true));
+  app.add_list("--rigid-dts", rigid_dts, "rigid-scene game steps [s]", cli::positive());
+  app.add_list("--rigid-rtols", rigid_rtols, "rigid-scene relative tolerances",
+               cli::real_in(0, 1, true, true));
   auto names = rigid::rigid_scene_names();
   names.insert(names.begin(), "all");
   names.emplace_back("none");
-  app.add_option("--scene", scenes, "rigid scenes, comma-separated, 'all' or 'none'")->check(cli::one_of(names, true));
-  app.add_option("--out", out, "output directory");
-  if (const int code = cli::parse(app, argc, argv); code >= 0) return code;
-  if (const auto err = check_output_dir(out); !err.empty()) {
-    std::cerr << "energy_drift: " << err << "\n";
-    return cli::kExitBadInput;
-  }
-  const auto start = std::chrono::steady_clock::now();
-  const double m = 1.0, g = 9.81, h0 = 1.0, t0 = std::sqrt(2 * h0 / g);
+  app.add("--scene", scenes, "rigid scenes, comma-separated, 'all' or 'none'", cli::one_of(names, true));
+  return app.run(argc, argv, [&](OutputSet& files) {
+    const double m = 1.0, g = 9.81, h0 = 1.0, t0 = std::sqrt(2 * h0 / g);
 
-  // The runs: (system, method, setting name, setting value, how to run it).
-  struct Job {
-    std::string system, method, setting;
-    double value;
-    std::function<RunResult()> run;
-  };
-  std::vector<Job> jobs;
-  BallDropSettings ball;
-  ball.model = {m, g, h0, 0.0, 1.0, Hooke{k}};
-  ball.t_end = 2.0 * static_cast<double>(bounces) * t0;  // the n-th rigid impact is at (2n - 1) t0
-  ball.sample_dt = ball.t_end / 2000;
-  ball.integrator.max_steps = 10000000;
-  for (const std::string method : {"game-euler", "game-symplectic", "game-euler-spring", "game-symplectic-spring"})
-    for (double dt : dts) jobs.push_back({"ball", method, "dt", dt, [=]() mutable { ball.dt = dt; return run_ball_drop(method, ball); }});
-  for (const std::string method : {"penalty", "event-ode"})
-    for (double rtol : rtols)
-      jobs.push_back({"ball", method, "rtol", rtol, [=]() mutable {
-                        ball.integrator = with_setting(ball.integrator, false, rtol);
-                        return run_ball_drop(method, ball);
-                      }});
-  jobs.push_back({"ball", "event-exact", "exact", 0.0, [=] { return run_ball_drop("event-exact", ball); }});
-  const auto scene_list = scenes == "all" ? rigid::rigid_scene_names() : scenes == "none" ? std::vector<std::string>{} : cli::split_list(scenes);
-  for (const auto& name : scene_list) {
-    const rigid::SceneInfo& info = rigid::rigid_scene(name);
-    auto scene = std::make_shared<rigid::RigidScene>(info.make({}));
-    const RigidRunSettings base{info.t_end, info.t_end / 200, 1e-4, 1e-8, 1e-10};
-    for (const auto& method : rigid_method_names()) {
-      const bool fixed = is_fixed_step(method);
-      for (double v : fixed ? rigid_dts : rigid_rtols)
-        jobs.push_back({name, method, fixed ? "dt" : "rtol", v, [=] { return run_rigid(*scene, method, with_setting(base, method, v)); }});
+    // The runs: (system, method, setting name, setting value, how to run it).
+    struct Job {
+      std::string system, method, setting;
+      double value;
+      std::function<RunResult()> run;
+    };
+    std::vector<Job> jobs;
+    auto ball = std::make_shared<BallDrop>(BallDropParams{m, g, h0, 0.0, 1.0, Hooke{k}});
+    const double t_ball = 2.0 * static_cast<double>(bounces) * t0;  // the n-th rigid impact is at (2n - 1) t0
+    const SolveOptions ball_span{.t_end = t_ball, .sample_dt = t_ball / 2000};
+    auto ball_job = [&](const std::string& method, const std::string& setting, double value) {
+      Method mt{.name = method};
+      mt.integrator.max_steps = 10000000;
+      if (setting != "exact") mt = with_setting(mt, value);
+      jobs.push_back({"ball", method, setting, value, [=] { return solve(*ball, mt, ball_span); }});
+    };
+    for (const std::string method :
+         {"game-euler", "game-symplectic", "game-euler-spring", "game-symplectic-spring"})
+      for (double dt : dts) ball_job(method, "dt", dt);
+    for (const std::string method : {"penalty", "event-ode"})
+      for (double rtol : rtols) ball_job(method, "rtol", rtol);
+    ball_job("event-exact", "exact", 0.0);
+    const auto scene_list = scenes == "all"    ? rigid::rigid_scene_names()
+                            : scenes == "none" ? std::vector<std::string>{}
+                                               : cli::split_list(scenes);
+    for (const auto& name : scene_list) {
+      const rigid::SceneInfo& info = rigid::rigid_scene(name);
+      auto scene = std::make_shared<rigid::RigidScene>(info.make({}));
+      const SolveOptions span{.t_end = info.t_end, .sample_dt = info.t_end / 200};
+      for (const auto& method : kRigidMethods) {
+        const bool fixed = method_info(method).fixed_step;
+        for (double v : fixed ? rigid_dts : rigid_rtols)
+          jobs.push_back(
+              {name, method, fixed ? "dt" : "rtol", v,
+               [=, mt = with_setting(rigid_method(method), v)] { return solve(*scene, mt, span); }});
+      }
     }
-  }
 
-  Table table({"system", "method", "setting", "value", "contacts", "final_energy_error_rel", "max_abs_energy_error_rel",
-               "drift_rate_per_s", "drift_rate_sd", "verdict", "rhs_evals"});
-  Series ball_figure;
-  std::map<std::string, std::vector<std::pair<std::string, double>>> rigid_default;  // method -> (scene, max error)
-  Progress progress("energy_drift", jobs.size());
-  for (const auto& job : jobs) {
-    progress.step(fmt::format("{} {} {}={:g}", job.system, job.method, job.setting, job.value));
-    const RunResult r = job.run();
-    if (!r.ok()) {
-      std::cerr << fmt::format("energy_drift: {} {} {} = {:g}: {} at t = {:.9g} s: {}\n", job.system, job.method, job.setting,
-                               job.value, to_string(r.status), r.t_reached, r.message);
-      return cli::kExitFailure;
+    Table table({"system", "method", "setting", "value", "contacts", "final_energy_error_rel",
+                 "max_abs_energy_error_rel", "drift_rate_per_s", "drift_rate_sd", "verdict", "rhs_evals"});
+    Series ball_figure;
+    std::map<std::string, std::vector<std::pair<std::string, double>>>
+        rigid_default;  // method -> (scene, max error)
+    Progress progress("energy_drift", jobs.size());
+    for (const auto& job : jobs) {
+      progress.step(fmt::format("{} {} {}={:g}", job.system, job.method, job.setting, job.value));
+      const RunResult r = job.run();
+      if (!r.ok()) {
+        throw std::runtime_error(fmt::format("{} {} {} = {:g}: {} at t = {:.9g} s: {}", job.system,
+                                             job.method, job.setting, job.value, to_string(r.status),
+                                             r.t_reached, r.message));
+      }
+      const DriftRow d = drift_of(r);
+      const double max_error = compute_metrics(r).max_energy_drift;
+      table.add_row({job.system, job.method, job.setting, job.value, static_cast<long>(r.contacts.size()),
+                     d.final_error, max_error, d.rate, d.rate_sd, d.verdict, r.stats.rhs_evals});
+      // The ball figure shows each method at its first setting (the coarsest by default).
+      const bool first =
+          job.setting == "exact" || job.value == (job.setting == "dt" ? dts.front() : rtols.front());
+      if (job.system == "ball" && first) {
+        const std::string setting =
+            job.setting == "exact" ? "" : fmt::format(" {}={:g}", job.setting, job.value);
+        ball_figure.add(
+            d.series, fmt::format("using 1:2 with lines title '{}{} ({})'", job.method, setting, d.verdict));
+      }
+      const bool rigid_default_setting =
+          job.value == (job.setting == "dt" ? rigid_dts.front() : rigid_rtols.back());
+      if (job.system != "ball" && rigid_default_setting)
+        rigid_default[job.method].emplace_back(job.system, max_error);
     }
-    const DriftRow d = drift_of(r);
-    const double max_error = compute_metrics(r).max_energy_drift;
-    table.add_row({job.system, job.method, job.setting, job.value, static_cast<long>(r.contacts.size()), d.final_error,
-                   max_error, d.rate, d.rate_sd, d.verdict, r.stats.rhs_evals});
-    // The ball figure shows each method at its first setting (the coarsest by default).
-    const bool first = job.setting == "exact" || job.value == (job.setting == "dt" ? dts.front() : rtols.front());
-    if (job.system == "ball" && first) {
-      const std::string setting = job.setting == "exact" ? "" : fmt::format(" {}={:g}", job.setting, job.value);
-      ball_figure.add(d.series, fmt::format("using 1:2 with lines title '{}{} ({})'", job.method, setting, d.verdict));
+    Series rigid_figure;
+    for (const auto& [method, values] : rigid_default) {
+      std::string rows;
+      for (std::size_t i = 0; i < values.size(); ++i)
+        rows += fmt::format("{},{},{}\n", i, values[i].first, std::max(values[i].second, kLogFloor));
+      rigid_figure.add(rows, fmt::format("using 1:3:xtic(2) with linespoints title '{}'", method));
     }
-    const bool rigid_default_setting = job.value == (job.setting == "dt" ? rigid_dts.front() : rigid_rtols.back());
-    if (job.system != "ball" && rigid_default_setting) rigid_default[job.method].emplace_back(job.system, max_error);
-  }
-  Series rigid_figure;
-  for (const auto& [method, values] : rigid_default) {
-    std::string rows;
-    for (std::size_t i = 0; i < values.size(); ++i) rows += fmt::format("{},{},{}\n", i, values[i].first, std::max(values[i].second, kLogFloor));
-    rigid_figure.add(rows, fmt::format("using 1:3:xtic(2) with linespoints title '{}'", method));
-  }
-  OutputSet files;
-  files.add_table("drift", table);
-  try {
+    files.add_table("drift", table);
     render({"ball_energy", ball_figure.data(),
-            fmt::format("set logscale y\nset format y '10^{{%L}}'\nset xlabel 't [s]'\nset ylabel '|E + dissipated - E_0| / E_0'\n"
+            fmt::format("set logscale y\nset format y '10^{{%L}}'\nset xlabel 't [s]'\nset ylabel '|E + "
+                        "dissipated - E_0| / E_0'\n"
                         "set key outside below\nset grid\nset yrange [{:g}:*]\nplot {}",
                         kLogFloor, ball_figure.plot())},
            files);
     if (!rigid_figure.empty())
       render({"rigid_energy", rigid_figure.data(),
-              fmt::format("set logscale y\nset format y '10^{{%L}}'\nset ylabel 'max |energy error| (dt = {:g}, rtol = {:g})'\n"
-                          "set xtics rotate by -30\nset key outside below\nset grid\nset yrange [{:g}:*]\nset offsets 0.3, 0.3, 0, 0\nplot {}",
+              fmt::format("set logscale y\nset format y '10^{{%L}}'\nset ylabel 'max |energy error| (dt = "
+                          "{:g}, rtol = {:g})'\n"
+                          "set xtics rotate by -30\nset key outside below\nset grid\nset yrange "
+                          "[{:g}:*]\nset offsets 0.3, 0.3, 0, 0\nplot {}",
                           rigid_dts.front(), rigid_rtols.back(), kLogFloor, rigid_figure.plot())},
              files);
-  } catch (const std::exception& ex) {
-    std::cerr << "energy_drift: " << ex.what() << "\n";
-    return cli::kExitFailure;
-  }
-  fmt::print("Energy drift (ball: e = 1, k = {:g} N/m, {} bounces; rigid scenes)\n\n{}", k, bounces, table.to_markdown());
-  return write_outputs(files, app, argc, argv, start, out);
+    fmt::print("Energy drift (ball: e = 1, k = {:g} N/m, {} bounces; rigid scenes)\n\n{}", k, bounces,
+               table.to_markdown());
+  });
 }
 
 int main(int argc, char** argv) { return contact::guarded_main("energy_drift", argc, argv, program); }

@@ -4,12 +4,12 @@
 
 #include "process.hpp"
 
+#include <unistd.h>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
-#include <unistd.h>
 
 namespace contact {
 
@@ -37,7 +37,8 @@ void render(const Figure& f, OutputSet& out) {
   // A private scratch folder (mkdtemp: unique, not guessable) removed however render() ends.
   std::string pattern = (fs::temp_directory_path() / "contact_figure_XXXXXX").string();
   if (::mkdtemp(pattern.data()) == nullptr)
-    throw std::runtime_error(fmt::format("cannot create a scratch folder in {}", fs::temp_directory_path().string()));
+    throw std::runtime_error(
+        fmt::format("cannot create a scratch folder in {}", fs::temp_directory_path().string()));
   const ScratchDir scratch{pattern};
   const fs::path& dir = scratch.path;
   std::ofstream(dir / "data.csv") << f.data;
@@ -45,26 +46,32 @@ void render(const Figure& f, OutputSet& out) {
   // replotted). The file names are relative (gnuplot runs in the scratch folder), so no path is
   // ever quoted.
   std::ofstream(dir / "plot.gp") << "set datafile separator ','\n"
-                                 << "set terminal pngcairo size 900,600 font ',11'\nset output '" << f.name << ".png'\n"
+                                 << "set terminal pngcairo size 900,600 font ',11'\nset output '" << f.name
+                                 << ".png'\n"
                                  << f.script << "\nunset output\n"
-                                 << "set terminal pdfcairo size 6in,4in font ',10'\nset output '" << f.name << ".pdf'\n"
+                                 << "set terminal pdfcairo size 6in,4in font ',10'\nset output '" << f.name
+                                 << ".pdf'\n"
                                  << f.script << "\nunset output\n";
   const int code = run_process({"gnuplot", "plot.gp"}, dir, dir / "gnuplot.log");
   if (code != 0) {
     const std::string log = read_file(dir / "gnuplot.log");
-    throw std::runtime_error(fmt::format("gnuplot failed for {} (exit {}): {}", f.name, code,
-                                         log.empty() ? "is gnuplot installed? (bash scripts/setup.sh)" : log));
+    throw std::runtime_error(
+        fmt::format("gnuplot failed for {} (exit {}): {}", f.name, code,
+                    log.empty() ? "is gnuplot installed? (bash scripts/setup.sh)" : log));
   }
-  for (const char* ext : {"png", "pdf"}) out.add(fmt::format("{}.{}", f.name, ext), read_file(dir / fmt::format("{}.{}", f.name, ext)));
+  for (const char* ext : {"png", "pdf"})
+    out.add(fmt::format("{}.{}", f.name, ext), read_file(dir / fmt::format("{}.{}", f.name, ext)));
   // The saved script re-runs beside its data: `gnuplot NAME.gp` in the folder reads NAME-data.csv.
   const std::string data_file = f.name + "-data.csv";
   std::string script = f.script;
-  for (std::size_t at = script.find("'data.csv'"); at != std::string::npos; at = script.find("'data.csv'", at))
+  for (std::size_t at = script.find("'data.csv'"); at != std::string::npos;
+       at = script.find("'data.csv'", at))
     script.replace(at, 10, "'" + data_file + "'");
   out.add(data_file, f.data);
-  out.add(f.name + ".gp", "# gnuplot " + f.name + ".gp, in this folder, draws " + f.name + ".png from " + data_file +
-                              "\nset datafile separator ','\nset terminal pngcairo size 900,600 font ',11'\nset output '" +
-                              f.name + ".png'\n" + script + "\n");
+  out.add(f.name + ".gp",
+          "# gnuplot " + f.name + ".gp, in this folder, draws " + f.name + ".png from " + data_file +
+              "\nset datafile separator ','\nset terminal pngcairo size 900,600 font ',11'\nset output '" +
+              f.name + ".png'\n" + script + "\n");
 }
 
 }  // namespace contact

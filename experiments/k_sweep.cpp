@@ -12,14 +12,15 @@
 // Outputs in --out (default results/k_sweep): k_sweep.{csv,md,tex}, exponents.{csv,md,tex},
 // penetration.{png,pdf,gp}, duration.{png,pdf,gp}, cost.{png,pdf,gp}, stable_dt.{png,pdf,gp},
 // meta.json. Exit codes: 0, 1 solver failure, 2 bad input.
-#include "process.hpp"
 #include "ball_drop.hpp"
-#include "cli.hpp"
+#include "experiment.hpp"
 #include "figure.hpp"
 #include "fit.hpp"
+#include "law_registry.hpp"
+#include "method_registry.hpp"
 #include "metrics.hpp"
 #include "output.hpp"
-#include "penalty.hpp"
+#include "process.hpp"
 #include "progress.hpp"
 #include "references.hpp"
 #include "table.hpp"
@@ -35,26 +36,23 @@ using namespace contact;
 
 namespace {
 
-struct Law {
-  std::string name;
-  ContactLaw (*make)(double k, double m, double e);
-};
-
-const std::vector<Law> kLaws = {
-    {"hooke", [](double k, double, double) { return ContactLaw{Hooke{k}}; }},
-    {"kelvin-voigt", [](double k, double m, double e) { return ContactLaw{kelvin_voigt_for_restitution(k, m, e, false)}; }},
-    {"kelvin-voigt-clamped", [](double k, double m, double e) { return ContactLaw{kelvin_voigt_for_restitution(k, m, e, true)}; }},
-};
+// The linear laws, whose penetration and duration have closed forms against k.
+const std::vector<std::string> kLaws = {"hooke", "kelvin-voigt", "kelvin-voigt-clamped"};
 
 // A gnuplot log-log figure of column `y` (and its closed form `y_ref` where given) against k,
 // one curve per law; the data are the k_sweep CSV.
 Figure loglog(const std::string& name, const std::string& ylabel, int ycol, int ref_col) {
   std::string plot = fmt::format(
-      "set logscale xy\nset format x '10^{{%L}}'\nset xlabel 'k [N/m]'\nset ylabel '{}'\nset format y '10^{{%L}}'\nset key bottom left\nset grid\nplot ", ylabel);
+      "set logscale xy\nset format x '10^{{%L}}'\nset xlabel 'k [N/m]'\nset ylabel '{}'\nset format y "
+      "'10^{{%L}}'\nset key bottom left\nset grid\nplot ",
+      ylabel);
   for (std::size_t i = 0; i < kLaws.size(); ++i) {
     if (i) plot += ", ";
-    plot += fmt::format("'data.csv' using ($2 == {} ? $1 : 1/0):{} with points pt {} title '{}'", i, ycol, 5 + 2 * static_cast<int>(i), kLaws[i].name);
-    if (ref_col > 0) plot += fmt::format(", '' using ($2 == {} ? $1 : 1/0):{} with lines dt 2 title '{} closed form'", i, ref_col, kLaws[i].name);
+    plot += fmt::format("'data.csv' using ($2 == {} ? $1 : 1/0):{} with points pt {} title '{}'", i, ycol,
+                        5 + 2 * static_cast<int>(i), kLaws[i]);
+    if (ref_col > 0)
+      plot += fmt::format(", '' using ($2 == {} ? $1 : 1/0):{} with lines dt 2 title '{} closed form'", i,
+                          ref_col, kLaws[i]);
   }
   return {name, "", plot};
 }
@@ -64,96 +62,96 @@ Figure loglog(const std::string& name, const std::string& ylabel, int ycol, int 
 int program(int argc, char** argv) {
   double e = 0.8, k_min = 1e2, k_max = 1e10;
   long per_decade = 3;
-  std::string out = "results/k_sweep";
-  CLI::App app{"The effect of the spring constant on a penalty contact: penetration, duration, restitution, energy, cost and stable steps.", "k_sweep"};
-  app.option_defaults()->always_capture_default();
-  app.add_option("--e", e, "target restitution of the Kelvin-Voigt laws")->check(cli::real_in(0, 1, true, false));
-  app.add_option("--k-min", k_min, "smallest k [N/m]")->check(cli::positive());
-  app.add_option("--k-max", k_max, "largest k [N/m]")->check(cli::positive());
-  app.add_option("--per-decade", per_decade, "points per decade of k")->check(cli::integer_at_least(1));
-  app.add_option("--out", out, "output directory");
-  if (const int code = cli::parse(app, argc, argv); code >= 0) return code;
-  if (!(k_max >= k_min)) {
-    std::cerr << fmt::format("k_sweep: --k-max: value '{:g}' is below --k-min = {:g}; accepted range [k-min, inf)\n", k_max, k_min);
-    return cli::kExitBadInput;
-  }
-  if (const auto err = check_output_dir(out); !err.empty()) {
-    std::cerr << "k_sweep: " << err << "\n";
-    return cli::kExitBadInput;
-  }
-  const auto start = std::chrono::steady_clock::now();
-  const double m = 1.0, g = 9.81, h0 = 1.0, V = std::sqrt(2 * g * h0);
-  const std::vector<double> grid = log_grid(k_min, k_max, per_decade);
+  Experiment app("k_sweep",
+                 "The effect of the spring constant on a penalty contact: penetration, duration, "
+                 "restitution, energy, cost and stable steps.",
+                 "results/k_sweep");
+  app.add("--e", e, "target restitution of the Kelvin-Voigt laws", cli::real_in(0, 1, true, false));
+  app.add("--k-min", k_min, "smallest k [N/m]", cli::positive());
+  app.add("--k-max", k_max, "largest k [N/m]", cli::positive());
+  app.add("--per-decade", per_decade, "points per decade of k", cli::integer_at_least(1));
+  return app.run(argc, argv, [&](OutputSet& files) {
+    if (!(k_max >= k_min))
+      throw std::invalid_argument(fmt::format(
+          "--k-max: value '{:g}' is below --k-min = {:g}; accepted range [k-min, inf)", k_max, k_min));
+    const double m = 1.0, g = 9.81, h0 = 1.0, V = std::sqrt(2 * g * h0);
+    const std::vector<double> grid = log_grid(k_min, k_max, per_decade);
 
-  Table table({"k_N_per_m", "law", "penetration_m", "closed_form_penetration_m", "duration_s", "closed_form_duration_s",
-               "restitution", "energy_after_first_bounce_rel", "steps_per_contact", "rhs_per_contact", "jac_per_contact",
-               "newton_per_contact", "failed_steps", "euler_max_dt_s", "symplectic_max_dt_s"});
-  std::string data;  // for the figures: k, law index, the numeric columns in table order
-  Progress progress("k_sweep", kLaws.size() * grid.size());
-  std::map<std::string, std::vector<double>> fit_k, fit_pen, fit_dur;
-  for (std::size_t li = 0; li < kLaws.size(); ++li) {
-    for (const double k : grid) {
-      progress.step(fmt::format("{} k = {:.3g}", kLaws[li].name, k));
-      const ContactLaw law = kLaws[li].make(k, m, e);
-      PenaltyOptions o;
-      o.t_end = 1.6;  // the first contact (0.45 s, lasting up to 0.37 s at k = 1e2) and the first apex
-      o.sample_dt = 1.6;
-      o.integrator.rtol = 1e-10;
-      o.integrator.atol = 1e-12;
-      o.integrator.max_steps = 1000000;
-      const RunResult r = run_penalty(BallDrop({m, g, h0, 0.0, e, law}), o);
-      if (!r.ok() || r.contacts.empty() || !r.contacts[0].closed() || r.apexes.empty()) {
-        std::cerr << fmt::format("k_sweep: {} at k = {:g}: {} {}\n", kLaws[li].name, k, to_string(r.status), r.message);
-        return cli::kExitFailure;
-      }
-      const auto& c = r.contacts[0];
-      const double contacts = static_cast<double>(r.contacts.size());
-      // Closed forms: Hooke exactly (with gravity); Kelvin–Voigt in the gravity-free limit;
-      // the clamped law shares the unclamped penetration (the clamp acts after the maximum).
-      const double zeta = li == 0 ? 0.0 : damping_ratio_for_restitution(e);
-      const SpringContact ref = li == 0 ? hooke_contact(m, k, V, g) : kelvin_voigt_contact(m, k, zeta, V);
-      const double ref_duration = li == 2 ? (std::numbers::pi - 2 * std::asin(zeta)) / (std::sqrt(k / m) * std::sqrt(1 - zeta * zeta))
-                                          : ref.duration;
-      const double w = std::sqrt(k / m);
-      const double euler_dt = 2 * zeta / w, symplectic_dt = 2 * (std::sqrt(zeta * zeta + 1) - zeta) / w;
-      const double energy_left = r.apexes[0].energy / r.energy0;
-      const auto& st = r.stats;
-      const auto per = [&](long count) { return static_cast<double>(count) / contacts; };
-      table.add_row({k, kLaws[li].name, c.max_penetration, ref.max_penetration, c.duration(), ref_duration, c.restitution(),
-                     energy_left, per(st.steps), per(st.rhs_evals), per(st.jac_evals), per(st.newton_iters), st.failed_steps,
-                     euler_dt, symplectic_dt});
-      data += fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", k, li, c.max_penetration, ref.max_penetration, c.duration(),
-                          ref_duration, per(st.steps), per(st.rhs_evals), euler_dt > 0 ? euler_dt : NAN, symplectic_dt, c.restitution());
-      if (k >= 1e4) {
-        fit_k[kLaws[li].name].push_back(k);
-        fit_pen[kLaws[li].name].push_back(c.max_penetration);
-        fit_dur[kLaws[li].name].push_back(c.duration());
+    Table table({"k_N_per_m", "law", "penetration_m", "closed_form_penetration_m", "duration_s",
+                 "closed_form_duration_s", "restitution", "energy_after_first_bounce_rel",
+                 "steps_per_contact", "rhs_per_contact", "jac_per_contact", "newton_per_contact",
+                 "failed_steps", "euler_max_dt_s", "symplectic_max_dt_s"});
+    std::string data;  // for the figures: k, law index, the numeric columns in table order
+    Progress progress("k_sweep", kLaws.size() * grid.size());
+    std::map<std::string, std::vector<double>> fit_k, fit_pen, fit_dur;
+    for (std::size_t li = 0; li < kLaws.size(); ++li) {
+      for (const double k : grid) {
+        const std::string& law = kLaws[li];
+        progress.step(fmt::format("{} k = {:.3g}", law, k));
+        Method penalty{.name = "penalty"};
+        penalty.integrator.rtol = 1e-10;
+        penalty.integrator.atol = 1e-12;
+        penalty.integrator.max_steps = 1000000;
+        // The first contact (0.45 s, lasting up to 0.37 s at k = 1e2) and the first apex.
+        const BallDrop model({m, g, h0, 0.0, e, make_law(law, {.k = k, .m = m, .e = e})});
+        const RunResult r = require(solve(model, penalty, {.t_end = 1.6, .sample_dt = 1.6}),
+                                    fmt::format("{} at k = {:g}", law, k));
+        if (r.contacts.empty() || !r.contacts[0].closed() || r.apexes.empty())
+          throw std::runtime_error(fmt::format("{} at k = {:g}: no complete first bounce", law, k));
+        const auto& c = r.contacts[0];
+        const double contacts = static_cast<double>(r.contacts.size());
+        // Closed forms: Hooke exactly (with gravity); Kelvin–Voigt in the gravity-free limit;
+        // the clamped law shares the unclamped penetration (the clamp acts after the maximum).
+        const LawInfo& info = law_info(law);
+        const bool clamped = info.damped && !info.pulls;
+        const double zeta = info.damped ? damping_ratio_for_restitution(e) : 0.0;
+        const SpringContact ref =
+            info.damped ? kelvin_voigt_contact(m, k, zeta, V) : hooke_contact(m, k, V, g);
+        const double ref_duration = clamped ? (std::numbers::pi - 2 * std::asin(zeta)) /
+                                                  (std::sqrt(k / m) * std::sqrt(1 - zeta * zeta))
+                                            : ref.duration;
+        const double w = std::sqrt(k / m);
+        const double euler_dt = 2 * zeta / w, symplectic_dt = 2 * (std::sqrt(zeta * zeta + 1) - zeta) / w;
+        const double energy_left = r.apexes[0].energy / r.energy0;
+        const auto& st = r.stats;
+        const auto per = [&](long count) { return static_cast<double>(count) / contacts; };
+        table.add_row({k, kLaws[li], c.max_penetration, ref.max_penetration, c.duration(), ref_duration,
+                       c.restitution(), energy_left, per(st.steps), per(st.rhs_evals), per(st.jac_evals),
+                       per(st.newton_iters), st.failed_steps, euler_dt, symplectic_dt});
+        data += fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", k, li, c.max_penetration,
+                            ref.max_penetration, c.duration(), ref_duration, per(st.steps), per(st.rhs_evals),
+                            euler_dt > 0 ? euler_dt : NAN, symplectic_dt, c.restitution());
+        if (k >= 1e4) {
+          fit_k[kLaws[li]].push_back(k);
+          fit_pen[kLaws[li]].push_back(c.max_penetration);
+          fit_dur[kLaws[li]].push_back(c.duration());
+        }
       }
     }
-  }
-  Table exponents({"law", "penetration_exponent", "penetration_exponent_sd", "duration_exponent", "duration_exponent_sd", "expected"});
-  for (const auto& law : kLaws) {
-    if (fit_k[law.name].size() < 2) continue;
-    const PowerFit p = fit_power_law(fit_k[law.name], fit_pen[law.name]), d = fit_power_law(fit_k[law.name], fit_dur[law.name]);
-    exponents.add_row({law.name, p.exponent, p.exponent_sd, d.exponent, d.exponent_sd, std::string("-1/2 (V sqrt(m/k), pi sqrt(m/k))")});
-  }
-  OutputSet files;
-  files.add_table("k_sweep", table);
-  files.add_table("exponents", exponents);
-  try {
-    // data.csv columns: 1 k, 2 law, 3 pen, 4 pen ref, 5 dur, 6 dur ref, 7 steps/contact, 8 rhs/contact, 9 euler dt, 10 symplectic dt, 11 e
-    for (Figure f : {loglog("penetration", "maximum penetration [m]", 3, 4), loglog("duration", "contact duration [s]", 5, 6),
-                     loglog("cost", "CVODE right-hand sides per contact", 8, 0), loglog("stable_dt", "largest stable semi-implicit Euler step [s]", 10, 0)}) {
+    Table exponents({"law", "penetration_exponent", "penetration_exponent_sd", "duration_exponent",
+                     "duration_exponent_sd", "expected"});
+    for (const auto& law : kLaws) {
+      if (fit_k[law].size() < 2) continue;
+      const PowerFit p = fit_power_law(fit_k[law], fit_pen[law]), d = fit_power_law(fit_k[law], fit_dur[law]);
+      exponents.add_row({law, p.exponent, p.exponent_sd, d.exponent, d.exponent_sd,
+                         std::string("-1/2 (V sqrt(m/k), pi sqrt(m/k))")});
+    }
+    files.add_table("k_sweep", table);
+    files.add_table("exponents", exponents);
+    // data.csv columns: 1 k, 2 law, 3 pen, 4 pen ref, 5 dur, 6 dur ref, 7 steps/contact, 8 rhs/contact, 9
+    // euler dt, 10 symplectic dt, 11 e
+    for (Figure f : {loglog("penetration", "maximum penetration [m]", 3, 4),
+                     loglog("duration", "contact duration [s]", 5, 6),
+                     loglog("cost", "CVODE right-hand sides per contact", 8, 0),
+                     loglog("stable_dt", "largest stable semi-implicit Euler step [s]", 10, 0)}) {
       f.data = data;
       render(f, files);
     }
-  } catch (const std::exception& ex) {
-    std::cerr << "k_sweep: " << ex.what() << "\n";
-    return cli::kExitFailure;
-  }
-  fmt::print("k sweep: ball drop, m = {:g} kg, h0 = {:g} m, e = {:g}, CVODE BDF rtol 1e-10\n\n{}\nFitted exponents (k >= 1e4):\n\n{}",
-             m, h0, e, table.to_markdown(), exponents.to_markdown());
-  return write_outputs(files, app, argc, argv, start, out);
+    fmt::print(
+        "k sweep: ball drop, m = {:g} kg, h0 = {:g} m, e = {:g}, CVODE BDF rtol 1e-10\n\n{}\nFitted "
+        "exponents (k >= 1e4):\n\n{}",
+        m, h0, e, table.to_markdown(), exponents.to_markdown());
+  });
 }
 
 int main(int argc, char** argv) { return contact::guarded_main("k_sweep", argc, argv, program); }

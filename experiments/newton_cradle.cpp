@@ -15,15 +15,15 @@
 // Outputs in --out (default results/newton_cradle): velocities.{csv,md,tex},
 // final_velocities.{png,pdf,gp} (touching balls), energy_share.{png,pdf,gp} (against spacing),
 // meta.json. Exit codes: 0, 1 solver failure, 2 bad input.
-#include "process.hpp"
 #include "ball_chain.hpp"
-#include "cli.hpp"
-#include "event_driven.hpp"
+#include "experiment.hpp"
 #include "figure.hpp"
 #include "game_step.hpp"
+#include "method_registry.hpp"
+#include "metrics.hpp"
 #include "output.hpp"
 #include "penalty.hpp"
-#include "metrics.hpp"
+#include "process.hpp"
 #include "progress.hpp"
 #include "references.hpp"
 #include "table.hpp"
@@ -45,113 +45,107 @@ int program(int argc, char** argv) {
   double k = 1e6, dt = 1e-6;
   long balls = 5;
   std::vector<double> spacings{0.0, 1e-7, 1e-6, 1e-5, 1e-4, 1e-3};
-  std::string out = "results/newton_cradle";
-  CLI::App app{"Newton's cradle: final velocities and the last ball's energy share by every method.", "newton_cradle"};
-  app.option_defaults()->always_capture_default();
+  Experiment app("newton_cradle",
+                 "Newton's cradle: final velocities and the last ball's energy share by every method.",
+                 "results/newton_cradle");
   // One table column per ball, and a sequential-impulse pass that scans every contact per impact:
   // a cradle, not a long chain (work_precision and bench_chain run those).
-  app.add_option("--balls", balls, "balls in the row")->check(cli::integer_in(2, 1000));
-  app.add_option("--k", k, "linear penalty stiffness [N/m]")->check(cli::positive());
-  app.add_option("--dt", dt, "game step [s]")->check(cli::positive());
-  cli::add_real_list(app, "--spacings", spacings, "gaps between the resting balls [m], comma-separated", cli::non_negative());
-  app.add_option("--out", out, "output directory");
-  if (const int code = cli::parse(app, argc, argv); code >= 0) return code;
-  if (const auto err = check_output_dir(out); !err.empty()) {
-    std::cerr << "newton_cradle: " << err << "\n";
-    return cli::kExitBadInput;
-  }
-  const auto start = std::chrono::steady_clock::now();
-  const double m = 0.1, radius = 0.0145, v0 = 1.0, approach = 0.01;
-  const double hertz_k = hertz_stiffness(radius / 2, effective_modulus(200e9, 0.3, 200e9, 0.3));
-  const std::vector<std::string> methods = {"event", "game", "penalty-linear", "penalty-hertz"};
-  const auto n = static_cast<std::size_t>(balls);
-  // The longest binary contact (effective mass m/2, at the striker's speed): the pulse needs a few
-  // of them per ball to cross the row, so 10 per ball leaves every contact open again at the end.
-  const double contact_time = std::max(hooke_contact(m / 2, k, v0, 0.0).duration, power_law_contact(m / 2, hertz_k, 1.5, v0).duration);
+  app.add("--balls", balls, "balls in the row", cli::integer_in(2, 1000));
+  app.add("--k", k, "linear penalty stiffness [N/m]", cli::positive());
+  app.add("--dt", dt, "game step [s]", cli::positive());
+  app.add_list("--spacings", spacings, "gaps between the resting balls [m], comma-separated",
+               cli::non_negative());
+  return app.run(argc, argv, [&](OutputSet& files) {
+    const double m = 0.1, radius = 0.0145, v0 = 1.0, approach = 0.01;
+    const double hertz_k = hertz_stiffness(radius / 2, effective_modulus(200e9, 0.3, 200e9, 0.3));
+    const std::vector<std::string> methods = {"event", "game", "penalty-linear", "penalty-hertz"};
+    const auto n = static_cast<std::size_t>(balls);
+    // The longest binary contact (effective mass m/2, at the striker's speed): the pulse needs a few
+    // of them per ball to cross the row, so 10 per ball leaves every contact open again at the end.
+    const double contact_time = std::max(hooke_contact(m / 2, k, v0, 0.0).duration,
+                                         power_law_contact(m / 2, hertz_k, 1.5, v0).duration);
 
-  std::vector<std::string> columns = {"method", "spacing_m"};
-  for (std::size_t b = 0; b < n; ++b) columns.push_back(fmt::format("v{}_mps", b));
-  for (const char* c : {"last_ball_energy_share", "energy_error_rel", "contacts", "rhs_evals"}) columns.emplace_back(c);
-  Table table(columns);
-  Series share_figure, velocities;
-  Progress progress("newton_cradle", methods.size() * spacings.size());
-  for (const auto& method : methods) {
-    std::string shares;  // "spacing,share" lines
-    for (double spacing : spacings) {
-      progress.step(fmt::format("{} spacing {:g}", method, spacing));
-      BallChainParams p;
-      p.n = n;
-      p.m = m;
-      p.v0 = v0;
-      p.approach = approach;
-      p.spacing = spacing;
-      p.law = method == "penalty-hertz" ? ContactLaw{HuntCrossley{hertz_k, 1.5, 0.0}} : ContactLaw{Hooke{k}};
-      const BallChain chain(p);
-      const double t_end = (approach + static_cast<double>(n) * spacing) / v0 + 10.0 * static_cast<double>(n) * contact_time;
-      RunResult r;
-      if (method == "event") {
-        EventOptions o;
-        o.t_end = o.sample_dt = t_end;
-        r = run_event_driven(chain, o);
-      } else if (method == "game") {
-        r = run_game(chain, GameOptions{.dt = dt, .t_end = t_end, .sample_dt = t_end, .scheme = FixedStepScheme::SemiImplicitEuler, .resolution = GameResolution::ProjectionImpulse});
-      } else {
-        PenaltyOptions o;
-        o.t_end = o.sample_dt = t_end;
-        o.integrator.rtol = 1e-10;
-        o.integrator.atol = 1e-14;
-        o.integrator.max_steps = 10000000;
-        r = run_penalty(chain, o);
+    std::vector<std::string> columns = {"method", "spacing_m"};
+    for (std::size_t b = 0; b < n; ++b) columns.push_back(fmt::format("v{}_mps", b));
+    for (const char* c : {"last_ball_energy_share", "energy_error_rel", "contacts", "rhs_evals"})
+      columns.emplace_back(c);
+    Table table(columns);
+    Series share_figure, velocities;
+    Progress progress("newton_cradle", methods.size() * spacings.size());
+    for (const auto& method : methods) {
+      std::string shares;  // "spacing,share" lines
+      for (double spacing : spacings) {
+        progress.step(fmt::format("{} spacing {:g}", method, spacing));
+        BallChainParams p;
+        p.n = n;
+        p.m = m;
+        p.v0 = v0;
+        p.approach = approach;
+        p.spacing = spacing;
+        p.law =
+            method == "penalty-hertz" ? ContactLaw{HuntCrossley{hertz_k, 1.5, 0.0}} : ContactLaw{Hooke{k}};
+        const BallChain chain(p);
+        const double t_end =
+            (approach + static_cast<double>(n) * spacing) / v0 + 10.0 * static_cast<double>(n) * contact_time;
+        // The rows' labels name the law for the penalty runs; the registry's methods run them.
+        Method mt{.name = method == "event"  ? "event-ode"
+                          : method == "game" ? "game-symplectic"
+                                             : "penalty",
+                  .dt = dt};
+        if (mt.name == "penalty") {
+          mt.integrator.rtol = 1e-10;
+          mt.integrator.atol = 1e-14;
+          mt.integrator.max_steps = 10000000;
+        }
+        const RunResult r = require(solve(chain, mt, {.t_end = t_end, .sample_dt = t_end}),
+                                    fmt::format("{} (spacing {:g} m)", method, spacing));
+        // The velocities are final only once every contact has opened again.
+        if (std::any_of(r.contacts.begin(), r.contacts.end(),
+                        [](const ContactRecord& c) { return !c.closed(); })) {
+          throw std::runtime_error(fmt::format("{} (spacing {:g} m): a contact is still open at t = {:g} s",
+                                               method, spacing, t_end));
+        }
+        const Vector& y = r.samples.back().y;
+        const double e0 = 0.5 * m * v0 * v0;
+        const double last = y[static_cast<Eigen::Index>(2 * n - 1)];
+        const double share = 0.5 * m * last * last / e0;
+        std::vector<Table::Cell> row = {method, spacing};
+        for (std::size_t b = 0; b < n; ++b) row.emplace_back(y[static_cast<Eigen::Index>(2 * b + 1)]);
+        row.insert(row.end(), {share, 0.0 - energy_drifts(r).back(), static_cast<long>(r.contacts.size()),
+                               r.stats.rhs_evals});
+        table.add_row(row);
+        shares += fmt::format("{},{}\n", std::max(spacing, kZeroSpacing), share);
+        if (spacing == spacings.front()) {
+          std::string rows;
+          for (std::size_t b = 0; b < n; ++b)
+            rows += fmt::format("{},{}\n", b, y[static_cast<Eigen::Index>(2 * b + 1)]);
+          // Bars of the methods side by side around each ball's index.
+          const double offset = 0.15 * (static_cast<double>(&method - methods.data()) -
+                                        0.5 * static_cast<double>(methods.size() - 1));
+          velocities.add(rows,
+                         fmt::format("using ($1 + {}):2 with impulses lw 6 title '{}'", offset, method));
+        }
       }
-      if (!r.ok()) {
-        std::cerr << fmt::format("newton_cradle: {} (spacing {:g} m): {} at t = {:.9g} s: {}\n", method, spacing, to_string(r.status),
-                                 r.t_reached, r.message);
-        return cli::kExitFailure;
-      }
-      // The velocities are final only once every contact has opened again.
-      if (std::any_of(r.contacts.begin(), r.contacts.end(), [](const ContactRecord& c) { return !c.closed(); })) {
-        std::cerr << fmt::format("newton_cradle: {} (spacing {:g} m): a contact is still open at t = {:g} s\n", method, spacing, t_end);
-        return cli::kExitFailure;
-      }
-      const Vector& y = r.samples.back().y;
-      const double e0 = 0.5 * m * v0 * v0;
-      const double last = y[static_cast<Eigen::Index>(2 * n - 1)];
-      const double share = 0.5 * m * last * last / e0;
-      std::vector<Table::Cell> row = {method, spacing};
-      for (std::size_t b = 0; b < n; ++b) row.emplace_back(y[static_cast<Eigen::Index>(2 * b + 1)]);
-      row.insert(row.end(), {share, 0.0 - energy_drifts(r).back(), static_cast<long>(r.contacts.size()), r.stats.rhs_evals});
-      table.add_row(row);
-      shares += fmt::format("{},{}\n", std::max(spacing, kZeroSpacing), share);
-      if (spacing == spacings.front()) {
-        std::string rows;
-        for (std::size_t b = 0; b < n; ++b) rows += fmt::format("{},{}\n", b, y[static_cast<Eigen::Index>(2 * b + 1)]);
-        // Bars of the methods side by side around each ball's index.
-        const double offset = 0.15 * (static_cast<double>(&method - methods.data()) - 0.5 * static_cast<double>(methods.size() - 1));
-        velocities.add(rows, fmt::format("using ($1 + {}):2 with impulses lw 6 title '{}'", offset, method));
-      }
+      share_figure.add(shares, fmt::format("using 1:2 with linespoints title '{}'", method));
     }
-    share_figure.add(shares, fmt::format("using 1:2 with linespoints title '{}'", method));
-  }
-  OutputSet files;
-  files.add_table("velocities", table);
-  try {
+    files.add_table("velocities", table);
     render({"final_velocities", velocities.data(),
-            fmt::format("set xlabel 'ball'\nset ylabel 'final velocity [m/s]'\nset xrange [-0.5:{}]\nset xtics 1\nset grid\n"
+            fmt::format("set xlabel 'ball'\nset ylabel 'final velocity [m/s]'\nset xrange [-0.5:{}]\nset "
+                        "xtics 1\nset grid\n"
                         "set key top left\nplot {}",
                         static_cast<double>(n) - 0.5, velocities.plot())},
            files);
-    render({"energy_share", share_figure.data(),
-            fmt::format("set logscale x\nset format x '10^{{%L}}'\nset xlabel 'spacing [m] (0 drawn at {:g})'\n"
-                        "set ylabel 'last ball energy / initial'\nset key bottom right\nset grid\nplot {}",
-                        kZeroSpacing, share_figure.plot())},
-           files);
-  } catch (const std::exception& ex) {
-    std::cerr << "newton_cradle: " << ex.what() << "\n";
-    return cli::kExitFailure;
-  }
-  fmt::print("Newton's cradle: {} balls, striker at {:g} m/s (linear k = {:g} N/m, Hertz K = {:.4g} N/m^1.5)\n\n{}", n, v0, k, hertz_k,
-             table.to_markdown());
-  return write_outputs(files, app, argc, argv, start, out);
+    render(
+        {"energy_share", share_figure.data(),
+         fmt::format("set logscale x\nset format x '10^{{%L}}'\nset xlabel 'spacing [m] (0 drawn at {:g})'\n"
+                     "set ylabel 'last ball energy / initial'\nset key bottom right\nset grid\nplot {}",
+                     kZeroSpacing, share_figure.plot())},
+        files);
+    fmt::print(
+        "Newton's cradle: {} balls, striker at {:g} m/s (linear k = {:g} N/m, Hertz K = {:.4g} "
+        "N/m^1.5)\n\n{}",
+        n, v0, k, hertz_k, table.to_markdown());
+  });
 }
 
 int main(int argc, char** argv) { return contact::guarded_main("newton_cradle", argc, argv, program); }

@@ -1,19 +1,19 @@
 #include "output.hpp"
 
-#include "sundials_integrators.hpp"
 #include "fit.hpp"
+#include "integrator.hpp"
 #include "process.hpp"
 #include "table.hpp"
 
+#include <fmt/format.h>
 #include <CLI/Version.hpp>
 #include <Eigen/Core>
-#include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
+#include <unistd.h>
 #include <csignal>
 #include <fstream>
-#include <unistd.h>
 #include <stdexcept>
-
 
 namespace contact {
 
@@ -66,7 +66,9 @@ void OutputSet::write(const fs::path& dir_in) const {
   const fs::path target = dir.filename().empty() ? dir.parent_path() : dir;
   std::error_code ec;
   fs::create_directories(target.parent_path(), ec);
-  if (ec) throw std::runtime_error(fmt::format("cannot create {}: {}", target.parent_path().string(), ec.message()));
+  if (ec)
+    throw std::runtime_error(
+        fmt::format("cannot create {}: {}", target.parent_path().string(), ec.message()));
   ScratchDir staging{target.parent_path() / sibling_name(target, "staging")};
   fs::create_directory(staging.path, ec);
   if (ec) throw std::runtime_error(fmt::format("cannot create {}: {}", staging.path.string(), ec.message()));
@@ -111,8 +113,8 @@ void OutputSet::write_into(const fs::path& dir) const {
   }
 }
 
-nlohmann::json library_versions() {
-  return {
+std::string library_versions_json() {
+  return nlohmann::json{
       {"sundials", sundials_version()},
       {"gsl", gsl_version_string()},
       {"eigen", fmt::format("{}.{}.{}", EIGEN_WORLD_VERSION, EIGEN_MAJOR_VERSION, EIGEN_MINOR_VERSION)},
@@ -121,51 +123,17 @@ nlohmann::json library_versions() {
       {"nlohmann_json", fmt::format("{}.{}.{}", NLOHMANN_JSON_VERSION_MAJOR, NLOHMANN_JSON_VERSION_MINOR,
                                     NLOHMANN_JSON_VERSION_PATCH)},
       {"compiler", fmt::format("g++ {}", __VERSION__)},
-  };
-}
-
-nlohmann::json run_metadata(const CLI::App& app, int argc, char** argv, double wall_time_s) {
-  nlohmann::json options = nlohmann::json::object();
-  for (const CLI::Option* opt : app.get_options()) {
-    const std::string name = opt->get_single_name();
-    if (name.empty() || name == "help") continue;
-    if (opt->get_expected_min() == 0) {
-      options[name] = opt->count() > 0;  // a flag
-    } else {
-      // Every value given (a list option has several, or one comma-separated string).
-      options[name] = opt->count() > 0 ? fmt::format("{}", fmt::join(opt->results(), ",")) : opt->get_default_str();
-    }
   }
-  std::vector<std::string> command(argv, argv + argc);
-  return {
-      {"experiment", app.get_name()},
-      {"options", options},
-      {"command_line", command},
-      {"git_revision", git_revision()},
-      {"libraries", library_versions()},
-      {"wall_time_s", wall_time_s},
-  };
-}
-
-int write_outputs(OutputSet& files, const CLI::App& app, int argc, char** argv,
-                  std::chrono::steady_clock::time_point start, const fs::path& dir) {
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  files.add("meta.json", run_metadata(app, argc, argv, wall).dump(2) + "\n");
-  try {
-    files.write(dir);
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "{}: {}\n", app.get_name(), e.what());
-    return 1;
-  }
-  fmt::print("\nwrote {} files to {} ({:.2f} s)\n", files.files().size(), dir.string(), wall);
-  return 0;
+      .dump();
 }
 
 std::string check_output_dir(const fs::path& dir, const std::string& marker) {
   auto refuse = [&](const std::string& why) {
-    return fmt::format("--out: value '{}' {}; accepted: {}", dir.string(), why,
-                       marker.empty() ? "a writable folder"
-                                      : "a new folder, an empty one, or an earlier --out of this program (it is replaced whole)");
+    return fmt::format(
+        "--out: value '{}' {}; accepted: {}", dir.string(), why,
+        marker.empty()
+            ? "a writable folder"
+            : "a new folder, an empty one, or an earlier --out of this program (it is replaced whole)");
   };
   if (dir.empty()) return refuse("is empty");
   std::error_code ec;
@@ -181,7 +149,8 @@ std::string check_output_dir(const fs::path& dir, const std::string& marker) {
   while (!fs::exists(existing, ec) && existing.has_parent_path() && existing != existing.parent_path())
     existing = existing.parent_path();
   if (!fs::is_directory(existing, ec))
-    return refuse(existing == abs ? "exists and is not a folder" : fmt::format("lies under the file {}", existing.string()));
+    return refuse(existing == abs ? "exists and is not a folder"
+                                  : fmt::format("lies under the file {}", existing.string()));
   if (existing != abs && ::access(existing.c_str(), W_OK | X_OK) != 0)
     return refuse(fmt::format("cannot be created: {} is not writable", existing.string()));
   if (existing == abs && !marker.empty()) {

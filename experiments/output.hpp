@@ -3,10 +3,6 @@
 // succeeded, into a staging folder beside --out that then replaces --out whole: a failed, refused
 // or interrupted run leaves no file and keeps the previous results, and a folder never mixes the
 // files of two runs.
-#include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
-
-#include <chrono>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -43,12 +39,8 @@ class OutputSet {
   std::map<std::string, std::string> files_;
 };
 
-// meta.json: the experiment, every option with its value, the command line, the git revision,
-// the library and compiler versions, and the wall time.
-nlohmann::json run_metadata(const CLI::App& app, int argc, char** argv, double wall_time_s);
-
-// The versions of the libraries the project links, e.g. {"SUNDIALS": "6.4.1", ...}.
-nlohmann::json library_versions();
+// The versions of the libraries the project links, as a JSON object {"sundials": "6.4.1", ...}.
+std::string library_versions_json();
 
 // Checks before running that --out can receive the results: not empty, not a file or under one,
 // every name short enough for the staging folder beside it, the nearest existing folder
@@ -56,10 +48,5 @@ nlohmann::json library_versions();
 // default; an empty marker skips this: the folder is written into, not replaced), since it will
 // be replaced whole. Returns an error line naming --out, or "".
 std::string check_output_dir(const std::filesystem::path& dir, const std::string& marker = "meta.json");
-
-// The end every experiment shares: adds meta.json (wall time since `start`), writes everything to
-// `dir`, prints where. Returns the exit code: 0, or 1 (with the reason on stderr) if writing failed.
-int write_outputs(OutputSet& files, const CLI::App& app, int argc, char** argv,
-                  std::chrono::steady_clock::time_point start, const std::filesystem::path& dir);
 
 }  // namespace contact

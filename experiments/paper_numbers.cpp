@@ -4,9 +4,9 @@
 // column it comes from. A missing file, row or column is an error: the paper must not build on a
 // partial study.
 // Usage: paper_numbers --results DIR --out FILE.  Exit codes: 0, 1 a number is missing, 2 bad input.
-#include "process.hpp"
 #include "cli.hpp"
 #include "output.hpp"
+#include "process.hpp"
 #include "table.hpp"
 
 #include <fmt/format.h>
@@ -93,50 +93,196 @@ const std::vector<Number>& numbers() {
   static const std::vector<Number> list = {
       {"PenExpHooke", "k_sweep/exponents.csv", {{"law", "hooke"}}, "penetration_exponent", "{:.3f}"},
       {"DurExpHooke", "k_sweep/exponents.csv", {{"law", "hooke"}}, "duration_exponent", "{:.3f}"},
-      {"DurExpClamped", "k_sweep/exponents.csv", {{"law", "kelvin-voigt-clamped"}}, "duration_exponent", "{:.3f}"},
-      {"ConvKTimeExp", "convergence_k/rates.csv", {{"quantity", "impact_time_error"}}, "fitted_exponent", "{:.3f}"},
-      {"ConvKApexExp", "convergence_k/rates.csv", {{"quantity", "apex_height_error"}}, "fitted_exponent", "{:.3f}"},
+      {"DurExpClamped",
+       "k_sweep/exponents.csv",
+       {{"law", "kelvin-voigt-clamped"}},
+       "duration_exponent",
+       "{:.3f}"},
+      {"ConvKTimeExp",
+       "convergence_k/rates.csv",
+       {{"quantity", "impact_time_error"}},
+       "fitted_exponent",
+       "{:.3f}"},
+      {"ConvKApexExp",
+       "convergence_k/rates.csv",
+       {{"quantity", "apex_height_error"}},
+       "fitted_exponent",
+       "{:.3f}"},
       {"ZenoTime", "zeno/zeno.csv", {{"method", "event-exact"}}, "zeno_time_s", "{:.3f}"},
       {"ZenoExactContacts", "zeno/zeno.csv", {{"method", "event-exact"}}, "contacts", ""},
       {"ZenoExactRest", "zeno/zeno.csv", {{"method", "event-exact"}}, "rest_time_s", "{:.3f}"},
       {"ZenoGameContacts", "zeno/zeno.csv", {{"method", "game-symplectic"}}, "contacts", ""},
       {"ZenoPenaltyLowest", "zeno/zeno.csv", {{"method", "penalty"}}, "min_height_m", "{:.4f}"},
-      {"DriftEulerRate", "energy_drift/drift.csv", {{"system", "ball"}, {"method", "game-euler"}, {"value", "1e-3"}}, "drift_rate_per_s", "{:.2e}"},
-      {"DriftEulerFinal", "energy_drift/drift.csv", {{"system", "ball"}, {"method", "game-euler"}, {"value", "1e-3"}}, "final_energy_error_rel", "{:.2f}"},
-      {"DriftEulerFineFinal", "energy_drift/drift.csv", {{"system", "ball"}, {"method", "game-euler"}, {"value", "1e-4"}}, "final_energy_error_rel", "{:.3f}"},
-      {"DriftEulerSpringFinal", "energy_drift/drift.csv", {{"system", "ball"}, {"method", "game-euler-spring"}, {"value", "1e-3"}}, "final_energy_error_rel", "{:.0f}"},
-      {"DriftSymplecticMax", "energy_drift/drift.csv", {{"system", "ball"}, {"method", "game-symplectic"}, {"value", "1e-3"}}, "max_abs_energy_error_rel", "{:.1e}"},
-      {"DriftPenaltyFinal", "energy_drift/drift.csv", {{"system", "ball"}, {"method", "penalty"}, {"value", "1e-8"}}, "final_energy_error_rel", "{:.1e}"},
-      {"DriftEventOdeFinal", "energy_drift/drift.csv", {{"system", "ball"}, {"method", "event-ode"}, {"value", "1e-8"}}, "final_energy_error_rel", "{:.1e}"},
-      {"DriftExactMax", "energy_drift/drift.csv", {{"system", "ball"}, {"method", "event-exact"}}, "max_abs_energy_error_rel", "{:.1e}"},
-      {"DriftProjectionRubber", "energy_drift/drift.csv", {{"system", "rubber-steel"}, {"method", "game-projection"}, {"value", "1e-4"}}, "final_energy_error_rel", "{:.1f}"},
-      {"OrderRkFourUnlocated", "convergence_dt/orders.csv", {{"integrator", "rk4"}}, "fixed_order_unlocated", "{:.2f}"},
-      {"OrderRkFourLocated", "convergence_dt/orders.csv", {{"integrator", "rk4"}}, "fixed_order_located", "{:.2f}"},
-      {"OrderRkfUnlocated", "convergence_dt/orders.csv", {{"integrator", "gsl-rkf45"}}, "fixed_order_unlocated", "{:.2f}"},
-      {"OrderRkfLocated", "convergence_dt/orders.csv", {{"integrator", "gsl-rkf45"}}, "fixed_order_located", "{:.2f}"},
-      {"BdfRhsUnlocated", "convergence_dt/orders.csv", {{"integrator", "cvode-bdf"}}, "rhs_evals_tightest_unlocated", ""},
-      {"BdfRhsLocated", "convergence_dt/orders.csv", {{"integrator", "cvode-bdf"}}, "rhs_evals_tightest_located", ""},
-      {"CradleLinearLast", "newton_cradle/velocities.csv", {{"method", "penalty-linear"}, {"spacing_m", "0"}}, "v4_mps", "{:.3f}"},
-      {"CradleLinearStriker", "newton_cradle/velocities.csv", {{"method", "penalty-linear"}, {"spacing_m", "0"}}, "v0_mps", "{:.3f}"},
-      {"CradleLinearShare", "newton_cradle/velocities.csv", {{"method", "penalty-linear"}, {"spacing_m", "0"}}, "last_ball_energy_share", "{:.3f}"},
-      {"CradleHertzLast", "newton_cradle/velocities.csv", {{"method", "penalty-hertz"}, {"spacing_m", "0"}}, "v4_mps", "{:.3f}"},
-      {"CradleHertzShare", "newton_cradle/velocities.csv", {{"method", "penalty-hertz"}, {"spacing_m", "0"}}, "last_ball_energy_share", "{:.3f}"},
-      {"CradleGameContacts", "newton_cradle/velocities.csv", {{"method", "game"}, {"spacing_m", "0"}}, "contacts", ""},
-      {"WedgePenaltySpeed", "rigid_scenes/observables.csv", {{"scene", "wedge"}, {"method", "penalty"}, {"quantity", "upper_speed_mps"}}, "value", "{:.3f}"},
-      {"WedgeEventUpper", "rigid_scenes/observables.csv", {{"scene", "wedge"}, {"method", "event"}, {"quantity", "upper_speed_mps"}}, "value", "{:.3f}"},
-      {"WedgeEventLower", "rigid_scenes/observables.csv", {{"scene", "wedge"}, {"method", "event"}, {"quantity", "lower_speed_mps"}}, "value", "{:.3f}"},
-      {"WedgeProjectionL", "rigid_impacts/conservation.csv", {{"scene", "wedge"}, {"method", "game-projection"}, {"value", "1e-4"}}, "angular_momentum_error_rel", "{:.1e}"},
-      {"SpinPenaltyL", "rigid_impacts/conservation.csv", {{"scene", "spinning-box"}, {"method", "penalty"}, {"value", "1e-6"}}, "angular_momentum_error_rel", "{:.1e}"},
-      {"WpBdfRhs", "work_precision/work_precision.csv", {{"problem", "ball"}, {"paradigm", "penalty"}, {"integrator", "cvode-bdf"}, {"value", "1e-6"}}, "rhs_evals", ""},
-      {"WpBdfError", "work_precision/work_precision.csv", {{"problem", "ball"}, {"paradigm", "penalty"}, {"integrator", "cvode-bdf"}, {"value", "1e-6"}}, "error", "{:.1e}"},
-      {"WpEventRhs", "work_precision/work_precision.csv", {{"problem", "ball"}, {"paradigm", "event"}, {"integrator", "cvode-bdf"}, {"value", "1e-6"}}, "rhs_evals", ""},
-      {"WpEventError", "work_precision/work_precision.csv", {{"problem", "ball"}, {"paradigm", "event"}, {"integrator", "cvode-bdf"}, {"value", "1e-6"}}, "error", "{:.1e}"},
-      {"WpGameError", "work_precision/work_precision.csv", {{"problem", "ball"}, {"paradigm", "game"}}, "error", "{:.1e}", true},
-      {"WpGameDt", "work_precision/work_precision.csv", {{"problem", "ball"}, {"paradigm", "game"}}, "value", "{:.2e}", true},
+      {"DriftEulerRate",
+       "energy_drift/drift.csv",
+       {{"system", "ball"}, {"method", "game-euler"}, {"value", "1e-3"}},
+       "drift_rate_per_s",
+       "{:.2e}"},
+      {"DriftEulerFinal",
+       "energy_drift/drift.csv",
+       {{"system", "ball"}, {"method", "game-euler"}, {"value", "1e-3"}},
+       "final_energy_error_rel",
+       "{:.2f}"},
+      {"DriftEulerFineFinal",
+       "energy_drift/drift.csv",
+       {{"system", "ball"}, {"method", "game-euler"}, {"value", "1e-4"}},
+       "final_energy_error_rel",
+       "{:.3f}"},
+      {"DriftEulerSpringFinal",
+       "energy_drift/drift.csv",
+       {{"system", "ball"}, {"method", "game-euler-spring"}, {"value", "1e-3"}},
+       "final_energy_error_rel",
+       "{:.0f}"},
+      {"DriftSymplecticMax",
+       "energy_drift/drift.csv",
+       {{"system", "ball"}, {"method", "game-symplectic"}, {"value", "1e-3"}},
+       "max_abs_energy_error_rel",
+       "{:.1e}"},
+      {"DriftPenaltyFinal",
+       "energy_drift/drift.csv",
+       {{"system", "ball"}, {"method", "penalty"}, {"value", "1e-8"}},
+       "final_energy_error_rel",
+       "{:.1e}"},
+      {"DriftEventOdeFinal",
+       "energy_drift/drift.csv",
+       {{"system", "ball"}, {"method", "event-ode"}, {"value", "1e-8"}},
+       "final_energy_error_rel",
+       "{:.1e}"},
+      {"DriftExactMax",
+       "energy_drift/drift.csv",
+       {{"system", "ball"}, {"method", "event-exact"}},
+       "max_abs_energy_error_rel",
+       "{:.1e}"},
+      {"DriftProjectionRubber",
+       "energy_drift/drift.csv",
+       {{"system", "rubber-steel"}, {"method", "game-symplectic-projection"}, {"value", "1e-4"}},
+       "final_energy_error_rel",
+       "{:.1f}"},
+      {"OrderRkFourUnlocated",
+       "convergence_dt/orders.csv",
+       {{"integrator", "rk4"}},
+       "fixed_order_unlocated",
+       "{:.2f}"},
+      {"OrderRkFourLocated",
+       "convergence_dt/orders.csv",
+       {{"integrator", "rk4"}},
+       "fixed_order_located",
+       "{:.2f}"},
+      {"OrderRkfUnlocated",
+       "convergence_dt/orders.csv",
+       {{"integrator", "gsl-rkf45"}},
+       "fixed_order_unlocated",
+       "{:.2f}"},
+      {"OrderRkfLocated",
+       "convergence_dt/orders.csv",
+       {{"integrator", "gsl-rkf45"}},
+       "fixed_order_located",
+       "{:.2f}"},
+      {"BdfRhsUnlocated",
+       "convergence_dt/orders.csv",
+       {{"integrator", "cvode-bdf"}},
+       "rhs_evals_tightest_unlocated",
+       ""},
+      {"BdfRhsLocated",
+       "convergence_dt/orders.csv",
+       {{"integrator", "cvode-bdf"}},
+       "rhs_evals_tightest_located",
+       ""},
+      {"CradleLinearLast",
+       "newton_cradle/velocities.csv",
+       {{"method", "penalty-linear"}, {"spacing_m", "0"}},
+       "v4_mps",
+       "{:.3f}"},
+      {"CradleLinearStriker",
+       "newton_cradle/velocities.csv",
+       {{"method", "penalty-linear"}, {"spacing_m", "0"}},
+       "v0_mps",
+       "{:.3f}"},
+      {"CradleLinearShare",
+       "newton_cradle/velocities.csv",
+       {{"method", "penalty-linear"}, {"spacing_m", "0"}},
+       "last_ball_energy_share",
+       "{:.3f}"},
+      {"CradleHertzLast",
+       "newton_cradle/velocities.csv",
+       {{"method", "penalty-hertz"}, {"spacing_m", "0"}},
+       "v4_mps",
+       "{:.3f}"},
+      {"CradleHertzShare",
+       "newton_cradle/velocities.csv",
+       {{"method", "penalty-hertz"}, {"spacing_m", "0"}},
+       "last_ball_energy_share",
+       "{:.3f}"},
+      {"CradleGameContacts",
+       "newton_cradle/velocities.csv",
+       {{"method", "game"}, {"spacing_m", "0"}},
+       "contacts",
+       ""},
+      {"WedgePenaltySpeed",
+       "rigid_scenes/observables.csv",
+       {{"scene", "wedge"}, {"method", "penalty"}, {"quantity", "upper_speed_mps"}},
+       "value",
+       "{:.3f}"},
+      {"WedgeEventUpper",
+       "rigid_scenes/observables.csv",
+       {{"scene", "wedge"}, {"method", "event-ode"}, {"quantity", "upper_speed_mps"}},
+       "value",
+       "{:.3f}"},
+      {"WedgeEventLower",
+       "rigid_scenes/observables.csv",
+       {{"scene", "wedge"}, {"method", "event-ode"}, {"quantity", "lower_speed_mps"}},
+       "value",
+       "{:.3f}"},
+      {"WedgeProjectionL",
+       "rigid_impacts/conservation.csv",
+       {{"scene", "wedge"}, {"method", "game-symplectic-projection"}, {"value", "1e-4"}},
+       "angular_momentum_error_rel",
+       "{:.1e}"},
+      {"SpinPenaltyL",
+       "rigid_impacts/conservation.csv",
+       {{"scene", "spinning-box"}, {"method", "penalty"}, {"value", "1e-6"}},
+       "angular_momentum_error_rel",
+       "{:.1e}"},
+      {"WpBdfRhs",
+       "work_precision/work_precision.csv",
+       {{"problem", "ball"}, {"paradigm", "penalty"}, {"integrator", "cvode-bdf"}, {"value", "1e-6"}},
+       "rhs_evals",
+       ""},
+      {"WpBdfError",
+       "work_precision/work_precision.csv",
+       {{"problem", "ball"}, {"paradigm", "penalty"}, {"integrator", "cvode-bdf"}, {"value", "1e-6"}},
+       "error",
+       "{:.1e}"},
+      {"WpEventRhs",
+       "work_precision/work_precision.csv",
+       {{"problem", "ball"}, {"paradigm", "event"}, {"integrator", "cvode-bdf"}, {"value", "1e-6"}},
+       "rhs_evals",
+       ""},
+      {"WpEventError",
+       "work_precision/work_precision.csv",
+       {{"problem", "ball"}, {"paradigm", "event"}, {"integrator", "cvode-bdf"}, {"value", "1e-6"}},
+       "error",
+       "{:.1e}"},
+      {"WpGameError",
+       "work_precision/work_precision.csv",
+       {{"problem", "ball"}, {"paradigm", "game"}},
+       "error",
+       "{:.1e}",
+       true},
+      {"WpGameDt",
+       "work_precision/work_precision.csv",
+       {{"problem", "ball"}, {"paradigm", "game"}},
+       "value",
+       "{:.2e}",
+       true},
       {"AdvisorK", "contact_advisor/advice.csv", {{"quantity", "k_lin"}}, "value", "{:.3g}"},
       {"AdvisorZeta", "contact_advisor/advice.csv", {{"quantity", "zeta"}}, "value", "{:.3f}"},
       {"AdvisorEulerDt", "contact_advisor/advice.csv", {{"quantity", "euler_max_dt"}}, "value", "{:.2e}"},
-      {"AdvisorSymplecticDt", "contact_advisor/advice.csv", {{"quantity", "symplectic_max_dt"}}, "value", "{:.2e}"},
+      {"AdvisorSymplecticDt",
+       "contact_advisor/advice.csv",
+       {{"quantity", "symplectic_max_dt"}},
+       "value",
+       "{:.2e}"},
   };
   return list;
 }
@@ -167,23 +313,25 @@ std::string first_line(const std::string& command) {
 
 int program(int argc, char** argv) {
   std::string results = "results", out = "results/paper/numbers.tex";
-  CLI::App app{"Writes the numbers the paper quotes, from the study's results, as LaTeX macros.", "paper_numbers"};
-  app.option_defaults()->always_capture_default();
-  app.add_option("--results", results, "the study's results folder")->check(CLI::ExistingDirectory);
-  app.add_option("--out", out, "the macro file to write");
-  if (const int code = cli::parse(app, argc, argv); code >= 0) return code;
+  cli::Options app("paper_numbers",
+                   "Writes the numbers the paper quotes, from the study's results, as LaTeX macros.");
+  app.add("--results", results, "the study's results folder", cli::existing_folder());
+  app.add("--out", out, "the macro file to write");
+  if (const int code = app.parse(argc, argv); code >= 0) return code;
   std::string tex = "% Generated by paper_numbers from the study's results: do not edit.\n";
   try {
     for (const auto& n : numbers())
       tex += fmt::format("\\newcommand{{\\{}}}{{{}}}\n", n.macro, latex_number(lookup(results, n)));
     // The run: how long the study took, where, with which libraries.
     std::ifstream study(fs::path(results) / "study.json"), meta(fs::path(results) / "k_sweep" / "meta.json");
-    if (!study || !meta) throw std::runtime_error("study.json or k_sweep/meta.json missing: run the study first");
+    if (!study || !meta)
+      throw std::runtime_error("study.json or k_sweep/meta.json missing: run the study first");
     const auto s = nlohmann::json::parse(study), m = nlohmann::json::parse(meta);
     tex += fmt::format("\\newcommand{{\\StudyWallTime}}{{{:.0f}}}\n", s.at("wall_time_s").get<double>());
     tex += fmt::format("\\newcommand{{\\StudyCores}}{{{}}}\n", s.at("cores").get<unsigned>());
     tex += fmt::format("\\newcommand{{\\StudyExperiments}}{{{}}}\n", s.at("experiments").size());
-    tex += fmt::format("\\newcommand{{\\GitRevision}}{{\\texttt{{{}}}}}\n", m.at("git_revision").get<std::string>());
+    tex += fmt::format("\\newcommand{{\\GitRevision}}{{\\texttt{{{}}}}}\n",
+                       m.at("git_revision").get<std::string>());
     const std::pair<const char*, const char*> tools[] = {
         {"ToolCmake", "cmake --version"},
         {"ToolGnuplot", "gnuplot --version"},
@@ -192,12 +340,16 @@ int program(int argc, char** argv) {
         {"MachineCpu", "grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//'"},
         {"MachineKernel", "uname -srm"},
     };
-    for (const auto& [macro, command] : tools) tex += fmt::format("\\newcommand{{\\{}}}{{{}}}\n", macro, first_line(command));
+    for (const auto& [macro, command] : tools)
+      tex += fmt::format("\\newcommand{{\\{}}}{{{}}}\n", macro, first_line(command));
     for (const auto& [lib, version] : m.at("libraries").items()) {
       std::string name = "Version";
       bool upper = true;
       for (char c : lib) {
-        if (c == '_') { upper = true; continue; }
+        if (c == '_') {
+          upper = true;
+          continue;
+        }
         if (std::isdigit(static_cast<unsigned char>(c))) continue;  // macro names are letters only
         name += upper ? static_cast<char>(std::toupper(static_cast<unsigned char>(c))) : c;
         upper = false;

@@ -4,14 +4,14 @@
 
 #include <fmt/format.h>
 
-#include <atomic>
-#include <cerrno>
-#include <csignal>
-#include <cstring>
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <atomic>
+#include <cerrno>
+#include <csignal>
+#include <cstring>
 
 extern char** environ;
 
@@ -55,7 +55,8 @@ int run_process(const std::vector<std::string>& args, const std::filesystem::pat
   argv.push_back(nullptr);
 
   posix_spawn_file_actions_t actions;
-  if (posix_spawn_file_actions_init(&actions) != 0) throw std::runtime_error("posix_spawn_file_actions_init failed");
+  if (posix_spawn_file_actions_init(&actions) != 0)
+    throw std::runtime_error("posix_spawn_file_actions_init failed");
   struct Cleanup {
     posix_spawn_file_actions_t* a;
     ~Cleanup() { posix_spawn_file_actions_destroy(a); }
@@ -63,7 +64,8 @@ int run_process(const std::vector<std::string>& args, const std::filesystem::pat
   if (!cwd.empty() && posix_spawn_file_actions_addchdir_np(&actions, cwd.c_str()) != 0)
     throw std::runtime_error("posix_spawn_file_actions_addchdir_np failed");
   if (!log.empty()) {
-    if (posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644) != 0 ||
+    if (posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
+                                         0644) != 0 ||
         posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO) != 0)
       throw std::runtime_error("posix_spawn_file_actions_addopen failed");
   }

@@ -13,13 +13,13 @@
 // Outputs in --out (default results/rigid_impacts): conservation.{csv,md,tex},
 // conservation.{png,pdf,gp} (largest error over the scenes against step or tolerance),
 // meta.json. Exit codes: 0, 1 solver failure, 2 bad input.
-#include "process.hpp"
-#include "cli.hpp"
+#include "experiment.hpp"
 #include "figure.hpp"
 #include "output.hpp"
+#include "process.hpp"
 #include "progress.hpp"
-#include "rigid_methods.hpp"
 #include "rigid_scenes.hpp"
+#include "sweep_setting.hpp"
 #include "table.hpp"
 
 #include <fmt/format.h>
@@ -54,93 +54,88 @@ Totals totals(const std::vector<RigidBody>& bodies) {
 
 int program(int argc, char** argv) {
   std::vector<double> dts{1e-4, 1e-5, 1e-6}, rtols{1e-6, 1e-8, 1e-10};
-  std::string scenes = "snooker,planet,spinning-box,off-centre,cradle,wedge", out = "results/rigid_impacts";
-  CLI::App app{"Momentum, angular momentum and energy errors of every method on the 3D scenes.", "rigid_impacts"};
-  app.option_defaults()->always_capture_default();
-  cli::add_real_list(app, "--dts", dts, "game steps [s], comma-separated", cli::positive());
-  cli::add_real_list(app, "--rtols", rtols, "CVODE relative tolerances, comma-separated", cli::real_in(0, 1, true, true));
+  std::string scenes = "snooker,planet,spinning-box,off-centre,cradle,wedge";
+  Experiment app("rigid_impacts",
+                 "Momentum, angular momentum and energy errors of every method on the 3D scenes.",
+                 "results/rigid_impacts");
+  app.add_list("--dts", dts, "game steps [s], comma-separated", cli::positive());
+  app.add_list("--rtols", rtols, "CVODE relative tolerances, comma-separated",
+               cli::real_in(0, 1, true, true));
   auto names = rigid_scene_names();
   std::erase(names, "rubber-steel");
-  app.add_option("--scene", scenes, "scenes, comma-separated (all finite masses)")->check(cli::one_of(names, true));
-  app.add_option("--out", out, "output directory");
-  if (const int code = cli::parse(app, argc, argv); code >= 0) return code;
-  if (const auto err = check_output_dir(out); !err.empty()) {
-    std::cerr << "rigid_impacts: " << err << "\n";
-    return cli::kExitBadInput;
-  }
-  const auto start = std::chrono::steady_clock::now();
-  const double lever = SceneParams{}.radius;
-  const auto scene_list = cli::split_list(scenes);
-  const auto methods = rigid_method_names();
-  std::size_t total = 0;
-  for (const auto& method : methods) total += scene_list.size() * (is_fixed_step(method) ? dts.size() : rtols.size());
+  app.add("--scene", scenes, "scenes, comma-separated (all finite masses)", cli::one_of(names, true));
+  return app.run(argc, argv, [&](OutputSet& files) {
+    const double lever = SceneParams{}.radius;
+    const auto scene_list = cli::split_list(scenes);
+    const auto& methods = kRigidMethods;
+    std::size_t total = 0;
+    for (const auto& method : methods)
+      total += scene_list.size() * (method_info(method).fixed_step ? dts.size() : rtols.size());
 
-  Table table({"scene", "method", "setting", "value", "momentum_error_rel", "angular_momentum_error_rel", "energy_error_rel", "contacts",
-               "rhs_evals"});
-  // method -> setting value -> largest error over the scenes (momentum, angular momentum, energy)
-  std::map<std::string, std::map<double, std::array<double, 3>>> worst;
-  Progress progress("rigid_impacts", total);
-  for (const auto& name : scene_list) {
-    const SceneInfo& info = rigid_scene(name);
-    const RigidScene scene = info.make({});
-    const Totals before = totals(scene.bodies());
-    double mass = 0, L_scale = 0;
-    for (const auto& b : scene.bodies()) {
-      mass += b.inverse_mass > 0 ? 1 / b.inverse_mass : 0.0;
-      L_scale += b.momentum().norm() * std::max(b.position.norm(), lever) + (b.angular_momentum(b.position)).norm();
-    }
-    // The momentum that would carry the initial kinetic energy with the scene's total mass: a scale
-    // that is not zero when the bodies' momenta cancel (the box spinning in place).
-    const double p_scale = std::sqrt(2 * mass * scene.energy(scene.initial_state()));
-    for (const auto& method : methods) {
-      const bool fixed = is_fixed_step(method);
-      for (double v : fixed ? dts : rtols) {
-        progress.step(fmt::format("{} {} {:g}", name, method, v));
-        const RigidRunSettings s = with_setting({info.t_end, info.t_end, 1e-4, 1e-8, 1e-10}, method, v);
-        const RunResult r = run_rigid(scene, method, s);
-        if (!r.ok()) {
-          std::cerr << fmt::format("rigid_impacts: {} {} ({} = {:g}): {} at t = {:.9g} s: {}\n", name, method, fixed ? "dt" : "rtol", v,
-                                   to_string(r.status), r.t_reached, r.message);
-          return cli::kExitFailure;
+    Table table({"scene", "method", "setting", "value", "momentum_error_rel", "angular_momentum_error_rel",
+                 "energy_error_rel", "contacts", "rhs_evals"});
+    // method -> setting value -> largest error over the scenes (momentum, angular momentum, energy)
+    std::map<std::string, std::map<double, std::array<double, 3>>> worst;
+    Progress progress("rigid_impacts", total);
+    for (const auto& name : scene_list) {
+      const SceneInfo& info = rigid_scene(name);
+      const RigidScene scene = info.make({});
+      const Totals before = totals(scene.bodies());
+      double mass = 0, L_scale = 0;
+      for (const auto& b : scene.bodies()) {
+        mass += b.inverse_mass > 0 ? 1 / b.inverse_mass : 0.0;
+        L_scale += b.momentum().norm() * std::max(b.position.norm(), lever) +
+                   (b.angular_momentum(b.position)).norm();
+      }
+      // The momentum that would carry the initial kinetic energy with the scene's total mass: a scale
+      // that is not zero when the bodies' momenta cancel (the box spinning in place).
+      const double p_scale = std::sqrt(2 * mass * scene.energy(scene.initial_state()));
+      for (const auto& method : methods) {
+        const bool fixed = method_info(method).fixed_step;
+        for (double v : fixed ? dts : rtols) {
+          progress.step(fmt::format("{} {} {:g}", name, method, v));
+          const RunResult r =
+              require(solve(scene, with_setting(rigid_method(method), v),
+                            {.t_end = info.t_end, .sample_dt = info.t_end}),
+                      fmt::format("{} {} ({} = {:g})", name, method, fixed ? "dt" : "rtol", v));
+          const Totals after = totals(scene.bodies_at(r.samples.back().y));
+          const std::array<double, 3> err = {
+              (after.p - before.p).norm() / p_scale, (after.L - before.L).norm() / L_scale,
+              (r.samples.back().energy + r.samples.back().dissipated - r.energy0) / r.energy0};
+          table.add_row({name, method, std::string(fixed ? "dt" : "rtol"), v, err[0], err[1], err[2],
+                         static_cast<long>(r.contacts.size()), r.stats.rhs_evals});
+          auto& w = worst[method][v];
+          for (int i = 0; i < 3; ++i) w[i] = std::max(w[i], std::abs(err[i]));
         }
-        const Totals after = totals(scene.bodies_at(r.samples.back().y));
-        const std::array<double, 3> err = {(after.p - before.p).norm() / p_scale, (after.L - before.L).norm() / L_scale,
-                                           (r.samples.back().energy + r.samples.back().dissipated - r.energy0) / r.energy0};
-        table.add_row({name, method, std::string(fixed ? "dt" : "rtol"), v, err[0], err[1], err[2], static_cast<long>(r.contacts.size()),
-                       r.stats.rhs_evals});
-        auto& w = worst[method][v];
-        for (int i = 0; i < 3; ++i) w[i] = std::max(w[i], std::abs(err[i]));
       }
     }
-  }
-  // Three panels side by side: each error against step (game) or tolerance (the others).
-  std::string data, plot = "set multiplot layout 1,3\n";
-  std::vector<std::string> blocks;
-  for (const auto& [method, by_value] : worst) {
-    for (const auto& [v, w] : by_value) data += fmt::format("{},{},{},{}\n", v, std::max(w[0], kFloor), std::max(w[1], kFloor), std::max(w[2], kFloor));
-    data += "\n\n";
-    blocks.push_back(method);
-  }
-  const char* titles[] = {"momentum", "angular momentum", "energy"};
-  for (int q = 0; q < 3; ++q) {
-    plot += fmt::format("set title '{}'\nset logscale xy\nset format x '10^{{%L}}'\nset format y '10^{{%L}}'\nset xlabel 'dt [s] or rtol'\n"
-                        "set grid\nset yrange [1e-17:*]\n{}\nplot ",
-                        titles[q], q == 0 ? "set key top left font ',8'" : "unset key");
-    for (std::size_t b = 0; b < blocks.size(); ++b)
-      plot += fmt::format("{}'data.csv' index {} using 1:{} with linespoints title '{}'", b ? ", " : "", b, q + 2, blocks[b]);
-    plot += "\n";
-  }
-  plot += "unset multiplot";
-  OutputSet files;
-  files.add_table("conservation", table);
-  try {
+    // Three panels side by side: each error against step (game) or tolerance (the others).
+    std::string data, plot = "set multiplot layout 1,3\n";
+    std::vector<std::string> blocks;
+    for (const auto& [method, by_value] : worst) {
+      for (const auto& [v, w] : by_value)
+        data += fmt::format("{},{},{},{}\n", v, std::max(w[0], kFloor), std::max(w[1], kFloor),
+                            std::max(w[2], kFloor));
+      data += "\n\n";
+      blocks.push_back(method);
+    }
+    const char* titles[] = {"momentum", "angular momentum", "energy"};
+    for (int q = 0; q < 3; ++q) {
+      plot += fmt::format(
+          "set title '{}'\nset logscale xy\nset format x '10^{{%L}}'\nset format y '10^{{%L}}'\nset xlabel "
+          "'dt [s] or rtol'\n"
+          "set grid\nset yrange [1e-17:*]\n{}\nplot ",
+          titles[q], q == 0 ? "set key top left font ',8'" : "unset key");
+      for (std::size_t b = 0; b < blocks.size(); ++b)
+        plot += fmt::format("{}'data.csv' index {} using 1:{} with linespoints title '{}'", b ? ", " : "", b,
+                            q + 2, blocks[b]);
+      plot += "\n";
+    }
+    plot += "unset multiplot";
+    files.add_table("conservation", table);
     render({"conservation", data, "set size ratio 1\n" + plot}, files);
-  } catch (const std::exception& ex) {
-    std::cerr << "rigid_impacts: " << ex.what() << "\n";
-    return cli::kExitFailure;
-  }
-  fmt::print("Conservation errors on the 3D scenes\n\n{}", table.to_markdown(3));
-  return write_outputs(files, app, argc, argv, start, out);
+    fmt::print("Conservation errors on the 3D scenes\n\n{}", table.to_markdown(3));
+  });
 }
 
 int main(int argc, char** argv) { return contact::guarded_main("rigid_impacts", argc, argv, program); }

@@ -1,22 +1,23 @@
 // rigid_scenes — the tutorial's 3D scenes resolved by every paradigm.
 // Scenes (models/rigid/rigid_scenes.hpp): snooker, planet, spinning-box, off-centre,
-// rubber-steel, cradle. Methods: penalty (Kelvin–Voigt spring as an ODE under CVODE BDF with
-// difference-quotient Jacobian, contact switches root-located), game (semi-implicit Euler with
-// the tutorial's projection + impulse), game-projection (projection alone: the cue ball keeps
-// pushing), event (free flight under CVODE, impulses at located contacts, sequential rule, lowest
-// contact first), event-reversed (the same, highest first: the rule's order-dependence).
+// rubber-steel, cradle, wedge. Methods (integrators/method_registry.hpp): penalty (Kelvin–Voigt
+// spring as an ODE under CVODE BDF with difference-quotient Jacobian, contact switches
+// root-located), game-symplectic (semi-implicit Euler with the tutorial's projection + impulse),
+// game-symplectic-projection (projection alone: the cue ball keeps pushing), event-ode (free
+// flight under CVODE, impulses at located contacts, sequential rule, lowest contact first),
+// event-ode-reversed (the same, highest first: the rule's order-dependence).
 // Outputs in --out (default results/rigid_scenes): runs.{csv,md,tex} (one row per scene and
 // method), observables.csv (scene, method, quantity, value), penetration.{png,pdf,gp} (largest
 // penetration per scene and method), meta.json.
 // Exit codes: 0 success, 1 solver failure, 2 bad input (option, value, accepted range).
-#include "process.hpp"
-#include "cli.hpp"
+#include "rigid_scenes.hpp"
+#include "experiment.hpp"
 #include "figure.hpp"
 #include "metrics.hpp"
 #include "output.hpp"
+#include "process.hpp"
 #include "progress.hpp"
-#include "rigid_methods.hpp"
-#include "rigid_scenes.hpp"
+#include "sweep_setting.hpp"
 #include "table.hpp"
 
 #include <fmt/format.h>
@@ -50,21 +51,29 @@ Observables observe(const std::string& scene, const RigidScene& s, const RunResu
   };
   if (scene == "snooker") {
     // With projection alone the first contact never closes: it pushes from its start to the end.
-    const double pushing = r.contacts.empty() ? 0.0
+    const double pushing = r.contacts.empty()            ? 0.0
                            : r.contacts.front().closed() ? r.contacts.front().duration()
                                                          : r.t_reached - r.contacts.front().t_begin;
-    return {{"cue_vx_mps", bodies[0].velocity.x()}, {"red_vx_mps", bodies[1].velocity.x()},
-            {"red_displacement_m", bodies[1].position.x() - s.bodies()[1].position.x()}, {"contact_duration_s", pushing}};
+    return {{"cue_vx_mps", bodies[0].velocity.x()},
+            {"red_vx_mps", bodies[1].velocity.x()},
+            {"red_displacement_m", bodies[1].position.x() - s.bodies()[1].position.x()},
+            {"contact_duration_s", pushing}};
   }
-  if (scene == "planet") return {{"cue_vx_mps", bodies[0].velocity.x()}, {"planet_speed_mps", bodies[1].velocity.norm()}};
+  if (scene == "planet")
+    return {{"cue_vx_mps", bodies[0].velocity.x()}, {"planet_speed_mps", bodies[1].velocity.norm()}};
   if (scene == "spinning-box")
-    return {{"ball_speed_mps", bodies[1].velocity.norm()}, {"box_spin_radps", bodies[0].angular_velocity.norm()}};
+    return {{"ball_speed_mps", bodies[1].velocity.norm()},
+            {"box_spin_radps", bodies[0].angular_velocity.norm()}};
   if (scene == "off-centre")
-    return {{"box_spin_radps", bodies[1].angular_velocity.norm()}, {"box_speed_mps", bodies[1].velocity.norm()}};
-  if (scene == "rubber-steel") return {{"rubber_apex_ratio", first_apex(0)}, {"steel_apex_ratio", first_apex(1)}};
-  if (scene == "cradle") return {{"striker_vx_mps", bodies[0].velocity.x()}, {"last_vx_mps", bodies[4].velocity.x()}};
+    return {{"box_spin_radps", bodies[1].angular_velocity.norm()},
+            {"box_speed_mps", bodies[1].velocity.norm()}};
+  if (scene == "rubber-steel")
+    return {{"rubber_apex_ratio", first_apex(0)}, {"steel_apex_ratio", first_apex(1)}};
+  if (scene == "cradle")
+    return {{"striker_vx_mps", bodies[0].velocity.x()}, {"last_vx_mps", bodies[4].velocity.x()}};
   if (scene == "wedge")  // symmetric physics would give the two balls equal speeds
-    return {{"upper_speed_mps", bodies[1].velocity.norm()}, {"lower_speed_mps", bodies[2].velocity.norm()},
+    return {{"upper_speed_mps", bodies[1].velocity.norm()},
+            {"lower_speed_mps", bodies[2].velocity.norm()},
             {"striker_vy_mps", bodies[0].velocity.y()}};
   return {};
 }
@@ -72,88 +81,91 @@ Observables observe(const std::string& scene, const RigidScene& s, const RunResu
 }  // namespace
 
 int program(int argc, char** argv) {
-  std::string scenes = "all", methods = "penalty,game,game-projection,event,event-reversed", out = "results/rigid_scenes";
+  std::string scenes = "all",
+              methods = "penalty,game-symplectic,game-symplectic-projection,event-ode,event-ode-reversed";
   SceneParams p;
   double dt = 1e-4, rtol = 1e-8, atol = 1e-10;
   std::vector<double> half{p.half_extents.x(), p.half_extents.y(), p.half_extents.z()}, quat{1, 0, 0, 0};
-  CLI::App app{"The tutorial's 3D scenes resolved by penalty springs, game integration and event-driven impulses.", "rigid_scenes"};
-  app.option_defaults()->always_capture_default();
+  Experiment app(
+      "rigid_scenes",
+      "The tutorial's 3D scenes resolved by penalty springs, game integration and event-driven impulses.",
+      "results/rigid_scenes");
   auto names = rigid_scene_names();
   names.insert(names.begin(), "all");
-  app.add_option("--scene", scenes, "scenes, comma-separated or 'all'")->check(cli::one_of(names, true));
-  app.add_option("--method", methods, "methods, comma-separated")->check(cli::one_of(rigid_method_names(), true));
-  app.add_option("--m", p.m, "mass of the moving ball [kg]")->check(cli::positive());
-  app.add_option("--radius", p.radius, "its radius [m]")->check(cli::positive());
-  app.add_option("--elasticity", p.elasticity, "its elasticity (restitution = product of the pair's)")->check(cli::non_negative());
-  app.add_option("--half-extents", half, "the cuboid's half extents [m]")->expected(3)->check(cli::positive());
-  app.add_option("--quaternion", quat, "the cuboid's orientation w x y z (normalised; must be non-zero)")->expected(4)->check(cli::finite());
-  app.add_option("--k", p.k, "penalty stiffness [N/m]")->check(cli::positive());
-  app.add_option("--dt", dt, "game step [s]")->check(cli::positive());
-  app.add_option("--rtol", rtol, "CVODE relative tolerance")->check(cli::real_in(0, 1, true, true));
-  app.add_option("--atol", atol, "CVODE absolute tolerance")->check(cli::positive());
-  app.add_option("--out", out, "output directory");
-  if (const int code = cli::parse(app, argc, argv); code >= 0) return code;
-  // Normalised with scaling (stableNormalized): the plain norm of (1e200, ...) overflows to inf and
-  // of (1e-200, ...) underflows to 0, though both are fine orientations.
-  const Eigen::Vector4d q = Eigen::Vector4d(quat[0], quat[1], quat[2], quat[3]);
-  if (q.cwiseAbs().maxCoeff() == 0) {
-    std::cerr << "rigid_scenes: --quaternion: value '0 0 0 0' has zero norm; accepted: any finite non-zero quaternion\n";
-    return cli::kExitBadInput;
-  }
-  if (const auto err = check_output_dir(out); !err.empty()) {
-    std::cerr << "rigid_scenes: " << err << "\n";
-    return cli::kExitBadInput;
-  }
-  p.half_extents = Vec3(half[0], half[1], half[2]);
-  const Eigen::Vector4d unit = q.stableNormalized();
-  p.orientation = Quat(unit[0], unit[1], unit[2], unit[3]);
-
-  const auto start = std::chrono::steady_clock::now();
-  Table runs({"scene", "method", "status", "contacts", "max_penetration_m", "energy_drift_rel", "rhs_evals", "wall_time_s"});
-  Table observables({"scene", "method", "quantity", "value"});
-  const auto scene_list = scenes == "all" ? rigid_scene_names() : cli::split_list(scenes);
-  const auto method_list = cli::split_list(methods);
-  Progress progress("rigid_scenes", scene_list.size() * method_list.size());
-  int failures = 0;
-  std::map<std::string, std::string> penetration;  // method -> "scene index,scene,max penetration" lines
-  for (const auto& name : scene_list) {
-    const SceneInfo& info = rigid_scene(name);
-    const RigidScene scene = info.make(p);
-    for (const auto& method : method_list) {
-      progress.step(name + " " + method);
-      const RunResult r = run_rigid(scene, method, {info.t_end, info.t_end, dt, rtol, atol});
-      if (!r.ok()) {
-        ++failures;
-        std::cerr << fmt::format("rigid_scenes: {} {} failed: {} at t = {:.9g} s: {}\n", name, method, to_string(r.status), r.t_reached, r.message);
-        continue;
-      }
-      const RunMetrics m = compute_metrics(r);
-      penetration[method] += fmt::format("{},{},{}\n", &name - scene_list.data(), name, std::max(m.max_penetration, 1e-12));
-      runs.add_row({name, method, std::string(to_string(r.status)), static_cast<long>(m.contacts), m.max_penetration,
-                    m.max_energy_drift, r.stats.rhs_evals, r.stats.wall_time_s});
-      for (const auto& [quantity, value] : observe(name, scene, r)) observables.add_row({name, method, quantity, value});
+  app.add("--scene", scenes, "scenes, comma-separated or 'all'", cli::one_of(names, true));
+  app.add("--method", methods, "methods, comma-separated", cli::one_of(kRigidMethods, true));
+  app.add("--m", p.m, "mass of the moving ball [kg]", cli::positive());
+  app.add("--radius", p.radius, "its radius [m]", cli::positive());
+  app.add("--elasticity", p.elasticity, "its elasticity (restitution = product of the pair's)",
+          cli::non_negative());
+  app.add("--half-extents", half, 3, "the cuboid's half extents [m]", cli::positive());
+  app.add("--quaternion", quat, 4, "the cuboid's orientation w x y z (normalised; must be non-zero)",
+          cli::finite());
+  app.add("--k", p.k, "penalty stiffness [N/m]", cli::positive());
+  app.add("--dt", dt, "game step [s]", cli::positive());
+  app.add("--rtol", rtol, "CVODE relative tolerance", cli::real_in(0, 1, true, true));
+  app.add("--atol", atol, "CVODE absolute tolerance", cli::positive());
+  return app.run(argc, argv, [&](OutputSet& files) {
+    // Normalised with scaling (stableNormalized): the plain norm of (1e200, ...) overflows to inf and
+    // of (1e-200, ...) underflows to 0, though both are fine orientations.
+    const Eigen::Vector4d q = Eigen::Vector4d(quat[0], quat[1], quat[2], quat[3]);
+    if (q.cwiseAbs().maxCoeff() == 0) {
+      throw std::invalid_argument(
+          "--quaternion: value '0 0 0 0' has zero norm; accepted: any finite non-zero quaternion");
     }
-  }
-  fmt::print("Rigid scenes (k = {:g} N/m, game dt = {:g} s, rtol = {:g})\n\n{}\n{}", p.k, dt, rtol, runs.to_markdown(),
-             observables.to_markdown());
-  if (failures > 0) return cli::kExitFailure;
-  OutputSet files;
-  files.add_table("runs", runs);
-  files.add("observables.csv", observables.to_csv());
-  Series series;
-  int point_type = 4;
-  for (const auto& [method, rows] : penetration)
-    series.add(rows, fmt::format("using 1:3:xtic(2) with points pt {} ps 1.5 title '{}'", point_type++, method));
-  try {
+    p.half_extents = Vec3(half[0], half[1], half[2]);
+    const Eigen::Vector4d unit = q.stableNormalized();
+    p.orientation = Quat(unit[0], unit[1], unit[2], unit[3]);
+
+    Table runs({"scene", "method", "status", "contacts", "max_penetration_m", "energy_drift_rel", "rhs_evals",
+                "wall_time_s"});
+    Table observables({"scene", "method", "quantity", "value"});
+    const auto scene_list = scenes == "all" ? rigid_scene_names() : cli::split_list(scenes);
+    const auto method_list = cli::split_list(methods);
+    Progress progress("rigid_scenes", scene_list.size() * method_list.size());
+    int failures = 0;
+    std::map<std::string, std::string> penetration;  // method -> "scene index,scene,max penetration" lines
+    for (const auto& name : scene_list) {
+      const SceneInfo& info = rigid_scene(name);
+      const RigidScene scene = info.make(p);
+      for (const auto& method : method_list) {
+        progress.step(name + " " + method);
+        Method mt{.name = method, .dt = dt};
+        mt.integrator.rtol = rtol;
+        mt.integrator.atol = atol;
+        const RunResult r = solve(scene, mt, {.t_end = info.t_end, .sample_dt = info.t_end});
+        if (!r.ok()) {
+          ++failures;
+          std::cerr << fmt::format("rigid_scenes: {} {} failed: {} at t = {:.9g} s: {}\n", name, method,
+                                   to_string(r.status), r.t_reached, r.message);
+          continue;
+        }
+        const RunMetrics m = compute_metrics(r);
+        penetration[method] +=
+            fmt::format("{},{},{}\n", &name - scene_list.data(), name, std::max(m.max_penetration, 1e-12));
+        runs.add_row({name, method, std::string(to_string(r.status)), static_cast<long>(m.contacts),
+                      m.max_penetration, m.max_energy_drift, r.stats.rhs_evals, r.stats.wall_time_s});
+        for (const auto& [quantity, value] : observe(name, scene, r))
+          observables.add_row({name, method, quantity, value});
+      }
+    }
+    fmt::print("Rigid scenes (k = {:g} N/m, game dt = {:g} s, rtol = {:g})\n\n{}\n{}", p.k, dt, rtol,
+               runs.to_markdown(), observables.to_markdown());
+    if (failures > 0) throw std::runtime_error(fmt::format("{} run(s) failed", failures));
+    files.add_table("runs", runs);
+    files.add("observables.csv", observables.to_csv());
+    Series series;
+    int point_type = 4;
+    for (const auto& [method, rows] : penetration)
+      series.add(rows,
+                 fmt::format("using 1:3:xtic(2) with points pt {} ps 1.5 title '{}'", point_type++, method));
     render({"penetration", series.data(),
-            "set logscale y\nset format y '10^{%L}'\nset ylabel 'largest penetration [m] (none: 10^{-12})'\nset xtics rotate by -30\n"
-            "set offsets 0.3, 0.3, 0, 0\nset key outside below\nset grid\nplot " + series.plot()},
+            "set logscale y\nset format y '10^{%L}'\nset ylabel 'largest penetration [m] (none: "
+            "10^{-12})'\nset xtics rotate by -30\n"
+            "set offsets 0.3, 0.3, 0, 0\nset key outside below\nset grid\nplot " +
+                series.plot()},
            files);
-  } catch (const std::exception& ex) {
-    std::cerr << "rigid_scenes: " << ex.what() << "\n";
-    return cli::kExitFailure;
-  }
-  return write_outputs(files, app, argc, argv, start, out);
+  });
 }
 
 int main(int argc, char** argv) { return contact::guarded_main("rigid_scenes", argc, argv, program); }

@@ -9,12 +9,12 @@
 // keeps it within (1 + w dt/2)/(1 - w dt/2) of the entry value below w dt = 2 and is unstable above.
 // Outputs in --out (default results/stability_map): stability.{csv,md,tex},
 // restitution.{png,pdf,gp}, meta.json. Exit codes: 0, 1 failure, 2 bad input.
-#include "process.hpp"
 #include "ball_drop.hpp"
-#include "cli.hpp"
+#include "experiment.hpp"
 #include "figure.hpp"
 #include "game_step.hpp"
 #include "output.hpp"
+#include "process.hpp"
 #include "progress.hpp"
 #include "table.hpp"
 
@@ -29,70 +29,69 @@ using namespace contact;
 int program(int argc, char** argv) {
   long points = 40;
   double wdt_max = 4.0;
-  std::string out = "results/stability_map";
-  CLI::App app{"Game integration of a spring contact over the (k, dt) plane: restitution and energy against w dt.", "stability_map"};
-  app.option_defaults()->always_capture_default();
-  app.add_option("--points", points, "w dt values, log-spaced from 0.01")->check(cli::integer_at_least(2));
-  app.add_option("--wdt-max", wdt_max, "largest w dt")->check(cli::real_in(0.01, 100, true, false));
-  app.add_option("--out", out, "output directory");
-  if (const int code = cli::parse(app, argc, argv); code >= 0) return code;
-  if (const auto err = check_output_dir(out); !err.empty()) {
-    std::cerr << "stability_map: " << err << "\n";
-    return cli::kExitBadInput;
-  }
-  const auto start = std::chrono::steady_clock::now();
-  const double m = 1.0, V = 1.0;
-  Table table({"k_N_per_m", "scheme", "omega_dt", "dt_s", "restitution", "energy_ratio", "reference_bound"});
-  std::string data;
-  const std::vector<double> ks = {1e2, 1e4, 1e6};
-  Progress progress("stability_map", ks.size() * 2 * static_cast<std::size_t>(points));
-  for (std::size_t ki = 0; ki < ks.size(); ++ki) {
-    const double k = ks[ki], w = std::sqrt(k / m);
-    for (auto scheme : {FixedStepScheme::ExplicitEuler, FixedStepScheme::SemiImplicitEuler}) {
-      for (long j = 0; j < points; ++j) {
-        const double wdt = 0.01 * std::pow(wdt_max / 0.01, static_cast<double>(j) / static_cast<double>(points - 1));
-        const double dt = wdt / w;
-        progress.step(fmt::format("k = {:g} {} w dt = {:.3g}", k, to_string(scheme), wdt));
-        const double h0 = 0.5 * V * dt;
-        const BallDrop model({m, 0.0, h0, -V, 1.0, Hooke{k}});
-        // Long enough for the slowest contact (about pi/w plus the steps it takes) to end.
-        const double t_end = h0 / V + 20 * M_PI / w + 10 * dt;
-        const RunResult r = run_game(model, {dt, t_end, t_end, scheme, GameResolution::Spring});
-        double e = std::nan(""), ratio = std::nan("");
-        if (r.ok() && !r.contacts.empty() && r.contacts.front().closed()) {
-          e = r.contacts.front().restitution();
-          ratio = e * e;  // kinetic energy out over in: the spring holds none once the ball has left
-        } else if (!r.ok() || (!r.contacts.empty() && !r.contacts.front().closed())) {
-          e = ratio = std::numeric_limits<double>::infinity();  // unstable: never let go, or blew up
+  Experiment app(
+      "stability_map",
+      "Game integration of a spring contact over the (k, dt) plane: restitution and energy against w dt.",
+      "results/stability_map");
+  app.add("--points", points, "w dt values, log-spaced from 0.01", cli::integer_at_least(2));
+  app.add("--wdt-max", wdt_max, "largest w dt", cli::real_in(0.01, 100, true, false));
+  return app.run(argc, argv, [&](OutputSet& files) {
+    const double m = 1.0, V = 1.0;
+    Table table(
+        {"k_N_per_m", "scheme", "omega_dt", "dt_s", "restitution", "energy_ratio", "reference_bound"});
+    std::string data;
+    const std::vector<double> ks = {1e2, 1e4, 1e6};
+    Progress progress("stability_map", ks.size() * 2 * static_cast<std::size_t>(points));
+    for (std::size_t ki = 0; ki < ks.size(); ++ki) {
+      const double k = ks[ki], w = std::sqrt(k / m);
+      for (auto scheme : {FixedStepScheme::ExplicitEuler, FixedStepScheme::SemiImplicitEuler}) {
+        for (long j = 0; j < points; ++j) {
+          const double wdt =
+              0.01 * std::pow(wdt_max / 0.01, static_cast<double>(j) / static_cast<double>(points - 1));
+          const double dt = wdt / w;
+          progress.step(fmt::format("k = {:g} {} w dt = {:.3g}", k, to_string(scheme), wdt));
+          const double h0 = 0.5 * V * dt;
+          const BallDrop model({m, 0.0, h0, -V, 1.0, Hooke{k}});
+          // Long enough for the slowest contact (about pi/w plus the steps it takes) to end.
+          const double t_end = h0 / V + 20 * M_PI / w + 10 * dt;
+          const RunResult r =
+              run_game(model, {.dt = dt, .scheme = scheme, .resolution = GameResolution::Spring},
+                       {.t_end = t_end, .sample_dt = t_end});
+          double e = std::nan(""), ratio = std::nan("");
+          if (r.ok() && !r.contacts.empty() && r.contacts.front().closed()) {
+            e = r.contacts.front().restitution();
+            ratio = e * e;  // kinetic energy out over in: the spring holds none once the ball has left
+          } else if (!r.ok() || (!r.contacts.empty() && !r.contacts.front().closed())) {
+            e = ratio = std::numeric_limits<double>::infinity();  // unstable: never let go, or blew up
+          }
+          const double bound =
+              scheme == FixedStepScheme::SemiImplicitEuler
+                  ? (wdt < 2 ? (1 + wdt / 2) / (1 - wdt / 2) : std::numeric_limits<double>::infinity())
+                  : std::nan("");
+          table.add_row({k, std::string(to_string(scheme)), wdt, dt, e, ratio, bound});
+          if (std::isfinite(e))
+            data +=
+                fmt::format("{},{},{},{}\n", ki, scheme == FixedStepScheme::ExplicitEuler ? 0 : 1, wdt, e);
         }
-        const double bound = scheme == FixedStepScheme::SemiImplicitEuler
-                                 ? (wdt < 2 ? (1 + wdt / 2) / (1 - wdt / 2) : std::numeric_limits<double>::infinity())
-                                 : std::nan("");
-        table.add_row({k, std::string(to_string(scheme)), wdt, dt, e, ratio, bound});
-        if (std::isfinite(e))
-          data += fmt::format("{},{},{},{}\n", ki, scheme == FixedStepScheme::ExplicitEuler ? 0 : 1, wdt, e);
       }
     }
-  }
-  std::string plot =
-      "set logscale xy\nset xlabel 'omega dt'\nset ylabel 'effective restitution (exit / entry speed)'\n"
-      "set key top left\nset grid\nset arrow from 2, graph 0 to 2, graph 1 nohead dt 2\n"
-      "set label 'omega dt = 2' at 2.05, graph 0.1\nplot ";
-  for (std::size_t ki = 0; ki < ks.size(); ++ki)
-    for (int s = 0; s < 2; ++s)
-      plot += fmt::format("{}'data.csv' using ($1 == {} && $2 == {} ? $3 : 1/0):4 with linespoints pt {} title '{} k = {:g}'",
-                          ki || s ? ", " : "", ki, s, 4 + 2 * static_cast<int>(ki) + s, s ? "semi-implicit" : "explicit", ks[ki]);
-  plot += ", sqrt((1 + x/2)/(1 - x/2)) title 'semi-implicit bound' dt 3 lc rgb 'black'";
-  OutputSet files;
-  files.add_table("stability", table);
-  try {
+    std::string plot =
+        "set logscale xy\nset xlabel 'omega dt'\nset ylabel 'effective restitution (exit / entry speed)'\n"
+        "set key top left\nset grid\nset arrow from 2, graph 0 to 2, graph 1 nohead dt 2\n"
+        "set label 'omega dt = 2' at 2.05, graph 0.1\nplot ";
+    for (std::size_t ki = 0; ki < ks.size(); ++ki)
+      for (int s = 0; s < 2; ++s)
+        plot += fmt::format(
+            "{}'data.csv' using ($1 == {} && $2 == {} ? $3 : 1/0):4 with linespoints pt {} title '{} k = "
+            "{:g}'",
+            ki || s ? ", " : "", ki, s, 4 + 2 * static_cast<int>(ki) + s, s ? "semi-implicit" : "explicit",
+            ks[ki]);
+    plot += ", sqrt((1 + x/2)/(1 - x/2)) title 'semi-implicit bound' dt 3 lc rgb 'black'";
+    files.add_table("stability", table);
     render({"restitution", data, plot}, files);
-  } catch (const std::exception& ex) {
-    std::cerr << "stability_map: " << ex.what() << "\n";
-    return cli::kExitFailure;
-  }
-  fmt::print("Stability map: spring contact under game integration (Hooke, m = 1 kg, 1 m/s)\n\n{}", table.to_markdown());
-  return write_outputs(files, app, argc, argv, start, out);
+    fmt::print("Stability map: spring contact under game integration (Hooke, m = 1 kg, 1 m/s)\n\n{}",
+               table.to_markdown());
+  });
 }
 
 int main(int argc, char** argv) { return contact::guarded_main("stability_map", argc, argv, program); }

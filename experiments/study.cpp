@@ -3,9 +3,9 @@
 // (a link and a sentence per table and figure) and study.json (what ran, how long it took).
 // --tiny runs the smoke-test arguments instead of the defaults.
 // Exit codes: 0, 1 an experiment failed or left an output missing, 2 bad input.
-#include "process.hpp"
 #include "cli.hpp"
 #include "output.hpp"
+#include "process.hpp"
 #include "study_manifest.hpp"
 
 #include <fmt/format.h>
@@ -23,13 +23,12 @@ namespace fs = std::filesystem;
 int program(int argc, char** argv) {
   std::string out = "results", manifest_path = CONTACT_ODE_STUDY_MANIFEST, only;
   bool tiny = false;
-  CLI::App app{"Runs every experiment of the study into one folder and writes its index.md.", "study"};
-  app.option_defaults()->always_capture_default();
-  app.add_option("--out", out, "results folder");
-  app.add_option("--manifest", manifest_path, "the study's manifest")->check(CLI::ExistingFile);
+  cli::Options app("study", "Runs every experiment of the study into one folder and writes its index.md.");
+  app.add("--out", out, "results folder");
+  app.add("--manifest", manifest_path, "the study's manifest", cli::existing_file());
   app.add_flag("--tiny", tiny, "run the smoke-test settings (seconds, for tests)");
-  auto* only_opt = app.add_option("--only", only, "run only these experiments, comma-separated (default: all)");
-  if (const int code = cli::parse(app, argc, argv); code >= 0) return code;
+  app.add("--only", only, "run only these experiments, comma-separated (default: all)");
+  if (const int code = app.parse(argc, argv); code >= 0) return code;
   StudyManifest manifest;
   try {
     manifest = load_study_manifest(manifest_path);
@@ -39,10 +38,12 @@ int program(int argc, char** argv) {
   }
   std::vector<std::string> names;
   for (const auto& e : manifest.experiments) names.push_back(e.name);
-  const auto only_list = only_opt->count() == 0 ? std::vector<std::string>{} : cli::split_list(only);  // absent: all
+  const auto only_list =
+      !app.given("--only") ? std::vector<std::string>{} : cli::split_list(only);  // absent: all
   for (const auto& name : only_list)
     if (std::find(names.begin(), names.end(), name) == names.end()) {
-      std::cerr << fmt::format("study: --only: value '{}' is not an experiment; accepted: {}\n", name, fmt::join(names, ", "));
+      std::cerr << fmt::format("study: --only: value '{}' is not an experiment; accepted: {}\n", name,
+                               fmt::join(names, ", "));
       return cli::kExitBadInput;
     }
   // The study writes into --out (each experiment replaces its own folder), so a folder that
@@ -56,7 +57,8 @@ int program(int argc, char** argv) {
   nlohmann::json record = {{"tiny", tiny}, {"experiments", nlohmann::json::array()}};
   int failures = 0;
   for (const auto& e : manifest.experiments) {
-    if (!only_list.empty() && std::find(only_list.begin(), only_list.end(), e.name) == only_list.end()) continue;
+    if (!only_list.empty() && std::find(only_list.begin(), only_list.end(), e.name) == only_list.end())
+      continue;
     // The experiment replaces its folder only if it succeeds: earlier results stay until then.
     const fs::path dir = fs::path(out) / e.name;
     std::vector<std::string> cmd{(bin / e.exe).string()};
@@ -67,10 +69,14 @@ int program(int argc, char** argv) {
     const auto t0 = std::chrono::steady_clock::now();
     const int code = run_process(cmd);  // throws Interrupted after a Ctrl-C: the study stops
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    std::vector<std::string> problems = code == 0 ? check_outputs(e, dir) : std::vector<std::string>{fmt::format("exit code {}", code)};
+    std::vector<std::string> problems =
+        code == 0 ? check_outputs(e, dir) : std::vector<std::string>{fmt::format("exit code {}", code)};
     for (const auto& p : problems) std::cerr << fmt::format("study: {}: {}\n", e.name, p);
     failures += problems.empty() ? 0 : 1;
-    record["experiments"].push_back({{"name", e.name}, {"command", fmt::format("{}", fmt::join(cmd, " "))}, {"wall_time_s", seconds}, {"ok", problems.empty()}});
+    record["experiments"].push_back({{"name", e.name},
+                                     {"command", fmt::format("{}", fmt::join(cmd, " "))},
+                                     {"wall_time_s", seconds},
+                                     {"ok", problems.empty()}});
   }
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   record["wall_time_s"] = total;
@@ -83,7 +89,8 @@ int program(int argc, char** argv) {
   files.add("index.md", study_index(manifest, record, out));
   files.add("study.json", record.dump(2) + "\n");
   files.write_into(out);
-  fmt::print("\nstudy: {} experiments in {:.1f} s; index in {}\n", record["experiments"].size(), total, (fs::path(out) / "index.md").string());
+  fmt::print("\nstudy: {} experiments in {:.1f} s; index in {}\n", record["experiments"].size(), total,
+             (fs::path(out) / "index.md").string());
   return 0;
 }
 

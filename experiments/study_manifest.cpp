@@ -52,7 +52,8 @@ void check_csv(const std::string& text, const StudyOutput& o, std::vector<std::s
   long row = 1;
   for (std::string line; std::getline(in, line); ++row)
     if (split_csv_line(line).size() != columns.size()) {
-      problems.push_back(fmt::format("{}: row {} does not have the header's {} cells", o.file, row, columns.size()));
+      problems.push_back(
+          fmt::format("{}: row {} does not have the header's {} cells", o.file, row, columns.size()));
       return;
     }
   if (row == 1) problems.push_back(fmt::format("{}: no rows", o.file));
@@ -70,23 +71,27 @@ std::vector<std::string> check_outputs(const StudyExperiment& e, const fs::path&
     }
     const std::string text = slurp(p), ext = p.extension().string();
     if (ext == ".csv") check_csv(text, o, problems);
-    if (ext == ".png" && text.compare(0, 8, "\x89PNG\r\n\x1a\n") != 0) problems.push_back(o.file + ": not a PNG");
+    if (ext == ".png" && text.compare(0, 8, "\x89PNG\r\n\x1a\n") != 0)
+      problems.push_back(o.file + ": not a PNG");
     if (ext == ".png") {
       const fs::path pdf = fs::path(p).replace_extension(".pdf");  // every figure also as PDF, for the paper
-      if (!fs::exists(pdf) || slurp(pdf).compare(0, 5, "%PDF-") != 0) problems.push_back(o.file + ": no PDF beside it");
+      if (!fs::exists(pdf) || slurp(pdf).compare(0, 5, "%PDF-") != 0)
+        problems.push_back(o.file + ": no PDF beside it");
     }
   }
-  if (!fs::exists(dir / "meta.json") || !nlohmann::json::accept(slurp(dir / "meta.json"))) problems.emplace_back("meta.json: missing or not JSON");
+  if (!fs::exists(dir / "meta.json") || !nlohmann::json::accept(slurp(dir / "meta.json")))
+    problems.emplace_back("meta.json: missing or not JSON");
   return problems;
 }
 
 std::string study_index(const StudyManifest& m, const nlohmann::json& record, const fs::path& results) {
   std::string s = fmt::format("# {}\n\n", m.title);
-  s += fmt::format("{} experiments{} in {:.1f} s of wall time on {} cores (per-experiment times and commands in "
-                   "[study.json](study.json); each experiment's options, versions and revision in its `meta.json`). "
-                   "Rebuild everything with `bash scripts/run_study.sh`.\n\n",
-                   record.at("experiments").size(), record.value("tiny", false) ? " (smoke-test settings)" : "",
-                   record.at("wall_time_s").get<double>(), record.value("cores", 0u));
+  s += fmt::format(
+      "{} experiments{} in {:.1f} s of wall time on {} cores (per-experiment times and commands in "
+      "[study.json](study.json); each experiment's options, versions and revision in its `meta.json`). "
+      "Rebuild everything with `bash scripts/run_study.sh`.\n\n",
+      record.at("experiments").size(), record.value("tiny", false) ? " (smoke-test settings)" : "",
+      record.at("wall_time_s").get<double>(), record.value("cores", 0u));
   for (const auto& e : m.experiments) {
     bool ran = false;
     for (const auto& r : record.at("experiments")) ran = ran || r.at("name") == e.name;

@@ -39,6 +39,7 @@ std::vector<std::string> check_outputs(const StudyExperiment& experiment, const 
 
 // results/index.md: per experiment its summary and a link with one sentence per output (tables
 // to their Markdown rendering when `results` holds one, with the CSV beside), and the run's record.
-std::string study_index(const StudyManifest& manifest, const nlohmann::json& record, const std::filesystem::path& results);
+std::string study_index(const StudyManifest& manifest, const nlohmann::json& record,
+                        const std::filesystem::path& results);
 
 }  // namespace contact

@@ -7,11 +7,13 @@
 // spring at the static deflection m g / k; the game loop's contact flickers every step at rest.
 // Outputs in --out (default results/zeno): zeno.{csv,md,tex}, heights.{png,pdf,gp}, meta.json.
 // Exit codes: 0, 1 solver failure, 2 bad input.
-#include "process.hpp"
-#include "ball_drop_methods.hpp"
-#include "cli.hpp"
+#include "ball_drop.hpp"
+#include "experiment.hpp"
 #include "figure.hpp"
+#include "law_registry.hpp"
+#include "method_registry.hpp"
 #include "output.hpp"
+#include "process.hpp"
 #include "progress.hpp"
 #include "references.hpp"
 #include "table.hpp"
@@ -26,69 +28,54 @@ using namespace contact;
 
 int program(int argc, char** argv) {
   double e = 0.8, k = 1e5, t_end = 6.0, dt = 1e-3, rest_speed = 1e-3;
-  std::string out = "results/zeno";
-  CLI::App app{"The ball drop near the accumulation of bounces, by every method.", "zeno"};
-  app.option_defaults()->always_capture_default();
-  app.add_option("--e", e, "coefficient of restitution")->check(cli::real_in(0, 1, true, true));
-  app.add_option("--k", k, "penalty stiffness [N/m]")->check(cli::positive());
-  app.add_option("--t-end", t_end, "final time [s]")->check(cli::positive());
-  app.add_option("--dt", dt, "game step [s]")->check(cli::positive());
-  app.add_option("--rest-speed", rest_speed, "speed below which the motion counts as stopped [m/s]")->check(cli::positive());
-  app.add_option("--out", out, "output directory");
-  if (const int code = cli::parse(app, argc, argv); code >= 0) return code;
-  if (const auto err = check_output_dir(out); !err.empty()) {
-    std::cerr << "zeno: " << err << "\n";
-    return cli::kExitBadInput;
-  }
-  const auto start = std::chrono::steady_clock::now();
-  const double m = 1.0, g = 9.81, h0 = 1.0;
-  const RigidBounces ref(h0, 0.0, g, e);
-  BallDropSettings s;
-  s.model = {m, g, h0, 0.0, e, make_law("kelvin-voigt", k, m, e)};
-  s.t_end = t_end;
-  s.sample_dt = 1e-3;
-  s.dt = dt;
-  s.integrator.max_steps = 1000000;
+  Experiment app("zeno", "The ball drop near the accumulation of bounces, by every method.", "results/zeno");
+  app.add("--e", e, "coefficient of restitution", cli::real_in(0, 1, true, true));
+  app.add("--k", k, "penalty stiffness [N/m]", cli::positive());
+  app.add("--t-end", t_end, "final time [s]", cli::positive());
+  app.add("--dt", dt, "game step [s]", cli::positive());
+  app.add("--rest-speed", rest_speed, "speed below which the motion counts as stopped [m/s]",
+          cli::positive());
+  return app.run(argc, argv, [&](OutputSet& files) {
+    const double m = 1.0, g = 9.81, h0 = 1.0;
+    const RigidBounces ref(h0, 0.0, g, e);
+    const BallDrop model({m, g, h0, 0.0, e, make_law("kelvin-voigt", {.k = k, .m = m, .e = e})});
+    Method method{.dt = dt};
+    method.integrator.max_steps = 1000000;
 
-  Table table({"method", "status", "contacts", "rest_time_s", "zeno_time_s", "final_height_m", "static_deflection_m",
-               "min_height_m", "rhs_evals"});
-  Series heights;
-  const std::vector<std::string> methods = {"event-exact", "event-ode", "penalty", "game-symplectic", "game-symplectic-spring"};
-  Progress progress("zeno", methods.size());
-  for (std::size_t mi = 0; mi < methods.size(); ++mi) {
-    progress.step(methods[mi]);
-    const RunResult r = run_ball_drop(methods[mi], s);
-    if (!r.ok()) {
-      std::cerr << fmt::format("zeno: {}: {} at t = {:.9g} s: {}\n", methods[mi], to_string(r.status), r.t_reached, r.message);
-      return cli::kExitFailure;
+    Table table({"method", "status", "contacts", "rest_time_s", "zeno_time_s", "final_height_m",
+                 "static_deflection_m", "min_height_m", "rhs_evals"});
+    Series heights;
+    const std::vector<std::string> methods = {"event-exact", "event-ode", "penalty", "game-symplectic",
+                                              "game-symplectic-spring"};
+    Progress progress("zeno", methods.size());
+    for (std::size_t mi = 0; mi < methods.size(); ++mi) {
+      progress.step(methods[mi]);
+      method.name = methods[mi];
+      const RunResult r = require(solve(model, method, {.t_end = t_end, .sample_dt = 1e-3}), methods[mi]);
+      double rest = std::nan(""), lowest = INFINITY;
+      for (std::size_t i = r.samples.size(); i-- > 0;) {
+        if (std::abs(r.samples[i].y[1]) >= rest_speed) break;
+        rest = r.samples[i].t;
+      }
+      std::string rows;
+      for (const auto& smp : r.samples) {
+        lowest = std::min(lowest, smp.y[0]);
+        rows += fmt::format("{},{}\n", smp.t, smp.y[0]);
+      }
+      heights.add(rows, fmt::format("using 1:2 with lines title '{}'", methods[mi]));
+      table.add_row({methods[mi], std::string(to_string(r.status)), static_cast<long>(r.contacts.size()),
+                     rest, ref.zeno_time(), r.samples.back().y[0], m * g / k, lowest, r.stats.rhs_evals});
     }
-    double rest = std::nan(""), lowest = INFINITY;
-    for (std::size_t i = r.samples.size(); i-- > 0;) {
-      if (std::abs(r.samples[i].y[1]) >= rest_speed) break;
-      rest = r.samples[i].t;
-    }
-    std::string rows;
-    for (const auto& smp : r.samples) {
-      lowest = std::min(lowest, smp.y[0]);
-      rows += fmt::format("{},{}\n", smp.t, smp.y[0]);
-    }
-    heights.add(rows, fmt::format("using 1:2 with lines title '{}'", methods[mi]));
-    table.add_row({methods[mi], std::string(to_string(r.status)), static_cast<long>(r.contacts.size()), rest, ref.zeno_time(),
-                   r.samples.back().y[0], m * g / k, lowest, r.stats.rhs_evals});
-  }
-  std::string plot = fmt::format("set xlabel 't [s]'\nset ylabel 'height [m]'\nset key top right\nset grid\n"
-                                 "set arrow from {0}, graph 0 to {0}, graph 1 nohead dt 2\nset label 'Zeno time' at {0}, graph 0.9\nplot {1}",
-                                 ref.zeno_time(), heights.plot());
-  OutputSet files;
-  files.add_table("zeno", table);
-  try {
+    std::string plot = fmt::format(
+        "set xlabel 't [s]'\nset ylabel 'height [m]'\nset key top right\nset grid\n"
+        "set arrow from {0}, graph 0 to {0}, graph 1 nohead dt 2\nset label 'Zeno time' at {0}, graph "
+        "0.9\nplot {1}",
+        ref.zeno_time(), heights.plot());
+    files.add_table("zeno", table);
     render({"heights", heights.data(), plot}, files);
-  } catch (const std::exception& ex) {
-    std::cerr << "zeno: " << ex.what() << "\n";
-    return cli::kExitFailure;
-  }
-  fmt::print("Zeno: ball drop with e = {:g}, accumulation at t_inf = {:.6g} s\n\n{}", e, ref.zeno_time(), table.to_markdown());
-  return write_outputs(files, app, argc, argv, start, out);
+    fmt::print("Zeno: ball drop with e = {:g}, accumulation at t_inf = {:.6g} s\n\n{}", e, ref.zeno_time(),
+               table.to_markdown());
+  });
 }
 
 int main(int argc, char** argv) { return contact::guarded_main("zeno", argc, argv, program); }

@@ -72,7 +72,8 @@ class ArkIntegrator final : public sundials::IntegratorBase {
   ArkIntegrator(const IntegratorOptions& o, OdeSystem system, double t0, ConstVectorRef y0)
       : IntegratorBase(std::move(system), t0, y0), imex_(o.method == "arkode-imex") {
     if (imex_ && !data_.sys.implicit_rhs)
-      throw std::invalid_argument("arkode-imex needs a system with an implicit part (OdeSystem::implicit_rhs)");
+      throw std::invalid_argument(
+          "arkode-imex needs a system with an implicit part (OdeSystem::implicit_rhs)");
     mem_.reset(imex_ ? ARKStepCreate(sundials::explicit_rhs, sundials::implicit_rhs, t0, y_.get(), ctx_.get())
                      : ARKStepCreate(nullptr, sundials::rhs, t0, y_.get(), ctx_.get()));
     if (!mem_) throw SolverFailure(Status::SolverError, t0, "ARKStepCreate failed");
@@ -100,8 +101,11 @@ class ArkIntegrator final : public sundials::IntegratorBase {
     make_linear_system(o, jac, y0);
     check(ARKStepSetLinearSolver(m, linear_.solver.get(), linear_.matrix.get()), "ARKStepSetLinearSolver");
     if (o.jacobian == JacobianMode::Analytic && jac) {
-      if (linear_.matrix) check(ARKStepSetJacFn(m, imex_ ? sundials::implicit_jacobian : sundials::jacobian), "ARKStepSetJacFn");
-      else check(ARKStepSetJacTimes(m, sundials::jtimes_setup, sundials::jtimes), "ARKStepSetJacTimes");
+      if (linear_.matrix)
+        check(ARKStepSetJacFn(m, imex_ ? sundials::implicit_jacobian : sundials::jacobian),
+              "ARKStepSetJacFn");
+      else
+        check(ARKStepSetJacTimes(m, sundials::jtimes_setup, sundials::jtimes), "ARKStepSetJacTimes");
     }
     if (o.linear_solver == LinearSolverKind::GmresBandPreconditioned) {
       const auto n = static_cast<sunindextype>(data_.sys.size);

@@ -28,8 +28,10 @@ class CvodeIntegrator final : public sundials::IntegratorBase {
     make_linear_system(o, data_.sys.jacobian, y0);
     check(CVodeSetLinearSolver(m, linear_.solver.get(), linear_.matrix.get()), "CVodeSetLinearSolver");
     if (o.jacobian == JacobianMode::Analytic && data_.sys.jacobian) {
-      if (linear_.matrix) check(CVodeSetJacFn(m, sundials::jacobian), "CVodeSetJacFn");
-      else check(CVodeSetJacTimes(m, sundials::jtimes_setup, sundials::jtimes), "CVodeSetJacTimes");
+      if (linear_.matrix)
+        check(CVodeSetJacFn(m, sundials::jacobian), "CVodeSetJacFn");
+      else
+        check(CVodeSetJacTimes(m, sundials::jtimes_setup, sundials::jtimes), "CVodeSetJacTimes");
     }
     if (o.linear_solver == LinearSolverKind::GmresBandPreconditioned) {
       const auto n = static_cast<sunindextype>(data_.sys.size);
@@ -43,7 +45,9 @@ class CvodeIntegrator final : public sundials::IntegratorBase {
   }
 
  private:
-  int evolve(double t_out, double& t_ret) override { return CVode(mem_.get(), t_out, y_.get(), &t_ret, CV_NORMAL); }
+  int evolve(double t_out, double& t_ret) override {
+    return CVode(mem_.get(), t_out, y_.get(), &t_ret, CV_NORMAL);
+  }
   int root_info(int* found) override { return CVodeGetRootInfo(mem_.get(), found); }
   int restart(double t) override { return CVodeReInit(mem_.get(), t, y_.get()); }
   int root_directions(int* d) override { return CVodeSetRootDirection(mem_.get(), d); }
@@ -82,7 +86,8 @@ class CvodeIntegrator final : public sundials::IntegratorBase {
 
 }  // namespace
 
-std::unique_ptr<Integrator> make_cvode(const IntegratorOptions& o, OdeSystem system, double t0, ConstVectorRef y0) {
+std::unique_ptr<Integrator> make_cvode(const IntegratorOptions& o, OdeSystem system, double t0,
+                                       ConstVectorRef y0) {
   return std::make_unique<CvodeIntegrator>(o, std::move(system), t0, y0);
 }
 

@@ -1,5 +1,7 @@
 #include "event_driven.hpp"
 
+#include "method_registry.hpp"
+
 #include "integrator_driver.hpp"
 #include "run_recorder.hpp"
 
@@ -19,10 +21,17 @@ class Impacts {
  public:
   // `numerical`: the flight is an integrator, with the resolution of its absolute tolerance.
   Impacts(const MechanicalSystem& model, const EventOptions& opt, RunRecorder& rec, bool numerical)
-      : model_(model), opt_(opt), rec_(rec), numerical_(numerical),
-        rest_height_(opt.rest_height >= 0 ? opt.rest_height : numerical ? 100 * opt.integrator.atol : 0.0),
-        modes_(model.all_modes(ContactMode::Free)), last_(model.contact_count(), -kInf),
-        ydot_(model.state_size()), y_ahead_(model.state_size()) {}
+      : model_(model),
+        opt_(opt),
+        rec_(rec),
+        numerical_(numerical),
+        rest_height_(opt.rest_height >= 0 ? opt.rest_height
+                     : numerical          ? 100 * opt.integrator.atol
+                                          : 0.0),
+        modes_(model.all_modes(ContactMode::Free)),
+        last_(model.contact_count(), -kInf),
+        ydot_(model.state_size()),
+        y_ahead_(model.state_size()) {}
 
   const ContactModes& modes() const { return modes_; }
   bool resting(std::size_t i) const { return modes_[i] == ContactMode::Resting; }
@@ -32,18 +41,20 @@ class Impacts {
   // the contact at rest when the guards say the bounces have accumulated.
   void resolve(std::size_t i, double t, VectorRef y) {
     if (++count_ > opt_.max_events)
-      throw SolverFailure(Status::ZenoLimit, t,
-                          fmt::format("more than {} impacts before rest; raise the impact limit or the rest speed",
-                                      opt_.max_events));
+      throw SolverFailure(
+          Status::ZenoLimit, t,
+          fmt::format("more than {} impacts before rest; raise the impact limit or the rest speed",
+                      opt_.max_events));
     const double v_in = model_.gap_rate(i, y);
     // A located gap root whose rate is not approaching is noise at the flight's resolution: a
     // bounce lower than its absolute tolerance, which the rest height should have caught.
     if (v_in >= 0 && numerical_)
-      throw SolverFailure(Status::Unresolved, t,
-                          fmt::format("contact {} was located with gap rate {:.3g} m/s (not approaching): the "
-                                      "bounce is below what the flight resolves at atol = {:g}; tighten the "
-                                      "absolute tolerance or raise the rest height ({:g} m)",
-                                      i, v_in, opt_.integrator.atol, rest_height_));
+      throw SolverFailure(
+          Status::Unresolved, t,
+          fmt::format("contact {} was located with gap rate {:.3g} m/s (not approaching): the "
+                      "bounce is below what the flight resolves at atol = {:g}; tighten the "
+                      "absolute tolerance or raise the rest height ({:g} m)",
+                      i, v_in, opt_.integrator.atol, rest_height_));
     rec_.contact_begin(i, t, v_in);
     rec_.observe_penetration(i, -model_.gap(i, y));
     model_.project(i, y);
@@ -56,11 +67,12 @@ class Impacts {
     // resolved: resting there would drop its energy silently.
     const bool low = !unresolved && bounce_height(i, y) < rest_height_;
     if (low && (last_[i] == -kInf || !(v_out < -v_in)))
-      throw SolverFailure(Status::Unresolved, t,
-                          fmt::format("contact {}'s bounce rises {:.3g} m, below the {:g} m the flight resolves at "
-                                      "atol = {:g}, and it is {}: tighten the absolute tolerance",
-                                      i, bounce_height(i, y), rest_height_, opt_.integrator.atol,
-                                      last_[i] == -kInf ? "the contact's first" : "not decaying"));
+      throw SolverFailure(
+          Status::Unresolved, t,
+          fmt::format("contact {}'s bounce rises {:.3g} m, below the {:g} m the flight resolves at "
+                      "atol = {:g}, and it is {}: tighten the absolute tolerance",
+                      i, bounce_height(i, y), rest_height_, opt_.integrator.atol,
+                      last_[i] == -kInf ? "the contact's first" : "not decaying"));
     const bool slow = unresolved || v_out < opt_.rest_speed || low;
     const bool crowded = t - last_[i] < opt_.min_event_spacing;
     rec_.contact_end(i, t, model_.gap_rate(i, y));
@@ -74,9 +86,9 @@ class Impacts {
 
   // Contact `first` closed at t. Impulses are resolved one contact at a time (the sequential
   // rule): after each, every contact that still touches (gap <= 0) and approaches is resolved
-  // next, lowest index first (highest with reverse_order), until none does. A row of touching balls thus passes an impulse
-  // down the chain within one instant, as in Newton's cradle. The result depends on the order
-  // when contacts share a body; experiments measure that rather than hide it.
+  // next, lowest index first (highest with reverse_order), until none does. A row of touching balls thus
+  // passes an impulse down the chain within one instant, as in Newton's cradle. The result depends on the
+  // order when contacts share a body; experiments measure that rather than hide it.
   void resolve_from(std::size_t first, double t, VectorRef y) {
     resolve(first, t, y);
     for (bool again = true; again;) {
@@ -120,12 +132,13 @@ class Impacts {
 
 }  // namespace
 
-RunResult run_event_driven(const MechanicalSystem& model, const EventOptions& opt) {
+RunResult run_event_driven(const MechanicalSystem& model, const EventOptions& opt, const SolveOptions& span) {
   const std::size_t nc = model.contact_count();
-  RunRecorder rec(model, "event-driven " + opt.integrator.method, opt.sample_dt, opt.t_end, opt.limits);
+  RunRecorder rec(model, "event-driven " + opt.integrator.method, span);
   Impacts impacts(model, opt, rec, true);
 
-  OdeSystem sys = mechanical_ode(model, [&](ConstVectorRef) -> const ContactModes& { return impacts.modes(); });
+  OdeSystem sys =
+      mechanical_ode(model, [&](ConstVectorRef) -> const ContactModes& { return impacts.modes(); });
   // Per contact: the gap (impact) and the gap rate (apex), both on falling zeros only. A
   // resting contact's functions are held at 1 so they never fire.
   sys.root_count = 2 * nc;
@@ -155,9 +168,9 @@ RunResult run_event_driven(const MechanicalSystem& model, const EventOptions& op
 }
 
 RunResult run_event_driven(const MechanicalSystem& model, const AnalyticFlight& flight,
-                           const EventOptions& opt) {
+                           const EventOptions& opt, const SolveOptions& span) {
   const std::size_t nc = model.contact_count();
-  RunRecorder rec(model, "event-driven exact", opt.sample_dt, opt.t_end, opt.limits);
+  RunRecorder rec(model, "event-driven exact", span);
   Impacts impacts(model, opt, rec, false);
 
   // Every state on a flight leg is computed from the leg's start with a time measured from it
@@ -177,13 +190,23 @@ RunResult run_event_driven(const MechanicalSystem& model, const AnalyticFlight& 
       bool impact = false;
       for (std::size_t i = 0; i < nc && !any_rest; ++i) {
         const double ti = flight.time_to_impact(i, y_leg), ta = flight.time_to_apex(i, y_leg);
-        if (ta > tau_now && ta < tau) { tau = ta; which = i; impact = false; }
-        if (ti > tau_now && ti <= tau) { tau = ti; which = i; impact = true; }
+        if (ta > tau_now && ta < tau) {
+          tau = ta;
+          which = i;
+          impact = false;
+        }
+        if (ti > tau_now && ti <= tau) {
+          tau = ti;
+          which = i;
+          impact = true;
+        }
       }
       t = which == nc ? t_out : t_leg + tau;
       tau_now = tau;
-      if (any_rest) y = y_leg;
-      else flight.propagate(y_leg, tau, y);
+      if (any_rest)
+        y = y_leg;
+      else
+        flight.propagate(y_leg, tau, y);
       if (which == nc) {
         rec.sample(t, y);
       } else if (impact) {
@@ -203,6 +226,58 @@ RunResult run_event_driven(const MechanicalSystem& model, const AnalyticFlight& 
     return rec.fail(f, own);
   }
   return rec.finish(own, t);
+}
+
+}  // namespace contact
+
+namespace contact {
+
+std::vector<MethodInfo> event_methods() {
+  auto options = [](const Method& m, bool reverse) {
+    return EventOptions{.integrator = m.integrator,
+                        .rest_speed = m.rest_speed,
+                        .rest_height = m.rest_height,
+                        .min_event_spacing = m.min_event_spacing,
+                        .max_events = m.max_events,
+                        .reverse_order = reverse};
+  };
+  auto numerical = [options](std::string name, std::string description, bool reverse) {
+    return MethodInfo{
+        .name = std::move(name),
+        .description = std::move(description),
+        .family = "event-driven",
+        .fixed_step = false,
+        .uses_contact_law = false,
+        .needs = "dynamics, contact geometry and an impulse map",
+        .can_run =
+            [](const Dynamics& scene) { return dynamic_cast<const MechanicalSystem*>(&scene) != nullptr; },
+        .run =
+            [options, reverse](const Dynamics& scene, const Method& m, const SolveOptions& span) {
+              return run_event_driven(dynamic_cast<const MechanicalSystem&>(scene), options(m, reverse),
+                                      span);
+            }};
+  };
+  auto exact = [](const Dynamics& scene) {
+    return dynamic_cast<const MechanicalSystem*>(&scene) != nullptr &&
+           dynamic_cast<const AnalyticFlight*>(&scene) != nullptr;
+  };
+  return {
+      numerical("event-ode",
+                "event-driven impulses, flight integrated with root finding, lowest contact first", false),
+      numerical("event-ode-reversed", "as event-ode, highest contact first (the sequential rule's order)",
+                true),
+      MethodInfo{.name = "event-exact",
+                 .description = "event-driven impulses, the scene's closed-form flight (reference)",
+                 .family = "event-driven",
+                 .fixed_step = false,
+                 .uses_contact_law = false,
+                 .needs = "a closed-form free flight (AnalyticFlight) besides an impulse map",
+                 .can_run = exact,
+                 .run = [options](const Dynamics& scene, const Method& m, const SolveOptions& span) {
+                   return run_event_driven(dynamic_cast<const MechanicalSystem&>(scene),
+                                           dynamic_cast<const AnalyticFlight&>(scene), options(m, false),
+                                           span);
+                 }}};
 }
 
 }  // namespace contact

@@ -31,21 +31,19 @@
 namespace contact {
 
 struct EventOptions {
-  double t_end = 3.0;            // [s]
-  double sample_dt = 0.01;       // output spacing [s]
   IntegratorOptions integrator;  // the numerical flight (CVODE BDF by default)
   double rest_speed = 1e-7;      // [m/s]
   double rest_height = -1;       // [m]; < 0: 100 * integrator.atol (numerical flight), 0 (exact)
   double min_event_spacing = 0;  // [s]
   long max_events = 1000000;
-  bool reverse_order = false;    // sequential rule: highest contact index first instead of lowest
-  RunLimits limits;
+  bool reverse_order = false;  // sequential rule: highest contact index first instead of lowest
 };
 
-// Flight by a numerical integrator.
-RunResult run_event_driven(const MechanicalSystem& model, const EventOptions& options);
+// Flight by a numerical integrator. Needs the scene's contact geometry and impulse map.
+RunResult run_event_driven(const MechanicalSystem& model, const EventOptions& options,
+                           const SolveOptions& span = {});
 // Flight by the model's closed form.
 RunResult run_event_driven(const MechanicalSystem& model, const AnalyticFlight& flight,
-                           const EventOptions& options);
+                           const EventOptions& options, const SolveOptions& span = {});
 
 }  // namespace contact

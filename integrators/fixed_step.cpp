@@ -4,10 +4,14 @@ namespace contact {
 
 std::string_view to_string(FixedStepScheme s) {
   switch (s) {
-    case FixedStepScheme::ExplicitEuler: return "explicit-euler";
-    case FixedStepScheme::SemiImplicitEuler: return "semi-implicit-euler";
-    case FixedStepScheme::VelocityVerlet: return "velocity-verlet";
-    case FixedStepScheme::Rk4: return "rk4";
+    case FixedStepScheme::ExplicitEuler:
+      return "explicit-euler";
+    case FixedStepScheme::SemiImplicitEuler:
+      return "semi-implicit-euler";
+    case FixedStepScheme::VelocityVerlet:
+      return "velocity-verlet";
+    case FixedStepScheme::Rk4:
+      return "rk4";
   }
   return "?";
 }
@@ -15,8 +19,12 @@ std::string_view to_string(FixedStepScheme s) {
 int fixed_step(FixedStepScheme scheme, const OdeSystem::Rhs& f, const Mask& q, double t, double h,
                VectorRef y, FixedStepWork& w) {
   // Updates of the positions only, or of the velocities only, by h times the rates in k.
-  auto move_positions = [&](double h_, const Vector& k) { y = q.select((y + h_ * k).array(), y.array()).matrix(); };
-  auto move_velocities = [&](double h_, const Vector& k) { y = q.select(y.array(), (y + h_ * k).array()).matrix(); };
+  auto move_positions = [&](double h_, const Vector& k) {
+    y = q.select((y + h_ * k).array(), y.array()).matrix();
+  };
+  auto move_velocities = [&](double h_, const Vector& k) {
+    y = q.select(y.array(), (y + h_ * k).array()).matrix();
+  };
   switch (scheme) {
     case FixedStepScheme::ExplicitEuler:
       f(t, y, w.k1);

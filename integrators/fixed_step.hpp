@@ -25,7 +25,7 @@ struct FixedStepWork {
   explicit FixedStepWork(Eigen::Index n = 0) : k1(n), k2(n), k3(n), k4(n), tmp(n) {}
 };
 
-int fixed_step(FixedStepScheme scheme, const OdeSystem::Rhs& f, const Mask& positions,
-               double t, double h, VectorRef y, FixedStepWork& work);
+int fixed_step(FixedStepScheme scheme, const OdeSystem::Rhs& f, const Mask& positions, double t, double h,
+               VectorRef y, FixedStepWork& work);
 
 }  // namespace contact

@@ -1,5 +1,8 @@
 #include "game_step.hpp"
 
+#include "method_registry.hpp"
+
+#include "capabilities.hpp"
 #include "run_recorder.hpp"
 
 #include <fmt/format.h>
@@ -11,10 +14,14 @@ namespace contact {
 
 std::string_view to_string(GameResolution r) {
   switch (r) {
-    case GameResolution::ProjectionImpulse: return "projection+impulse";
-    case GameResolution::Projection: return "projection";
-    case GameResolution::Impulse: return "impulse";
-    case GameResolution::Spring: return "spring";
+    case GameResolution::ProjectionImpulse:
+      return "projection+impulse";
+    case GameResolution::Projection:
+      return "projection";
+    case GameResolution::Impulse:
+      return "impulse";
+    case GameResolution::Spring:
+      return "spring";
   }
   return "?";
 }
@@ -26,20 +33,22 @@ double crossing(double a, double b) { return a == b ? 1.0 : a / (a - b); }
 
 }  // namespace
 
-RunResult run_game(const MechanicalSystem& model, const GameOptions& opt) {
+RunResult run_game(const Dynamics& model, const GameOptions& opt, const SolveOptions& span) {
   const std::size_t nc = model.contact_count();
+  const ContactGeometry& geo = contact_geometry(model);
   const bool spring = opt.resolution == GameResolution::Spring;
-  const bool project = opt.resolution == GameResolution::ProjectionImpulse ||
-                       opt.resolution == GameResolution::Projection;
-  const bool impulse = opt.resolution == GameResolution::ProjectionImpulse ||
-                       opt.resolution == GameResolution::Impulse;
-  RunRecorder rec(model, fmt::format("game {} {}", to_string(opt.scheme), to_string(opt.resolution)),
-                  opt.sample_dt, opt.t_end, opt.limits);
+  const bool project =
+      opt.resolution == GameResolution::ProjectionImpulse || opt.resolution == GameResolution::Projection;
+  const bool impulse =
+      opt.resolution == GameResolution::ProjectionImpulse || opt.resolution == GameResolution::Impulse;
+  const std::string method = fmt::format("game {} {}", to_string(opt.scheme), to_string(opt.resolution));
+  const ImpulseMap* map = spring ? nullptr : &impulse_map(model, method);
+  RunRecorder rec(model, method, span);
 
   // Detection: the spring acts while its switching function is positive, impulses while the
   // bodies overlap. Both are "positive while in contact".
   auto detect = [&](std::size_t i, ConstVectorRef y) {
-    return spring ? model.switching(i, y) : -model.gap(i, y);
+    return spring ? geo.switching(i, y) : -geo.gap(i, y);
   };
   ContactModes modes = model.all_modes(ContactMode::Free);
   const OdeSystem::Rhs f = [&](double t, ConstVectorRef y, VectorRef yd) { model.rhs(t, y, modes, yd); };
@@ -50,7 +59,7 @@ RunResult run_game(const MechanicalSystem& model, const GameOptions& opt) {
   std::vector<double> d_prev(nc);
   for (std::size_t i = 0; i < nc; ++i) {
     d_prev[i] = detect(i, y);
-    if (d_prev[i] > 0) rec.contact_begin(i, 0.0, model.gap_rate(i, y));
+    if (d_prev[i] > 0) rec.contact_begin(i, 0.0, geo.gap_rate(i, y));
   }
 
   // The tutorial's collision list: frames left per listed contact, -1 when not listed.
@@ -62,21 +71,22 @@ RunResult run_game(const MechanicalSystem& model, const GameOptions& opt) {
   try {
     rec.sample(0.0, y);
     // Counted in floating point: t_end / dt can exceed every integer type (1e4 s at 1e-16 s).
-    const double steps_needed = std::ceil(opt.t_end / opt.dt - 1e-9);
-    rec.check_steps(steps_needed < 9e18 ? static_cast<long>(steps_needed) : std::numeric_limits<long>::max(), 0.0);
+    const double steps_needed = std::ceil(span.t_end / opt.dt - 1e-9);
+    rec.check_steps(steps_needed < 9e18 ? static_cast<long>(steps_needed) : std::numeric_limits<long>::max(),
+                    0.0);
     const auto n_steps = static_cast<long>(steps_needed);
     for (long n = 1; n <= n_steps; ++n) {
       const double t0 = t;
-      const double h = std::min(opt.dt, opt.t_end - t0);  // the last step lands on t_end
-      t = n == n_steps ? opt.t_end : static_cast<double>(n) * opt.dt;
+      const double h = std::min(opt.dt, span.t_end - t0);  // the last step lands on t_end
+      t = n == n_steps ? span.t_end : static_cast<double>(n) * opt.dt;
       y_prev = y;
       // 1. integrate
       if (spring) {
-        model.modes_from_state(y, modes);
+        geo.modes_from_state(nc, y, modes);
         // The dashpot's loss over the step, by the rectangle rule the Euler step itself uses.
         double power = 0;
         for (std::size_t i = 0; i < nc; ++i)
-          if (modes[i] == ContactMode::Penalty) power += model.dissipated_power(i, y);
+          if (modes[i] == ContactMode::Penalty) power += geo.dissipated_power(i, y);
         rec.add_dissipated(h * power);
       }
       stats.rhs_evals += fixed_step(opt.scheme, f, positions, t0, h, y, work);
@@ -88,23 +98,24 @@ RunResult run_game(const MechanicalSystem& model, const GameOptions& opt) {
         // for a switch inside the overlap (at both ends of the step): where the overlap itself
         // crosses zero the elastic energy is continuous, and what changes is the scheme's error.
         for (std::size_t i = 0; i < nc; ++i) {
-          const bool was = modes[i] == ContactMode::Penalty, now = model.switching(i, y) > 0;
-          if (was != now && model.gap(i, y_prev) < 0 && model.gap(i, y) < 0)
-            rec.add_dissipated((was ? 1.0 : -1.0) * model.elastic_energy(i, y));
+          const bool was = modes[i] == ContactMode::Penalty, now = geo.switching(i, y) > 0;
+          if (was != now && geo.gap(i, y_prev) < 0 && geo.gap(i, y) < 0)
+            rec.add_dissipated((was ? 1.0 : -1.0) * geo.elastic_energy(i, y));
         }
       }
       stats.steps += 1;
       if (!y.allFinite())
-        throw SolverFailure(Status::NonFiniteState, t, fmt::format("state is not finite after step {} (dt = {:g} s)", n, h));
+        throw SolverFailure(Status::NonFiniteState, t,
+                            fmt::format("state is not finite after step {} (dt = {:g} s)", n, h));
       for (std::size_t i = 0; i < nc; ++i) {
         // Apex: gap rate falls through zero during free flight (not in a step that detects the
         // contact: a resting ball's contact closes and reopens every frame).
-        const double r0 = model.gap_rate(i, y_prev), r1 = model.gap_rate(i, y);
+        const double r0 = geo.gap_rate(i, y_prev), r1 = geo.gap_rate(i, y);
         const double d = detect(i, y);
         if (r0 > 0 && r1 <= 0 && !rec.contact_open(i) && !(d > 0)) {
           const double s = crossing(r0, r1);
           const Vector ya = y_prev + s * (y - y_prev);
-          rec.apex(i, t0 + s * h, model.gap(i, y_prev) + 0.5 * r0 * s * h, model.energy(ya));
+          rec.apex(i, t0 + s * h, geo.gap(i, y_prev) + 0.5 * r0 * s * h, model.energy(ya));
         }
         // 2. detect, 3. resolve
         if (d > 0) {
@@ -112,12 +123,12 @@ RunResult run_game(const MechanicalSystem& model, const GameOptions& opt) {
           frames_left[i] = opt.persistence;
           // Detected again in the frame right after its record ended: the same contact goes on.
           if (!rec.contact_open(i) && !rec.reopen_contact(i, t0))
-            rec.contact_begin(i, t0 + crossing(d_prev[i], d) * h, model.gap_rate(i, y));
-          rec.observe_penetration(i, -model.gap(i, y));
-          if (project) model.project(i, y);
-          if (impulse && model.gap_rate(i, y) < 0) {
+            rec.contact_begin(i, t0 + crossing(d_prev[i], d) * h, geo.gap_rate(i, y));
+          rec.observe_penetration(i, -geo.gap(i, y));
+          if (project) map->project(i, y);
+          if (impulse && geo.gap_rate(i, y) < 0) {
             const double before = model.energy(y);
-            model.apply_impulse(i, model.restitution(i), y);
+            map->apply_impulse(i, map->restitution(i), y);
             rec.add_dissipated(before - model.energy(y));
             stats.events += 1;
           }
@@ -126,9 +137,9 @@ RunResult run_game(const MechanicalSystem& model, const GameOptions& opt) {
         // overlap (touching after a projection counts as not overlapping) and do not approach.
         // Projection alone leaves them approaching, so its contact stays open while it pushes.
         const double d_after = detect(i, y);
-        if (rec.contact_open(i) && d_after <= 0 && model.gap_rate(i, y) >= 0) {
+        if (rec.contact_open(i) && d_after <= 0 && geo.gap_rate(i, y) >= 0) {
           const double end = d > 0 ? t : t0 + crossing(d_prev[i], d_after) * h;
-          rec.contact_end(i, end, model.gap_rate(i, y));
+          rec.contact_end(i, end, geo.gap_rate(i, y));
         }
         d_prev[i] = d_after;
       }
@@ -150,6 +161,47 @@ RunResult run_game(const MechanicalSystem& model, const GameOptions& opt) {
     return rec.fail(failure, stats);
   }
   return rec.finish(stats, t);
+}
+
+}  // namespace contact
+
+namespace contact {
+
+std::vector<MethodInfo> game_methods() {
+  auto entry = [](std::string name, std::string description, FixedStepScheme scheme,
+                  GameResolution resolution) {
+    const bool spring = resolution == GameResolution::Spring;
+    return MethodInfo{
+        .name = std::move(name),
+        .description = std::move(description),
+        .family = "game",
+        .fixed_step = true,
+        .uses_contact_law = spring,
+        .needs = spring ? "dynamics and contact geometry" : "dynamics, contact geometry and an impulse map",
+        .can_run = [spring](const Dynamics& scene) { return spring || has_impulse_map(scene); },
+        .run =
+            [scheme, resolution](const Dynamics& scene, const Method& m, const SolveOptions& span) {
+              return run_game(scene,
+                              {.dt = m.dt,
+                               .scheme = scheme,
+                               .resolution = resolution,
+                               .persistence = m.persistence,
+                               .on_notifications = m.on_notifications},
+                              span);
+            }};
+  };
+  using S = FixedStepScheme;
+  using R = GameResolution;
+  return {entry("game-euler", "explicit Euler at fixed dt, projection + impulse", S::ExplicitEuler,
+                R::ProjectionImpulse),
+          entry("game-symplectic", "semi-implicit Euler at fixed dt, projection + impulse",
+                S::SemiImplicitEuler, R::ProjectionImpulse),
+          entry("game-symplectic-projection", "semi-implicit Euler at fixed dt, projection alone",
+                S::SemiImplicitEuler, R::Projection),
+          entry("game-euler-spring", "explicit Euler at fixed dt, penalty spring force", S::ExplicitEuler,
+                R::Spring),
+          entry("game-symplectic-spring", "semi-implicit Euler at fixed dt, penalty spring force",
+                S::SemiImplicitEuler, R::Spring)};
 }
 
 }  // namespace contact

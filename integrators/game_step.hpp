@@ -44,16 +44,14 @@ enum class GameResolution {
 std::string_view to_string(GameResolution r);
 
 struct GameOptions {
-  double dt = 1e-3;        // fixed step [s]
-  double t_end = 3.0;      // [s]
-  double sample_dt = 0.01; // output spacing [s]; rounded to whole steps
+  double dt = 1e-3;  // fixed step [s]
   FixedStepScheme scheme = FixedStepScheme::SemiImplicitEuler;
   GameResolution resolution = GameResolution::ProjectionImpulse;
   int persistence = 1;  // frames a pair stays listed after its last detection
   std::function<void(const std::vector<CollisionEvent>&)> on_notifications;  // once per step with events
-  RunLimits limits;
 };
 
-RunResult run_game(const MechanicalSystem& model, const GameOptions& options);
+// Projection and impulses need the scene's impulse map (std::invalid_argument without one).
+RunResult run_game(const Dynamics& model, const GameOptions& options, const SolveOptions& span = {});
 
 }  // namespace contact

@@ -101,10 +101,11 @@ class GslIntegrator final : public SteppingIntegrator {
       t_limit = std::min(t_limit, ta_ + max_step_);
       h_ = std::min(h_, max_step_);
     }
-    const int status = fixed_dt_ > 0
-                           // No control object: at a fixed step the error test must not reject.
-                           ? gsl_odeiv2_evolve_apply_fixed_step(d->e, nullptr, d->s, &gsl_sys_, &t, fixed_dt_, yb_.data())
-                           : gsl_odeiv2_evolve_apply(d->e, d->c, d->s, &gsl_sys_, &t, t_limit, &h_, yb_.data());
+    const int status =
+        fixed_dt_ > 0
+            // No control object: at a fixed step the error test must not reject.
+            ? gsl_odeiv2_evolve_apply_fixed_step(d->e, nullptr, d->s, &gsl_sys_, &t, fixed_dt_, yb_.data())
+            : gsl_odeiv2_evolve_apply(d->e, d->c, d->s, &gsl_sys_, &t, t_limit, &h_, yb_.data());
     if (status != GSL_SUCCESS) {
       ++failed_;
       throw SolverFailure(status == GSL_EBADFUNC ? Status::NonFiniteState : Status::ErrorTestFailure, ta_,
@@ -120,7 +121,9 @@ class GslIntegrator final : public SteppingIntegrator {
       y = ya_;
       gsl_odeiv2_step_reset(dense_step_.get());
       Vector yerr(y.size());
-      if (gsl_odeiv2_step_apply(dense_step_.get(), ta_, h, y.data(), yerr.data(), nullptr, nullptr, &gsl_sys_) == GSL_SUCCESS) return;
+      if (gsl_odeiv2_step_apply(dense_step_.get(), ta_, h, y.data(), yerr.data(), nullptr, nullptr,
+                                &gsl_sys_) == GSL_SUCCESS)
+        return;
       ++dense_fallbacks_;  // e.g. bsimp's extrapolation did not converge: y is not a solution
     }
     // Cubic Hermite on [ta, tb] from the end values and slopes.
@@ -154,7 +157,8 @@ class GslIntegrator final : public SteppingIntegrator {
 
 }  // namespace
 
-std::unique_ptr<Integrator> make_gsl(const IntegratorOptions& o, OdeSystem system, double t0, ConstVectorRef y0) {
+std::unique_ptr<Integrator> make_gsl(const IntegratorOptions& o, OdeSystem system, double t0,
+                                     ConstVectorRef y0) {
   return std::make_unique<GslIntegrator>(o, std::move(system), t0, y0);
 }
 

@@ -1,5 +1,7 @@
 #include "integrator.hpp"
 
+#include "registry.hpp"
+
 #include "fixed_step_integrator.hpp"
 #include "gsl_integrator.hpp"
 #include "sundials_integrators.hpp"
@@ -25,44 +27,41 @@ const std::vector<IntegratorInfo>& integrator_catalog() {
       {"arkode-dirk", "ARKODE", 4, false, true, true, true, "ARKODE ARKStep, diagonally implicit RK"},
       {"arkode-imex", "ARKODE", 4, false, true, true, true, "ARKODE ARKStep IMEX: contact forces implicit"},
       {"gsl-rk8pd", "GSL", 8, false, true, true, false, "GSL Runge-Kutta Prince-Dormand (8,9)"},
-      {"gsl-rkf45", "GSL", 5, false, true, true, false, "GSL Runge-Kutta-Fehlberg (4,5), propagates the 5th-order solution"},
+      {"gsl-rkf45", "GSL", 5, false, true, true, false,
+       "GSL Runge-Kutta-Fehlberg (4,5), propagates the 5th-order solution"},
       {"gsl-msbdf", "GSL", 5, true, true, false, true, "GSL multistep BDF, orders 1-5"},
       {"gsl-bsimp", "GSL", 0, true, true, false, true, "GSL implicit Bulirsch-Stoer (Bader-Deuflhard)"},
   };
   return catalog;
 }
 
-std::vector<std::string> integrator_names() {
-  std::vector<std::string> names;
-  for (const auto& i : integrator_catalog()) names.push_back(i.name);
-  return names;
-}
+std::vector<std::string> integrator_names() { return names_of(integrator_catalog()); }
 
 const IntegratorInfo& integrator_info(const std::string& name) {
-  const auto& c = integrator_catalog();
-  const auto it = std::find_if(c.begin(), c.end(), [&](const auto& i) { return i.name == name; });
-  if (it == c.end())
-    throw std::invalid_argument(fmt::format("--integrator: value '{}' is not one of: {}", name,
-                                            fmt::join(integrator_names(), ", ")));
-  return *it;
+  return find_named(integrator_catalog(), name, "--integrator");
 }
 
 std::vector<std::string> linear_solver_names() { return {"dense", "band", "klu", "gmres", "gmres-band"}; }
 
 std::string_view to_string(LinearSolverKind kind) {
   switch (kind) {
-    case LinearSolverKind::Dense: return "dense";
-    case LinearSolverKind::Band: return "band";
-    case LinearSolverKind::Klu: return "klu";
-    case LinearSolverKind::Gmres: return "gmres";
-    case LinearSolverKind::GmresBandPreconditioned: return "gmres-band";
+    case LinearSolverKind::Dense:
+      return "dense";
+    case LinearSolverKind::Band:
+      return "band";
+    case LinearSolverKind::Klu:
+      return "klu";
+    case LinearSolverKind::Gmres:
+      return "gmres";
+    case LinearSolverKind::GmresBandPreconditioned:
+      return "gmres-band";
   }
   return "?";
 }
 
 LinearSolverKind parse_linear_solver(const std::string& name) {
-  for (auto k : {LinearSolverKind::Dense, LinearSolverKind::Band, LinearSolverKind::Klu, LinearSolverKind::Gmres,
-                 LinearSolverKind::GmresBandPreconditioned})
+  for (auto k : {LinearSolverKind::Dense, LinearSolverKind::Band, LinearSolverKind::Klu,
+                 LinearSolverKind::Gmres, LinearSolverKind::GmresBandPreconditioned})
     if (to_string(k) == name) return k;
   throw std::invalid_argument(fmt::format("--linear-solver: value '{}' is not one of: {}", name,
                                           fmt::join(linear_solver_names(), ", ")));
@@ -72,23 +71,33 @@ void validate(const IntegratorOptions& o) {
   const IntegratorInfo& info = integrator_info(o.method);
   auto positive = [](double v) { return std::isfinite(v) && v > 0; };
   if (!positive(o.rtol) || o.rtol >= 1)
-    throw std::invalid_argument(fmt::format("--rtol: value '{}' is out of range; accepted range (0, 1)", o.rtol));
+    throw std::invalid_argument(
+        fmt::format("--rtol: value '{}' is out of range; accepted range (0, 1)", o.rtol));
   if (!positive(o.atol))
-    throw std::invalid_argument(fmt::format("--atol: value '{}' is out of range; accepted range (0, inf)", o.atol));
+    throw std::invalid_argument(
+        fmt::format("--atol: value '{}' is out of range; accepted range (0, inf)", o.atol));
   if (!(std::isfinite(o.dt) && o.dt >= 0))
-    throw std::invalid_argument(fmt::format("--dt: value '{}' is out of range; accepted range (0, inf)", o.dt));
+    throw std::invalid_argument(
+        fmt::format("--dt: value '{}' is out of range; accepted range (0, inf)", o.dt));
   if (!info.adaptive && !(o.dt > 0))
-    throw std::invalid_argument(fmt::format("--dt: value '{}' is out of range for {}, a fixed-step method; accepted range (0, inf)", o.dt, o.method));
+    throw std::invalid_argument(
+        fmt::format("--dt: value '{}' is out of range for {}, a fixed-step method; accepted range (0, inf)",
+                    o.dt, o.method));
   if (o.dt > 0 && !info.fixed_step_capable)
-    throw std::invalid_argument(fmt::format("--dt: {} cannot run at a fixed step; accepted: 0 (adaptive) or a fixed-step method", o.method));
+    throw std::invalid_argument(fmt::format(
+        "--dt: {} cannot run at a fixed step; accepted: 0 (adaptive) or a fixed-step method", o.method));
   if (o.max_steps < 1)
-    throw std::invalid_argument(fmt::format("--max-steps: value '{}' is out of range; accepted range [1, inf)", o.max_steps));
+    throw std::invalid_argument(
+        fmt::format("--max-steps: value '{}' is out of range; accepted range [1, inf)", o.max_steps));
   if (!(std::isfinite(o.max_step) && o.max_step >= 0))
-    throw std::invalid_argument(fmt::format("--max-step: value '{}' is out of range; accepted range [0, inf)", o.max_step));
+    throw std::invalid_argument(
+        fmt::format("--max-step: value '{}' is out of range; accepted range [0, inf)", o.max_step));
   const bool sundials_implicit = info.implicit && (info.family == "CVODE" || info.family == "ARKODE");
   if (o.linear_solver != LinearSolverKind::Dense && !sundials_implicit)
-    throw std::invalid_argument(fmt::format("--linear-solver: value '{}' applies only to implicit SUNDIALS methods (cvode-bdf, cvode-adams, arkode-dirk, arkode-imex); {} uses none",
-                                            to_string(o.linear_solver), o.method));
+    throw std::invalid_argument(
+        fmt::format("--linear-solver: value '{}' applies only to implicit SUNDIALS methods (cvode-bdf, "
+                    "cvode-adams, arkode-dirk, arkode-imex); {} uses none",
+                    to_string(o.linear_solver), o.method));
 }
 
 std::unique_ptr<Integrator> make_integrator(const IntegratorOptions& o, OdeSystem system, double t0,
@@ -102,8 +111,10 @@ std::unique_ptr<Integrator> make_integrator(const IntegratorOptions& o, OdeSyste
                                  : o.method == "semi-implicit-euler" ? FixedStepScheme::SemiImplicitEuler
                                  : o.method == "velocity-verlet"     ? FixedStepScheme::VelocityVerlet
                                                                      : FixedStepScheme::Rk4;
-  if (scheme != FixedStepScheme::ExplicitEuler && scheme != FixedStepScheme::Rk4 && system.positions.size() == 0)
-    throw std::invalid_argument(fmt::format("{} needs a system split into positions and velocities", o.method));
+  if (scheme != FixedStepScheme::ExplicitEuler && scheme != FixedStepScheme::Rk4 &&
+      system.positions.size() == 0)
+    throw std::invalid_argument(
+        fmt::format("{} needs a system split into positions and velocities", o.method));
   return make_fixed_step(scheme, o, std::move(system), t0, y0);
 }
 

@@ -31,13 +31,13 @@ struct IntegratorOptions {
 
 struct IntegratorInfo {
   std::string name;
-  std::string family;      // "fixed-step", "CVODE", "ARKODE", "GSL"
-  int order;               // theoretical order; the largest one for variable-order methods,
-                           // 0 where there is no single one (extrapolation)
+  std::string family;  // "fixed-step", "CVODE", "ARKODE", "GSL"
+  int order;           // theoretical order; the largest one for variable-order methods,
+                       // 0 where there is no single one (extrapolation)
   bool variable_order;
-  bool adaptive;           // error-controlled step size
-  bool fixed_step_capable; // can run at a fixed dt (order tests)
-  bool implicit;           // uses a Jacobian and a linear solver
+  bool adaptive;            // error-controlled step size
+  bool fixed_step_capable;  // can run at a fixed dt (order tests)
+  bool implicit;            // uses a Jacobian and a linear solver
   std::string description;
 };
 
@@ -71,8 +71,11 @@ const IntegratorInfo& integrator_info(const std::string& name);
 // Checks the options against the method; throws std::invalid_argument with a message naming the
 // option, the value and what is accepted.
 void validate(const IntegratorOptions& options);
-std::unique_ptr<Integrator> make_integrator(const IntegratorOptions& options, OdeSystem system,
-                                            double t0, ConstVectorRef y0);
+std::unique_ptr<Integrator> make_integrator(const IntegratorOptions& options, OdeSystem system, double t0,
+                                            ConstVectorRef y0);
+
+// SUNDIALS' version, e.g. "6.4.1", for run metadata.
+std::string sundials_version();
 
 std::vector<std::string> linear_solver_names();
 std::string_view to_string(LinearSolverKind kind);

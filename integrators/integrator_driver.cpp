@@ -3,8 +3,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <limits>
 #include <cmath>
+#include <limits>
 #include <memory>
 
 namespace contact {
@@ -45,18 +45,22 @@ RunResult drive(OdeSystem system, ConstVectorRef y0, const IntegratorOptions& op
           returns_at_t = t > t_last_root ? 1 : returns_at_t + 1;
           t_last_root = t;
           if (returns_at_t > max_returns_at_one_time)
-            throw SolverFailure(Status::NoProgress, t,
-                                fmt::format("the integrator returned {} times at t = {:.17g} without advancing",
-                                            returns_at_t, t));
+            throw SolverFailure(
+                Status::NoProgress, t,
+                fmt::format("the integrator returned {} times at t = {:.17g} without advancing", returns_at_t,
+                            t));
           Vector y = integrator->y();
-          const auto flagged = std::count_if(out.roots_found.begin(), out.roots_found.end(), [](int r) { return r != 0; });
+          const auto flagged =
+              std::count_if(out.roots_found.begin(), out.roots_found.end(), [](int r) { return r != 0; });
           handled += flagged;
           if (flagged == 0 || events.on_roots(t, y, out.roots_found)) integrator->reinit(t, y);
           continue;
         }
       }
-      if (events.sample) events.sample(t, integrator->y());
-      else rec.sample(t, integrator->y());
+      if (events.sample)
+        events.sample(t, integrator->y());
+      else
+        rec.sample(t, integrator->y());
     }
   } catch (const SolverFailure& f) {
     return rec.fail(f, stats());
@@ -64,12 +68,14 @@ RunResult drive(OdeSystem system, ConstVectorRef y0, const IntegratorOptions& op
   return rec.finish(stats(), t);
 }
 
-OdeSystem mechanical_ode(const MechanicalSystem& model, ModesAt modes_at) {
+OdeSystem mechanical_ode(const Dynamics& model, ModesAt modes_at) {
   OdeSystem sys;
   sys.size = model.state_size();
   sys.positions = model.position_mask();
   sys.bandwidth = model.jacobian_bandwidth();
-  sys.rhs = [&model, modes_at](double t, ConstVectorRef y, VectorRef yd) { model.rhs(t, y, modes_at(y), yd); };
+  sys.rhs = [&model, modes_at](double t, ConstVectorRef y, VectorRef yd) {
+    model.rhs(t, y, modes_at(y), yd);
+  };
   if (model.has_jacobian()) {
     sys.jacobian = [&model, modes_at](double t, ConstVectorRef y, SparseMatrix& J) {
       model.jacobian(t, y, modes_at(y), J);

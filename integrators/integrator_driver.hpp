@@ -47,7 +47,7 @@ RunResult drive(OdeSystem system, ConstVectorRef y0, const IntegratorOptions& op
 // Jacobian and its band, and the IMEX split (contact forces implicit, free motion explicit).
 // No root functions; the paradigm adds its own.
 using ModesAt = std::function<const ContactModes&(ConstVectorRef y)>;
-OdeSystem mechanical_ode(const MechanicalSystem& model, ModesAt modes_at);
+OdeSystem mechanical_ode(const Dynamics& model, ModesAt modes_at);
 
 // The same ODE with one more state, W' = power(y): the energy a physical loss has removed. W
 // enters nothing else, so its Jacobian row is left empty (Newton's iteration for W converges as

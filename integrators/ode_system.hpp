@@ -20,10 +20,10 @@ struct OdeSystem {
   // semi-implicit schemes); empty = no split.
   Mask positions;
   Rhs rhs;
-  Jacobian jacobian;   // empty: none (implicit methods then use difference quotients)
-  Bandwidth bandwidth; // of the Jacobian; used by band solvers and preconditioners
+  Jacobian jacobian;    // empty: none (implicit methods then use difference quotients)
+  Bandwidth bandwidth;  // of the Jacobian; used by band solvers and preconditioners
   std::size_t root_count = 0;
-  Roots roots;         // empty when root_count == 0
+  Roots roots;  // empty when root_count == 0
   // IMEX: the stiff part, integrated implicitly, and its Jacobian; the rest of rhs is explicit.
   Rhs implicit_rhs;
   Jacobian implicit_jacobian;

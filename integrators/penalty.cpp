@@ -1,21 +1,25 @@
 #include "penalty.hpp"
 
+#include "method_registry.hpp"
+
+#include "capabilities.hpp"
 #include "integrator_driver.hpp"
 
 #include <cmath>
 
 namespace contact {
 
-RunResult run_penalty(const MechanicalSystem& model, const PenaltyOptions& opt) {
+RunResult run_penalty(const Dynamics& model, const PenaltyOptions& opt, const SolveOptions& span) {
   const std::size_t nc = model.contact_count();
-  RunRecorder rec(model, "penalty " + opt.integrator.method, opt.sample_dt, opt.t_end, opt.limits);
+  const ContactGeometry& geo = contact_geometry(model);
+  RunRecorder rec(model, "penalty " + opt.integrator.method, span);
   const Vector y0 = model.initial_state();
   ContactModes modes(nc);
-  model.modes_from_state(y0, modes);
+  geo.modes_from_state(nc, y0, modes);
 
   // Without located switches the modes follow the state inside every call.
   auto modes_at = [&](ConstVectorRef y) -> const ContactModes& {
-    if (!opt.locate_switches) model.modes_from_state(y, modes);
+    if (!opt.locate_switches) geo.modes_from_state(nc, y, modes);
     return modes;
   };
   OdeSystem base = mechanical_ode(model, modes_at);
@@ -27,9 +31,9 @@ RunResult run_penalty(const MechanicalSystem& model, const PenaltyOptions& opt) 
     for (std::size_t i = 0; i < nc; ++i) {
       // Touching counts as the mode held (see contact_threshold).
       const double side = modes[i] == ContactMode::Penalty ? threshold : -threshold;
-      g[static_cast<Eigen::Index>(3 * i)] = model.switching(i, y) + side;
-      g[static_cast<Eigen::Index>(3 * i + 1)] = model.gap_rate(i, y);
-      g[static_cast<Eigen::Index>(3 * i + 2)] = model.gap(i, y) + threshold;
+      g[static_cast<Eigen::Index>(3 * i)] = geo.switching(i, y) + side;
+      g[static_cast<Eigen::Index>(3 * i + 1)] = geo.gap_rate(i, y);
+      g[static_cast<Eigen::Index>(3 * i + 2)] = geo.gap(i, y) + threshold;
     }
   };
   // The energy ledger: the laws' dissipated power integrated as one more state.
@@ -37,7 +41,7 @@ RunResult run_penalty(const MechanicalSystem& model, const PenaltyOptions& opt) 
     double p = 0;
     const ContactModes& m = modes_at(y);
     for (std::size_t i = 0; i < nc; ++i)
-      if (m[i] == ContactMode::Penalty) p += model.dissipated_power(i, y);
+      if (m[i] == ContactMode::Penalty) p += geo.dissipated_power(i, y);
     return p;
   });
   const auto n = static_cast<Eigen::Index>(model.state_size());
@@ -45,7 +49,7 @@ RunResult run_penalty(const MechanicalSystem& model, const PenaltyOptions& opt) 
   y0_ledger << y0, 0.0;
 
   for (std::size_t i = 0; i < nc; ++i)
-    if (modes[i] == ContactMode::Penalty) rec.contact_begin(i, 0.0, model.gap_rate(i, y0));
+    if (modes[i] == ContactMode::Penalty) rec.contact_begin(i, 0.0, geo.gap_rate(i, y0));
 
   // A contact lasts from the law's first push to the overlap's closing: a clamped law lets go
   // while the bodies still overlap, and gravity may still slow them until they separate, so
@@ -61,18 +65,18 @@ RunResult run_penalty(const MechanicalSystem& model, const PenaltyOptions& opt) 
     for (std::size_t i = 0; i < nc; ++i) {
       const int sw = roots[3 * i], rate = roots[3 * i + 1], closing = roots[3 * i + 2];
       const bool engaged = modes_at(y)[i] == ContactMode::Penalty;
-      if (rate > 0 && engaged) rec.observe_penetration(i, -model.gap(i, y));
-      if (rate < 0 && !engaged) rec.apex(i, t, model.gap(i, y), model.energy(y), y_full[n] + booked);
+      if (rate > 0 && engaged) rec.observe_penetration(i, -geo.gap(i, y));
+      if (rate < 0 && !engaged) rec.apex(i, t, geo.gap(i, y), model.energy(y), y_full[n] + booked);
       if (sw > 0) {
-        if (!rec.contact_open(i)) rec.contact_begin(i, t, model.gap_rate(i, y));
-        booked -= model.elastic_energy(i, y);
+        if (!rec.contact_open(i)) rec.contact_begin(i, t, geo.gap_rate(i, y));
+        booked -= geo.elastic_energy(i, y);
       }
       if (sw < 0) {
-        rec.observe_penetration(i, -model.gap(i, y));
-        booked += model.elastic_energy(i, y);
-        if (model.gap(i, y) >= 0) rec.contact_end(i, t, model.gap_rate(i, y));
+        rec.observe_penetration(i, -geo.gap(i, y));
+        booked += geo.elastic_energy(i, y);
+        if (geo.gap(i, y) >= 0) rec.contact_end(i, t, geo.gap_rate(i, y));
       }
-      if (closing > 0 && sw == 0 && !engaged) rec.contact_end(i, t, model.gap_rate(i, y));
+      if (closing > 0 && sw == 0 && !engaged) rec.contact_end(i, t, geo.gap_rate(i, y));
       if (sw != 0 && opt.locate_switches) {
         modes[i] = sw > 0 ? ContactMode::Penalty : ContactMode::Free;
         switched = true;
@@ -82,10 +86,37 @@ RunResult run_penalty(const MechanicalSystem& model, const PenaltyOptions& opt) 
   };
   drive.sample = [&](double t, ConstVectorRef y_full) {
     const auto y = y_full.head(n);
-    for (std::size_t i = 0; i < nc; ++i) rec.observe_penetration(i, -model.gap(i, y));
+    for (std::size_t i = 0; i < nc; ++i) rec.observe_penetration(i, -geo.gap(i, y));
     rec.sample(t, y, y_full[n] + booked);
   };
   return contact::drive(std::move(sys), y0_ledger, opt.integrator, rec, drive);
+}
+
+}  // namespace contact
+
+namespace contact {
+
+std::vector<MethodInfo> penalty_methods() {
+  auto entry = [](std::string name, std::string description, JacobianMode jacobian) {
+    return MethodInfo{.name = std::move(name),
+                      .description = std::move(description),
+                      .family = "penalty",
+                      .fixed_step = false,
+                      .uses_contact_law = true,
+                      .needs = "dynamics (and contact geometry for its springs)",
+                      .can_run = [](const Dynamics&) { return true; },
+                      .run =
+                          [jacobian](const Dynamics& scene, const Method& m, const SolveOptions& span) {
+                            PenaltyOptions o{.integrator = m.integrator};
+                            o.integrator.jacobian = jacobian;
+                            return run_penalty(scene, o, span);
+                          }};
+  };
+  return {entry("penalty",
+                "penalty spring as an ODE (CVODE BDF by default), analytic Jacobian, switches root-located",
+                JacobianMode::Analytic),
+          entry("penalty-dq", "as penalty, with the integrator's difference-quotient Jacobian",
+                JacobianMode::DifferenceQuotient)};
 }
 
 }  // namespace contact

@@ -18,13 +18,11 @@
 namespace contact {
 
 struct PenaltyOptions {
-  double t_end = 3.0;      // [s]
-  double sample_dt = 0.01; // output spacing [s]
   IntegratorOptions integrator;
   bool locate_switches = true;
-  RunLimits limits;
 };
 
-RunResult run_penalty(const MechanicalSystem& model, const PenaltyOptions& options);
+// Any scene: its contact geometry, if it has one, gives the springs (none: a plain ODE).
+RunResult run_penalty(const Dynamics& model, const PenaltyOptions& options, const SolveOptions& span = {});
 
 }  // namespace contact

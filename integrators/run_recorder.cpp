@@ -12,12 +12,11 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 }
 
-RunRecorder::RunRecorder(const MechanicalSystem& model, std::string method, double sample_dt,
-                         double t_end, const RunLimits& limits)
+RunRecorder::RunRecorder(const Dynamics& model, std::string method, const SolveOptions& span)
     : model_(model),
-      limits_(limits),
-      sample_dt_(sample_dt),
-      t_end_(t_end),
+      limits_(span.limits),
+      sample_dt_(span.sample_dt),
+      t_end_(span.t_end),
       open_(model.contact_count(), -1),
       last_(model.contact_count(), -1),
       start_(std::chrono::steady_clock::now()) {
@@ -41,9 +40,11 @@ void RunRecorder::sample(double t, ConstVectorRef y, double dissipated) {
   const double grid = t_end_ / sample_dt_;
   if (!(grid < static_cast<double>(limits_.max_samples)) ||
       static_cast<long>(result_.samples.size()) >= limits_.max_samples)
-    throw SolverFailure(Status::WorkLimit, t,
-                        fmt::format("t_end / sample_dt = {:.3g} output samples; at most {} are kept: raise the "
-                                    "sample spacing", grid, limits_.max_samples));
+    throw SolverFailure(
+        Status::WorkLimit, t,
+        fmt::format("t_end / sample_dt = {:.3g} output samples; at most {} are kept: raise the "
+                    "sample spacing",
+                    grid, limits_.max_samples));
   result_.samples.push_back({t, y, model_.energy(y), dissipated});
   // Fixed-step methods sample at step ends: skip every grid time this sample stands for, in one
   // jump (a step may stand for many grid times).
@@ -59,14 +60,16 @@ void RunRecorder::sample(double t, ConstVectorRef y, double dissipated) {
 void RunRecorder::check_records(double t) const {
   const auto kept = result_.contacts.size() + result_.apexes.size() + result_.notifications.size();
   if (static_cast<long>(kept) >= limits_.max_records)
-    throw SolverFailure(Status::WorkLimit, t,
-                        fmt::format("more than {} contact records, apexes and notifications: the run's record limit",
-                                    limits_.max_records));
+    throw SolverFailure(
+        Status::WorkLimit, t,
+        fmt::format("more than {} contact records, apexes and notifications: the run's record limit",
+                    limits_.max_records));
 }
 
 void RunRecorder::check_steps(long steps, double t) const {
   if (steps > limits_.max_steps)
-    throw SolverFailure(Status::WorkLimit, t, fmt::format("more than {} steps in the run", limits_.max_steps));
+    throw SolverFailure(Status::WorkLimit, t,
+                        fmt::format("more than {} steps in the run", limits_.max_steps));
 }
 
 void RunRecorder::contact_begin(std::size_t i, double t, double v_in) {
@@ -108,8 +111,7 @@ void RunRecorder::apex(std::size_t i, double t, double gap, double energy, doubl
 }
 
 RunResult RunRecorder::finish(SolverStats stats, double t_reached) {
-  stats.wall_time_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  stats.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   result_.stats = stats;
   result_.t_reached = t_reached;
   return std::move(result_);

@@ -14,15 +14,22 @@ namespace contact {
 // The defaults are far above what any experiment here needs (the study's largest run takes
 // ~1e6 steps and keeps ~1e4 records) and far below what this machine can hold.
 struct RunLimits {
-  long max_steps = 100'000'000;  // integrator steps over the whole run, restarts included
-  long max_records = 1'000'000;  // contact records, apexes and notifications kept
-  long max_samples = 10'000'000; // output samples (about t_end / sample_dt)
+  long max_steps = 100'000'000;   // integrator steps over the whole run, restarts included
+  long max_records = 1'000'000;   // contact records, apexes and notifications kept
+  long max_samples = 10'000'000;  // output samples (about t_end / sample_dt)
+};
+
+// What every run shares, whichever method: the time span, the output grid and the work bounds.
+// The one place they live; a method's own options hold only its own settings.
+struct SolveOptions {
+  double t_end = 3.0;       // the run covers [0, t_end] [s]
+  double sample_dt = 0.01;  // output spacing [s] (fixed-step methods: rounded to whole steps)
+  RunLimits limits;
 };
 
 class RunRecorder {
  public:
-  RunRecorder(const MechanicalSystem& model, std::string method, double sample_dt, double t_end,
-              const RunLimits& limits = {});
+  RunRecorder(const Dynamics& model, std::string method, const SolveOptions& span);
 
   // The next output time still to be recorded (t_end included); +inf when all are done.
   double next_sample_time() const;
@@ -57,7 +64,7 @@ class RunRecorder {
  private:
   void check_records(double t) const;
 
-  const MechanicalSystem& model_;
+  const Dynamics& model_;
   RunResult result_;
   RunLimits limits_;
   double sample_dt_, t_end_;  // output grid t_j = j sample_dt, closed by t_end (computed, not stored)

@@ -22,12 +22,12 @@ struct Sample {
 // Velocities are the signed gap rate along the normal (< 0 approaching), so the effective
 // restitution is -v_out / v_in.
 struct ContactRecord {
-  std::size_t contact = 0;      // which potential contact of the model
-  double t_begin = 0.0;         // [s]
-  double t_end = 0.0;           // [s]; NaN while still open at the end of the run
-  double max_penetration = 0.0; // largest overlap seen [m]
-  double v_in = 0.0;            // gap rate when the contact began [m/s]
-  double v_out = 0.0;           // gap rate when it ended [m/s]; NaN while open
+  std::size_t contact = 0;       // which potential contact of the model
+  double t_begin = 0.0;          // [s]
+  double t_end = 0.0;            // [s]; NaN while still open at the end of the run
+  double max_penetration = 0.0;  // largest overlap seen [m]
+  double v_in = 0.0;             // gap rate when the contact began [m/s]
+  double v_out = 0.0;            // gap rate when it ended [m/s]; NaN while open
   bool closed() const { return t_end == t_end; }
   double duration() const { return t_end - t_begin; }
   double restitution() const { return -v_out / v_in; }

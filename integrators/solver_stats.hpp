@@ -7,18 +7,18 @@
 namespace contact {
 
 struct SolverStats {
-  long steps = 0;             // accepted steps (fixed-step: steps taken; closed form: flight legs)
-  long failed_steps = 0;      // rejected steps: error-test plus nonlinear-convergence failures
-  long rhs_evals = 0;         // right-hand-side evaluations, including those of a
-                              // difference-quotient Jacobian
-  long jac_evals = 0;         // Jacobian evaluations (analytic or difference quotient)
-  long newton_iters = 0;      // nonlinear (Newton) iterations
-  long linear_setups = 0;     // linear-solver setups (factorisations)
-  long linear_iters = 0;      // iterations of an iterative linear solver (GMRES)
-  long root_evals = 0;        // root (switching-function) evaluations
-  long events = 0;            // roots located and acted on: contact switches, impacts, apexes
-  long restarts = 0;          // re-initialisations after an event
-  double wall_time_s = 0.0;   // wall-clock time of the run [s]
+  long steps = 0;            // accepted steps (fixed-step: steps taken; closed form: flight legs)
+  long failed_steps = 0;     // rejected steps: error-test plus nonlinear-convergence failures
+  long rhs_evals = 0;        // right-hand-side evaluations, including those of a
+                             // difference-quotient Jacobian
+  long jac_evals = 0;        // Jacobian evaluations (analytic or difference quotient)
+  long newton_iters = 0;     // nonlinear (Newton) iterations
+  long linear_setups = 0;    // linear-solver setups (factorisations)
+  long linear_iters = 0;     // iterations of an iterative linear solver (GMRES)
+  long root_evals = 0;       // root (switching-function) evaluations
+  long events = 0;           // roots located and acted on: contact switches, impacts, apexes
+  long restarts = 0;         // re-initialisations after an event
+  double wall_time_s = 0.0;  // wall-clock time of the run [s]
 
   SolverStats& operator+=(const SolverStats& o) {
     steps += o.steps;

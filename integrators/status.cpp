@@ -6,16 +6,26 @@ namespace contact {
 
 const char* to_string(Status s) {
   switch (s) {
-    case Status::Success: return "success";
-    case Status::MaxSteps: return "max-steps";
-    case Status::ConvergenceFailure: return "convergence-failure";
-    case Status::ErrorTestFailure: return "error-test-failure";
-    case Status::NonFiniteState: return "non-finite-state";
-    case Status::ZenoLimit: return "zeno-limit";
-    case Status::Unresolved: return "unresolved";
-    case Status::NoProgress: return "no-progress";
-    case Status::WorkLimit: return "work-limit";
-    case Status::SolverError: return "solver-error";
+    case Status::Success:
+      return "success";
+    case Status::MaxSteps:
+      return "max-steps";
+    case Status::ConvergenceFailure:
+      return "convergence-failure";
+    case Status::ErrorTestFailure:
+      return "error-test-failure";
+    case Status::NonFiniteState:
+      return "non-finite-state";
+    case Status::ZenoLimit:
+      return "zeno-limit";
+    case Status::Unresolved:
+      return "unresolved";
+    case Status::NoProgress:
+      return "no-progress";
+    case Status::WorkLimit:
+      return "work-limit";
+    case Status::SolverError:
+      return "solver-error";
   }
   return "unknown";
 }

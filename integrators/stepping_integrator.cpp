@@ -39,8 +39,10 @@ SteppingIntegrator::Outcome SteppingIntegrator::advance(double t_out) {
       // Consume the current step up to t_out.
       const double hi = std::min(tb_, t_out);
       Vector y_hi(yb_.size());
-      if (hi == tb_) y_hi = yb_;
-      else dense(hi, y_hi);
+      if (hi == tb_)
+        y_hi = yb_;
+      else
+        dense(hi, y_hi);
       if (sys_.root_count > 0 && locate_root(hi, y_hi, out)) return out;
       t_ = hi;
       y_ = y_hi;
@@ -63,8 +65,9 @@ SteppingIntegrator::Outcome SteppingIntegrator::advance(double t_out) {
     step(t_out);
     ++counts_.steps;
     if (!yb_.allFinite())
-      throw SolverFailure(Status::NonFiniteState, ta_,
-                          fmt::format("state is not finite after the step from t = {:.17g} to {:.17g}", ta_, tb_));
+      throw SolverFailure(
+          Status::NonFiniteState, ta_,
+          fmt::format("state is not finite after the step from t = {:.17g} to {:.17g}", ta_, tb_));
   }
 }
 
@@ -99,10 +102,10 @@ bool SteppingIntegrator::locate_root(double t_hi, ConstVectorRef y_hi, Outcome& 
     const auto k = static_cast<Eigen::Index>(i);
     if (!allowed(i, crossing(g_[k], g_hi_[k]))) continue;
     RootProblem problem{[&, k](double t) {
-                          dense(t, y);
-                          eval_roots(t, y, g);
-                          return g[k];
-                        }};
+      dense(t, y);
+      eval_roots(t, y, g);
+      return g[k];
+    }};
     gsl_function fn{call_root_problem, &problem};
     double lo = t_, hi = t_hi;
     if (gsl_root_fsolver_set(brent.get(), &fn, lo, hi) != GSL_SUCCESS) continue;
@@ -111,7 +114,8 @@ bool SteppingIntegrator::locate_root(double t_hi, ConstVectorRef y_hi, Outcome& 
       lo = gsl_root_fsolver_x_lower(brent.get());
       hi = gsl_root_fsolver_x_upper(brent.get());
       // Stop at ~100 ulps of t, CVODE's own root tolerance.
-      if (gsl_root_test_interval(lo, hi, 0.0, 100 * std::numeric_limits<double>::epsilon()) == GSL_SUCCESS) break;
+      if (gsl_root_test_interval(lo, hi, 0.0, 100 * std::numeric_limits<double>::epsilon()) == GSL_SUCCESS)
+        break;
     }
     t_root = std::min(t_root, hi);  // the bracket's upper end: g already has its new sign there
   }

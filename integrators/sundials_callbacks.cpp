@@ -46,10 +46,14 @@ SolverFailure CallbackData::failure(int flag, const char* flag_name, double t_re
   // CVODE and ARKODE share these codes: -1 too much work, -2 too much accuracy requested,
   // -3 repeated error-test failures, -4 repeated convergence failures, -6/-7 linear solver.
   Status status = Status::SolverError;
-  if (non_finite) status = Status::NonFiniteState;
-  else if (flag == -1) status = Status::MaxSteps;
-  else if (flag == -2 || flag == -3) status = Status::ErrorTestFailure;
-  else if (flag == -4 || flag == -6 || flag == -7) status = Status::ConvergenceFailure;
+  if (non_finite)
+    status = Status::NonFiniteState;
+  else if (flag == -1)
+    status = Status::MaxSteps;
+  else if (flag == -2 || flag == -3)
+    status = Status::ErrorTestFailure;
+  else if (flag == -4 || flag == -6 || flag == -7)
+    status = Status::ConvergenceFailure;
   std::string msg = flag_name;
   if (!solver_message.empty()) msg += ": " + solver_message;
   if (!callback_error.empty()) msg += " (" + callback_error + ")";

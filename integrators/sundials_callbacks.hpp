@@ -36,8 +36,8 @@ int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user);
 int explicit_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user);  // IMEX: rhs - implicit
 int implicit_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user);
 int jacobian(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J, void* user, N_Vector, N_Vector, N_Vector);
-int implicit_jacobian(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J, void* user, N_Vector,
-                      N_Vector, N_Vector);
+int implicit_jacobian(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J, void* user, N_Vector, N_Vector,
+                      N_Vector);
 int jtimes_setup(sunrealtype t, N_Vector y, N_Vector fy, void* user);
 int jtimes(N_Vector v, N_Vector Jv, sunrealtype t, N_Vector y, N_Vector fy, void* user, N_Vector);
 int roots(sunrealtype t, N_Vector y, sunrealtype* gout, void* user);

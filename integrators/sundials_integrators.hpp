@@ -15,7 +15,4 @@ std::unique_ptr<Integrator> make_cvode(const IntegratorOptions& options, OdeSyst
 std::unique_ptr<Integrator> make_arkode(const IntegratorOptions& options, OdeSystem system, double t0,
                                         ConstVectorRef y0);
 
-// SUNDIALS' version, e.g. "6.4.1", for run metadata.
-std::string sundials_version();
-
 }  // namespace contact

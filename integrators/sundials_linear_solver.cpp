@@ -25,7 +25,9 @@ constexpr double kMaxDenseBytes = 4.0 * 1024 * 1024 * 1024;
 
 template <class Handle>
 void require(const Handle& h, const char* what, sunindextype n) {
-  if (!h) throw SolverFailure(Status::SolverError, 0.0, fmt::format("{} returned NULL for n = {} (out of memory?)", what, n));
+  if (!h)
+    throw SolverFailure(Status::SolverError, 0.0,
+                        fmt::format("{} returned NULL for n = {} (out of memory?)", what, n));
 }
 
 }  // namespace
@@ -38,9 +40,11 @@ LinearSystem make_linear_system(LinearSolverKind kind, N_Vector y, Bandwidth ban
     case LinearSolverKind::Dense: {
       const double bytes = 8.0 * static_cast<double>(n) * static_cast<double>(n);
       if (bytes > kMaxDenseBytes)
-        throw SolverFailure(Status::WorkLimit, 0.0,
-                            fmt::format("a dense {0} x {0} Jacobian needs {1:.3g} GiB (at most {2:g}): use the band, "
-                                        "klu or gmres linear solver", n, bytes / (1 << 30), kMaxDenseBytes / (1 << 30)));
+        throw SolverFailure(
+            Status::WorkLimit, 0.0,
+            fmt::format("a dense {0} x {0} Jacobian needs {1:.3g} GiB (at most {2:g}): use the band, "
+                        "klu or gmres linear solver",
+                        n, bytes / (1 << 30), kMaxDenseBytes / (1 << 30)));
       ls.matrix.reset(SUNDenseMatrix(n, n, ctx));
       require(ls.matrix, "SUNDenseMatrix", n);
       ls.solver.reset(SUNLinSol_Dense(y, ls.matrix.get(), ctx));

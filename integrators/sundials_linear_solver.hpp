@@ -12,12 +12,12 @@
 namespace contact::sundials {
 
 struct LinearSystem {
-  Matrix matrix;        // empty for matrix-free GMRES
+  Matrix matrix;  // empty for matrix-free GMRES
   LinearSolver solver;
 };
 
-LinearSystem make_linear_system(LinearSolverKind kind, N_Vector y_template, Bandwidth band,
-                                long nonzeros, SUNContext ctx);
+LinearSystem make_linear_system(LinearSolverKind kind, N_Vector y_template, Bandwidth band, long nonzeros,
+                                SUNContext ctx);
 
 // Copies J into A (dense, band or CSC sparse); false if J does not fit A's pattern or band.
 bool copy_jacobian(const SparseMatrix& J, SUNMatrix A);

@@ -1,13 +1,18 @@
 #include "ball_chain.hpp"
 
+#include "law_registry.hpp"
+#include "scene_registry.hpp"
+
 #include <fmt/format.h>
 
+#include <cmath>
 #include <stdexcept>
 
 namespace contact {
 
 BallChain::BallChain(BallChainParams p) : p_(std::move(p)) {
-  if (p_.n < 2) throw std::invalid_argument(fmt::format("ball chain: n = {} balls; accepted range [2, inf)", p_.n));
+  if (p_.n < 2)
+    throw std::invalid_argument(fmt::format("ball chain: n = {} balls; accepted range [2, inf)", p_.n));
 }
 
 Mask BallChain::position_mask() const {
@@ -104,6 +109,37 @@ void BallChain::settle(std::size_t i, VectorRef y) const {
   project(i, y);
   const double mean = 0.5 * (v(y, i) + v(y, i + 1));
   y[static_cast<Eigen::Index>(2 * i + 1)] = y[static_cast<Eigen::Index>(2 * i + 3)] = mean;
+}
+
+}  // namespace contact
+
+namespace contact {
+
+SceneEntry ball_chain_scene() {
+  const BallChainParams d;
+  return {"ball-chain",
+          "Newton's cradle: a striker into a row of equal balls, no gravity",
+          {{"n", "", static_cast<double>(d.n), "number of balls"},
+           {"m", "kg", d.m, "mass of each ball"},
+           {"v0", "m/s", d.v0, "striker velocity"},
+           {"approach", "m", d.approach, "striker's distance to ball 1"},
+           {"spacing", "m", d.spacing, "gap between the resting balls"},
+           {"e", "", d.e, "restitution (impulses; the damped laws are tuned to it)"},
+           {"k", "N/m", 1e6, "contact stiffness"}},
+          true,
+          {"ball velocities after the impacts", "contact log", "energy"},
+          "event-driven, touching balls, e = 1: the striker's velocity passes to the last ball",
+          0.05,
+          [](const ParameterValues& v, const std::string& law) -> std::unique_ptr<Dynamics> {
+            const double n = v.at("n");
+            if (!(n >= 2 && n == std::floor(n) && n < 1e9))
+              throw std::invalid_argument(
+                  fmt::format("ball-chain: parameter 'n' = {} is not a whole number in [2, 1e9)", n));
+            const LawSpec spec{.k = v.at("k"), .m = v.at("m") / 2, .e = v.at("e"), .v = std::abs(v.at("v0"))};
+            return std::make_unique<BallChain>(
+                BallChainParams{static_cast<std::size_t>(n), v.at("m"), v.at("v0"), v.at("approach"),
+                                v.at("spacing"), v.at("e"), make_law(law.empty() ? "hooke" : law, spec)});
+          }};
 }
 
 }  // namespace contact

@@ -1,8 +1,9 @@
 #pragma once
 // N-ball chain (Newton's cradle generalised): N equal balls of mass m [kg] on a line, no
-// gravity. Only the gaps between them enter the dynamics, so the balls' size does not appear. Ball 0, the striker, starts a distance `approach` [m] from ball 1 moving at
-// v0 [m/s] towards it; balls 1..N-1 rest with `spacing` [m] between neighbours (0: touching).
-// Positions are displacements u_b from the rest positions (balls `spacing` apart), so that
+// gravity. Only the gaps between them enter the dynamics, so the balls' size does not appear. Ball 0, the
+// striker, starts a distance `approach` [m] from ball 1 moving at v0 [m/s] towards it; balls 1..N-1 rest with
+// `spacing` [m] between neighbours (0: touching). Positions are displacements u_b from the rest positions
+// (balls `spacing` apart), so that
 //   gap_i = spacing + u_{i+1} - u_i
 // is exactly zero for touching balls: with absolute positions, rounding in x_{i+1} - x_i - 2r
 // left "touching" gaps of +-1e-17 m (1e-13 m a thousand metres down a long chain), each a
@@ -20,12 +21,12 @@
 namespace contact {
 
 struct BallChainParams {
-  std::size_t n = 5;        // number of balls (>= 2)
-  double m = 0.1;           // mass of each ball [kg]
-  double v0 = 1.0;          // striker velocity [m/s]
-  double approach = 0.01;   // striker's initial distance to ball 1 [m]
-  double spacing = 0.0;     // gap between the resting balls [m]
-  double e = 1.0;           // Newton restitution for impulses
+  std::size_t n = 5;       // number of balls (>= 2)
+  double m = 0.1;          // mass of each ball [kg]
+  double v0 = 1.0;         // striker velocity [m/s]
+  double approach = 0.01;  // striker's initial distance to ball 1 [m]
+  double spacing = 0.0;    // gap between the resting balls [m]
+  double e = 1.0;          // Newton restitution for impulses
   ContactLaw law = Hooke{1e6};
 };
 
@@ -57,7 +58,9 @@ class BallChain final : public MechanicalSystem {
   double dissipated_power(std::size_t i, ConstVectorRef y) const override {
     return contact::dissipated_power(p_.law, -gap(i, y), -gap_rate(i, y));
   }
-  double elastic_energy(std::size_t i, ConstVectorRef y) const override { return stored_energy(p_.law, -gap(i, y)); }
+  double elastic_energy(std::size_t i, ConstVectorRef y) const override {
+    return stored_energy(p_.law, -gap(i, y));
+  }
   double restitution(std::size_t) const override { return p_.e; }
   void project(std::size_t i, VectorRef y) const override;
   void apply_impulse(std::size_t i, double e, VectorRef y) const override;

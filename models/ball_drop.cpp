@@ -1,5 +1,8 @@
 #include "ball_drop.hpp"
 
+#include "law_registry.hpp"
+#include "scene_registry.hpp"
+
 #include <cmath>
 #include <limits>
 
@@ -72,6 +75,33 @@ double BallDrop::time_to_impact(std::size_t, ConstVectorRef y0) const {
 
 double BallDrop::time_to_apex(std::size_t, ConstVectorRef y0) const {
   return (y0[1] > 0 && p_.g > 0) ? y0[1] / p_.g : std::numeric_limits<double>::infinity();
+}
+
+}  // namespace contact
+
+namespace contact {
+
+SceneEntry ball_drop_scene() {
+  const BallDropParams d;
+  return {"ball-drop",
+          "a point mass dropped on a rigid floor",
+          {{"m", "kg", d.m, "mass"},
+           {"g", "m/s^2", d.g, "gravity"},
+           {"h0", "m", d.h0, "initial height"},
+           {"v0", "m/s", d.v0, "initial vertical velocity"},
+           {"e", "", d.e, "restitution (impulses; the damped laws are tuned to it)"},
+           {"k", "N/m", 1e5, "contact stiffness"}},
+          true,
+          {"bounce times", "apex heights", "contact duration", "penetration", "restitution", "energy"},
+          "event-driven: apexes e^(2n) h0, Zeno time; penalty: hooke_contact with gravity",
+          3.0,
+          [](const ParameterValues& v, const std::string& law) -> std::unique_ptr<Dynamics> {
+            const double V = std::sqrt(v.at("v0") * v.at("v0") + 2 * v.at("g") * v.at("h0"));
+            const LawSpec spec{.k = v.at("k"), .m = v.at("m"), .e = v.at("e"), .v = V > 0 ? V : 1.0};
+            return std::make_unique<BallDrop>(BallDropParams{v.at("m"), v.at("g"), v.at("h0"), v.at("v0"),
+                                                             v.at("e"),
+                                                             make_law(law.empty() ? "hooke" : law, spec)});
+          }};
 }
 
 }  // namespace contact

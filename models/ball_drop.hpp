@@ -17,11 +17,11 @@
 namespace contact {
 
 struct BallDropParams {
-  double m = 1.0;      // mass [kg]
-  double g = 9.81;     // gravity [m/s^2]
-  double h0 = 1.0;     // initial height [m]
-  double v0 = 0.0;     // initial vertical velocity [m/s] (negative: downwards)
-  double e = 0.8;      // Newton restitution for impulses
+  double m = 1.0;   // mass [kg]
+  double g = 9.81;  // gravity [m/s^2]
+  double h0 = 1.0;  // initial height [m]
+  double v0 = 0.0;  // initial vertical velocity [m/s] (negative: downwards)
+  double e = 0.8;   // Newton restitution for impulses
   ContactLaw law = Hooke{1e5};
 };
 

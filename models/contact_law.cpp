@@ -50,8 +50,8 @@ std::string describe(const ContactLaw& law) {
       return fmt::format("hunt-crossley K={:g} N/m^{:g} n={:g} chi={:g} s/m", h.k, h.n, h.n, h.chi);
     }
     std::string operator()(const KelvinVoigt& kv) const {
-      return fmt::format("kelvin-voigt{} k={:g} N/m c={:g} N s/m", kv.no_pull ? " (no pull)" : "",
-                         kv.k, kv.c);
+      return fmt::format("kelvin-voigt{} k={:g} N/m c={:g} N s/m", kv.no_pull ? " (no pull)" : "", kv.k,
+                         kv.c);
     }
   };
   return std::visit(Describe{}, law);
@@ -59,20 +59,28 @@ std::string describe(const ContactLaw& law) {
 
 double damping_factor(DampingRule rule, double e, double v) {
   switch (rule) {
-    case DampingRule::HuntCrossley: return 3.0 * (1.0 - e) / (2.0 * v);
-    case DampingRule::LankaraniNikravesh: return 3.0 * (1.0 - e * e) / (4.0 * v);
-    case DampingRule::Flores: return 8.0 * (1.0 - e) / (5.0 * e * v);
-    case DampingRule::Gonthier: return (1.0 - e * e) / (e * v);
+    case DampingRule::HuntCrossley:
+      return 3.0 * (1.0 - e) / (2.0 * v);
+    case DampingRule::LankaraniNikravesh:
+      return 3.0 * (1.0 - e * e) / (4.0 * v);
+    case DampingRule::Flores:
+      return 8.0 * (1.0 - e) / (5.0 * e * v);
+    case DampingRule::Gonthier:
+      return (1.0 - e * e) / (e * v);
   }
   return 0.0;
 }
 
 std::string_view to_string(DampingRule rule) {
   switch (rule) {
-    case DampingRule::HuntCrossley: return "hunt-crossley";
-    case DampingRule::LankaraniNikravesh: return "lankarani-nikravesh";
-    case DampingRule::Flores: return "flores";
-    case DampingRule::Gonthier: return "gonthier";
+    case DampingRule::HuntCrossley:
+      return "hunt-crossley";
+    case DampingRule::LankaraniNikravesh:
+      return "lankarani-nikravesh";
+    case DampingRule::Flores:
+      return "flores";
+    case DampingRule::Gonthier:
+      return "gonthier";
   }
   return "?";
 }

@@ -47,9 +47,7 @@ struct KelvinVoigt {
   double dforce_drate(double, double) const { return c; }
   // Unclamped: on while overlapping. Clamped: on while overlapping *and* pushing; the second
   // condition k d + c dd > 0 is written as d + (c/k) dd > 0 so that both are lengths.
-  double switching(double d, double dd) const {
-    return no_pull ? std::min(d, d + (c / k) * dd) : d;
-  }
+  double switching(double d, double dd) const { return no_pull ? std::min(d, d + (c / k) * dd) : d; }
   double stored_energy(double d) const { return d > 0 ? 0.5 * k * d * d : 0.0; }
   // Power the dashpot takes out while the law is on [W]: c delta_dot^2. (Unclamped, the dashpot
   // also acts at small negative delta near the end; the ledger counts it where the law is on.)

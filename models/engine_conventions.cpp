@@ -46,6 +46,8 @@ DrakeContact to_drake(double k, double m, double g) {
   return {allowance, 1.0 / (std::sqrt(k / m) * allowance)};
 }
 
-double drake_stiffness(double penetration_allowance, double m, double g) { return m * g / penetration_allowance; }
+double drake_stiffness(double penetration_allowance, double m, double g) {
+  return m * g / penetration_allowance;
+}
 
 }  // namespace contact

@@ -45,7 +45,7 @@ MujocoDirect to_mujoco_direct(double k, double c, double m);
 void from_mujoco_direct(const MujocoDirect& p, double m, double& k, double& c);
 
 struct Box2dSoft {
-  double hertz;          // contact frequency [Hz]
+  double hertz;  // contact frequency [Hz]
   double damping_ratio;
 };
 Box2dSoft to_box2d(double k, double c, double m);

@@ -1,6 +1,8 @@
 #pragma once
-// What every scene offers to the three contact paradigms. A scene is a mechanical system with
-// unilateral contacts; it knows its physics and nothing of the integrator that runs it.
+// What a scene offers the contact paradigms, as three capabilities: Dynamics (the ODE), ContactGeometry
+// (gaps and penalty laws) and ImpulseMap (projection and impulses). A paradigm asks for the ones it
+// needs (integrators/capabilities.hpp); a scene knows its physics and nothing of the integrator
+// that runs it.
 //
 // State layout: position_mask() marks the positions; the other entries are velocities.
 // Positions change only through the velocities (q' = Q(q) v), which is what semi-implicit
@@ -24,9 +26,11 @@ namespace contact {
 enum class ContactMode : std::uint8_t { Free, Penalty, Resting };
 using ContactModes = std::vector<ContactMode>;
 
-class MechanicalSystem {
+// Dynamics: the ODE y' = f(t, y) of a scene with its contacts in given modes. All a fixed-step
+// scheme or an ODE integrator needs; a scene without contacts (the free spring) offers only this.
+class Dynamics {
  public:
-  virtual ~MechanicalSystem() = default;
+  virtual ~Dynamics() = default;
 
   virtual std::string name() const = 0;
   virtual Mask position_mask() const = 0;
@@ -34,6 +38,8 @@ class MechanicalSystem {
   virtual Vector initial_state() const = 0;
   // Column names with units, one per state entry, e.g. "y_m", "v_mps".
   virtual std::vector<std::string> state_labels() const = 0;
+  // How many potential contacts rhs() takes a mode for (0: none).
+  virtual std::size_t contact_count() const { return 0; }
 
   // y' = f(t, y) with every contact in the given mode.
   virtual void rhs(double t, ConstVectorRef y, const ContactModes& modes, VectorRef ydot) const = 0;
@@ -53,10 +59,17 @@ class MechanicalSystem {
     return {n - 1, n - 1};
   }
   // Kinetic + potential + elastic energy of the engaged penalty springs [J]
-  // (engaged_elastic_energy below).
+  // (ContactGeometry::engaged_elastic_energy).
   virtual double energy(ConstVectorRef y) const = 0;
 
-  virtual std::size_t contact_count() const = 0;
+  ContactModes all_modes(ContactMode m) const { return ContactModes(contact_count(), m); }
+};
+
+// Contact geometry: where each potential contact i stands and what its penalty law does there.
+// What the penalty paradigm and the game loop's detection need, beside the dynamics.
+class ContactGeometry {
+ public:
+  virtual ~ContactGeometry() = default;
   // Signed gap along the contact normal [m]: > 0 apart, < 0 overlapping.
   virtual double gap(std::size_t i, ConstVectorRef y) const = 0;
   // Its time derivative [m/s]: < 0 approaching.
@@ -68,7 +81,31 @@ class MechanicalSystem {
   // Elastic energy contact i's law holds at the present overlap, whether or not it pushes [J].
   virtual double elastic_energy(std::size_t i, ConstVectorRef y) const = 0;
 
-  // Impulsive resolution, the seed's way. e is Newton's restitution for contact i.
+  // Penalty where the switching function is positive, free elsewhere, for contacts 0..count-1;
+  // fills `modes` in place so that callers inside a step loop allocate nothing.
+  void modes_from_state(std::size_t count, ConstVectorRef y, ContactModes& modes) const {
+    modes.resize(count);
+    for (std::size_t i = 0; i < count; ++i)
+      modes[i] = switching(i, y) > 0 ? ContactMode::Penalty : ContactMode::Free;
+  }
+  // The elastic energy of the contacts 0..count-1 whose law pushes (switching > 0) [J]: what
+  // energy() counts. A clamped law (F = max(0, k d + c d')) lets go while the bodies still
+  // overlap; the energy its spring held then is lost, a physical loss the penalty method books at
+  // the release. Counting it until the overlap closes would book it as numerical drift instead.
+  double engaged_elastic_energy(std::size_t count, ConstVectorRef y) const {
+    double E = 0;
+    for (std::size_t i = 0; i < count; ++i)
+      if (switching(i, y) > 0) E += elastic_energy(i, y);
+    return E;
+  }
+};
+
+// The impulse map: impulsive resolution, the seed's way. What event-driven resolution and the game
+// loop's projection and impulse need, beside the geometry.
+class ImpulseMap {
+ public:
+  virtual ~ImpulseMap() = default;
+  // Newton's restitution for contact i.
   virtual double restitution(std::size_t i) const = 0;
   // Projection: move the bodies apart along the normal, by inverse-mass share, until gap = 0.
   virtual void project(std::size_t i, VectorRef y) const = 0;
@@ -76,25 +113,18 @@ class MechanicalSystem {
   virtual void apply_impulse(std::size_t i, double e, VectorRef y) const = 0;
   // Put contact i at rest on its surface (gap 0, no normal velocity).
   virtual void settle(std::size_t i, VectorRef y) const = 0;
+};
 
-  // Penalty where the switching function is positive, free elsewhere; fills `modes` in place
-  // (sized contact_count()) so that callers inside a step loop allocate nothing.
+// A scene with unilateral contacts that every paradigm can run: dynamics, contact geometry and
+// impulse map together.
+class MechanicalSystem : public Dynamics, public ContactGeometry, public ImpulseMap {
+ public:
+  std::size_t contact_count() const override = 0;
   void modes_from_state(ConstVectorRef y, ContactModes& modes) const {
-    modes.resize(contact_count());
-    for (std::size_t i = 0; i < modes.size(); ++i)
-      modes[i] = switching(i, y) > 0 ? ContactMode::Penalty : ContactMode::Free;
+    ContactGeometry::modes_from_state(contact_count(), y, modes);
   }
-  ContactModes all_modes(ContactMode m) const { return ContactModes(contact_count(), m); }
-
-  // The elastic energy of the contacts whose law pushes (switching > 0) [J]: what energy() counts.
-  // A clamped law (F = max(0, k d + c d')) lets go while the bodies still overlap; the energy its
-  // spring held then is lost, a physical loss the penalty method books at the release. Counting
-  // it until the overlap closes would book it as numerical drift instead.
   double engaged_elastic_energy(ConstVectorRef y) const {
-    double E = 0;
-    for (std::size_t i = 0; i < contact_count(); ++i)
-      if (switching(i, y) > 0) E += elastic_energy(i, y);
-    return E;
+    return ContactGeometry::engaged_elastic_energy(contact_count(), y);
   }
 };
 

@@ -2,13 +2,14 @@
 // The free spring: a mass m [kg] on a bilateral Hooke spring k [N/m], no gravity, no contact.
 //   y = [x, v],  x' = v,  v' = -(k/m) x,  energy (m v^2 + k x^2)/2,  omega = sqrt(k/m).
 // The harmonic oscillator on which the fixed-step schemes' energy behaviour has closed forms.
+// Dynamics only: it has no contacts, so it offers neither contact geometry nor an impulse map.
 #include "mechanical_system.hpp"
 
 #include <cmath>
 
 namespace contact {
 
-class SpringMass final : public MechanicalSystem {
+class SpringMass final : public Dynamics {
  public:
   SpringMass(double m, double k, double x0, double v0) : m_(m), k_(k), x0_(x0), v0_(v0) {}
   double omega() const { return std::sqrt(k_ / m_); }
@@ -27,21 +28,7 @@ class SpringMass final : public MechanicalSystem {
     J.resize(2, 2);
     J.setFromTriplets(std::begin(entries), std::end(entries));
   }
-  double energy(ConstVectorRef y) const override {
-    return 0.5 * (m_ * y[1] * y[1] + k_ * y[0] * y[0]);
-  }
-
-  // No unilateral contacts.
-  std::size_t contact_count() const override { return 0; }
-  double gap(std::size_t, ConstVectorRef) const override { return 0.0; }
-  double gap_rate(std::size_t, ConstVectorRef) const override { return 0.0; }
-  double switching(std::size_t, ConstVectorRef) const override { return 0.0; }
-  double dissipated_power(std::size_t, ConstVectorRef) const override { return 0.0; }
-  double elastic_energy(std::size_t, ConstVectorRef) const override { return 0.0; }
-  double restitution(std::size_t) const override { return 1.0; }
-  void project(std::size_t, VectorRef) const override {}
-  void apply_impulse(std::size_t, double, VectorRef) const override {}
-  void settle(std::size_t, VectorRef) const override {}
+  double energy(ConstVectorRef y) const override { return 0.5 * (m_ * y[1] * y[1] + k_ * y[0] * y[0]); }
 
  private:
   double m_, k_, x0_, v0_;

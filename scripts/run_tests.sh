@@ -16,6 +16,11 @@ if [ "${1:-}" = "--sanitize" ]; then
   export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 fi
 
+# CI builds with warnings as errors (.ci/run sets CONTACT_ODE_WERROR=ON); a newcomer's build only warns.
+if [ "${CONTACT_ODE_WERROR:-OFF}" = "ON" ]; then
+  config+=(-DCMAKE_COMPILE_WARNING_AS_ERROR=ON)
+fi
+
 jobs=$(nproc)
 cmake -S . -B "$build_dir" "${config[@]}" >/dev/null
 cmake --build "$build_dir" -j"$jobs"

@@ -6,6 +6,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake git pkg-config
+  clang-format         # the checked-in .clang-format, checked by .ci/run
   libsundials-dev      # CVODE (BDF/Adams, root finding) and ARKODE
   libeigen3-dev        # small dense vectors and matrices for states and Jacobians
   libgsl-dev           # least-squares fits (observed orders), roots, statistics

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+#include <unistd.h>
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
@@ -13,8 +15,6 @@
 #include <sstream>
 #include <string>
 #include <vector>
-#include <sys/wait.h>
-#include <unistd.h>
 
 namespace fs = std::filesystem;
 
@@ -50,9 +50,11 @@ class CliTest : public ::testing::Test {
 
   // `prefix` goes before the program: environment settings, or a wrapper such as timeout.
   Outcome run(const std::string& exe, const std::string& args, const std::string& prefix = "") const {
-    const std::string cmd = "cd '" + dir_.string() + "' && " + prefix + " '" + exe + "' " + args + " >stdout.txt 2>stderr.txt";
+    const std::string cmd =
+        "cd '" + dir_.string() + "' && " + prefix + " '" + exe + "' " + args + " >stdout.txt 2>stderr.txt";
     const int status = std::system(cmd.c_str());
-    Outcome r{WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir_ / "stdout.txt"), slurp(dir_ / "stderr.txt")};
+    Outcome r{WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir_ / "stdout.txt"),
+              slurp(dir_ / "stderr.txt")};
     fs::remove(dir_ / "stdout.txt");
     fs::remove(dir_ / "stderr.txt");
     return r;
@@ -79,4 +81,3 @@ class CliTest : public ::testing::Test {
 
   fs::path dir_;
 };
-

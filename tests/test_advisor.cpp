@@ -124,8 +124,8 @@ TEST(Advisor, GameStepMeetsTheEnergyBudgetAfterTheContactAndNoMore) {
     for (int phase = 0; phase < 128; ++phase) {
       const double h0 = r.v * a.game_dt * (1.0 + phase / 128.0), T = std::numbers::pi / a.omega;
       const BallDrop model({.m = r.m, .g = 0.0, .h0 = h0, .v0 = -r.v, .e = 1.0, .law = a.law});
-      const RunResult run = run_game(model, {.dt = a.game_dt, .t_end = h0 / r.v + 3 * T, .sample_dt = 1.0,
-                                             .resolution = GameResolution::Spring});
+      const RunResult run = run_game(model, {.dt = a.game_dt, .resolution = GameResolution::Spring},
+                                     {.t_end = h0 / r.v + 3 * T, .sample_dt = 1.0});
       ASSERT_TRUE(run.ok());
       ASSERT_EQ(run.contacts.size(), 1u);
       worst = std::max(worst, std::abs(run.samples.back().energy / run.energy0 - 1));
@@ -150,7 +150,8 @@ TEST(Advisor, GameStepMeetsTheEnergyBudgetWithDamping) {
     r.energy_error = 0.01;
     const ContactAdvice a = advise(r);
     EXPECT_LE(a.game_energy_error, r.energy_error) << law;
-    EXPECT_LE(a.game_dt * a.omega, 2 * std::sqrt(0.01 / 1.01) * (1 + 1e-12)) << law << ": never above the bound's step";
+    EXPECT_LE(a.game_dt * a.omega, 2 * std::sqrt(0.01 / 1.01) * (1 + 1e-12))
+        << law << ": never above the bound's step";
   }
 }
 
@@ -164,7 +165,9 @@ TEST(Advisor, StableStepLimitsAreSharp) {
   r.max_penetration = 1e-2;
   const ContactAdvice a = advise(r);
   const double w = a.omega, zeta = a.zeta;
-  OdeSystem::Rhs f = [&](double, ConstVectorRef y, VectorRef yd) { yd << y[1], -w * w * y[0] - 2 * zeta * w * y[1]; };
+  OdeSystem::Rhs f = [&](double, ConstVectorRef y, VectorRef yd) {
+    yd << y[1], -w * w * y[0] - 2 * zeta * w * y[1];
+  };
   const Mask positions = Mask{{true, false}};
   auto growth = [&](FixedStepScheme scheme, double h) {
     Vector y{{1.0, 0.0}};
@@ -208,7 +211,9 @@ TEST(Advisor, RefusesNonPhysicalRequests) {
   bad.radius = 0.01;
   bad.young = 2e11;
   bad.poisson = 0.5;  // incompressible: outside (-1, 0.5)
-  EXPECT_NE(message(bad).find("--poisson: value '0.5' is out of range; accepted range (-1, 0.5)"), std::string::npos) << message(bad);
+  EXPECT_NE(message(bad).find("--poisson: value '0.5' is out of range; accepted range (-1, 0.5)"),
+            std::string::npos)
+      << message(bad);
   bad = r;
   bad.law = "hooke";
   bad.e = 0.8;

@@ -57,7 +57,8 @@ Matrix dense_of(SUNMatrix A, Eigen::Index n) {
 // Central differences: truncation vanishes (the forces are affine in the state within a mode)
 // and rounding is eps |f| / h ~ 1e-10 relative with h = 1e-7 m.
 TEST(BallChain, JacobianMatchesCentralDifferencesInEveryMode) {
-  for (const ContactLaw& law : {ContactLaw{Hooke{1e6}}, ContactLaw{kelvin_voigt_for_restitution(1e6, 0.1, 0.7, false)}}) {
+  for (const ContactLaw& law :
+       {ContactLaw{Hooke{1e6}}, ContactLaw{kelvin_voigt_for_restitution(1e6, 0.1, 0.7, false)}}) {
     const BallChain c = chain(6, law);
     const Vector y = compressed_state(c);
     for (auto mode : {ContactMode::Free, ContactMode::Penalty}) {
@@ -76,7 +77,8 @@ TEST(BallChain, JacobianMatchesCentralDifferencesInEveryMode) {
         yp[j] = ym[j] = y[j];
       }
       const Matrix analytic(J);
-      EXPECT_LE((analytic - numeric).cwiseAbs().maxCoeff(), 1e-7 * std::max(1.0, numeric.cwiseAbs().maxCoeff()));
+      EXPECT_LE((analytic - numeric).cwiseAbs().maxCoeff(),
+                1e-7 * std::max(1.0, numeric.cwiseAbs().maxCoeff()));
       // Every non-zero lies in the declared band, and the band is no wider than needed.
       long lower = 0, upper = 0;
       for (int j = 0; j < J.outerSize(); ++j)
@@ -85,10 +87,14 @@ TEST(BallChain, JacobianMatchesCentralDifferencesInEveryMode) {
           upper = std::max(upper, j - static_cast<long>(it.row()));
         }
       EXPECT_EQ(lower, c.jacobian_bandwidth().lower);
-      for (Eigen::Index d = 0; d < J.rows(); ++d) EXPECT_TRUE(J.coeff(d, d) == J.coeff(d, d) && [&] {
-        for (SparseMatrix::InnerIterator it(J, d); it; ++it) if (it.row() == d) return true;
-        return false;
-      }()) << "diagonal entry " << d << " missing from the pattern";
+      for (Eigen::Index d = 0; d < J.rows(); ++d)
+        EXPECT_TRUE(J.coeff(d, d) == J.coeff(d, d) &&
+                    [&] {
+                      for (SparseMatrix::InnerIterator it(J, d); it; ++it)
+                        if (it.row() == d) return true;
+                      return false;
+                    }())
+            << "diagonal entry " << d << " missing from the pattern";
       EXPECT_EQ(upper, c.jacobian_bandwidth().upper);
       // The pattern does not depend on the mode (sparse factorisations reuse it).
       SparseMatrix J_free;
@@ -124,18 +130,19 @@ TEST(BallChain, BandAndSparseStorageHoldTheDenseJacobian) {
 TEST(BallChain, EveryLinearSolverGivesTheSamePenaltyRun) {
   const BallChain c = chain(8, Hooke{1e6});
   PenaltyOptions o;
-  o.t_end = 0.05;
-  o.sample_dt = 0.05;
+  SolveOptions o_span;
+  o_span.t_end = 0.05;
+  o_span.sample_dt = 0.05;
   o.integrator.rtol = 1e-9;
   o.integrator.atol = 1e-12;
-  const RunResult ref = run_penalty(c, o);
+  const RunResult ref = run_penalty(c, o, o_span);
   ASSERT_TRUE(ref.ok()) << ref.message;
   for (const char* method : {"cvode-bdf", "arkode-dirk"})
-    for (auto ls : {LinearSolverKind::Dense, LinearSolverKind::Band, LinearSolverKind::Klu, LinearSolverKind::Gmres,
-                    LinearSolverKind::GmresBandPreconditioned}) {
+    for (auto ls : {LinearSolverKind::Dense, LinearSolverKind::Band, LinearSolverKind::Klu,
+                    LinearSolverKind::Gmres, LinearSolverKind::GmresBandPreconditioned}) {
       o.integrator.method = method;
       o.integrator.linear_solver = ls;
-      const RunResult r = run_penalty(c, o);
+      const RunResult r = run_penalty(c, o, o_span);
       ASSERT_TRUE(r.ok()) << method << " " << to_string(ls) << ": " << r.message;
       const Vector& y = r.samples.back().y;
       const Vector& y_ref = ref.samples.back().y;
@@ -150,12 +157,14 @@ TEST(BallChain, NewtonsCradleBySequentialImpulsesPassesTheVelocityToTheLastBall)
   for (std::size_t n : {2, 3, 5, 10}) {
     const BallChain c = chain(n, Hooke{1e6}, 1.0);
     EventOptions o;
-    o.t_end = 0.1;
-    o.sample_dt = 0.1;
-    const RunResult r = run_event_driven(c, o);
+    SolveOptions o_span;
+    o_span.t_end = 0.1;
+    o_span.sample_dt = 0.1;
+    const RunResult r = run_event_driven(c, o, o_span);
     ASSERT_TRUE(r.ok()) << r.message;
     const Vector& y = r.samples.back().y;
-    for (std::size_t b = 0; b + 1 < n; ++b) EXPECT_NEAR(y[static_cast<Eigen::Index>(2 * b + 1)], 0.0, 1e-14) << "ball " << b;
+    for (std::size_t b = 0; b + 1 < n; ++b)
+      EXPECT_NEAR(y[static_cast<Eigen::Index>(2 * b + 1)], 0.0, 1e-14) << "ball " << b;
     EXPECT_NEAR(y[static_cast<Eigen::Index>(2 * n - 1)], c.params().v0, 1e-14);
     EXPECT_EQ(r.contacts.size(), n - 1);
   }

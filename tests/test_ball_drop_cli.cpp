@@ -61,10 +61,10 @@ TEST_F(BallDropCli, OutputThatIsAFileIsRefused) {
 TEST_F(BallDropCli, HelpListsEveryOptionWithDefaultAndRange) {
   const Outcome r = run("--help");
   EXPECT_EQ(r.code, 0);
-  for (const char* s : {"--method", "--law", "--k FLOAT:in (0, inf)=100000", "--e FLOAT:in [0, 1]=0.8",
-                        "--integrator", "--linear-solver", "arkode-imex", "gmres-band",
-                        "--m", "--g", "--h0", "--dt", "--rtol", "--atol", "--t-end", "--out", "--sweep",
-                        "event-exact", "game-symplectic-spring"})
+  for (const char* s :
+       {"--method", "--law", "--k FLOAT:in (0, inf)=100000", "--e FLOAT:in [0, 1]=0.8", "--integrator",
+        "--linear-solver", "arkode-imex", "gmres-band", "--m", "--g", "--h0", "--dt", "--rtol", "--atol",
+        "--t-end", "--out", "--sweep", "event-exact", "game-symplectic-spring"})
     EXPECT_NE(r.out.find(s), std::string::npos) << s;
   EXPECT_TRUE(dir_is_empty());
 }
@@ -84,8 +84,9 @@ TEST_F(BallDropCli, SuccessfulRunWritesEveryDeclaredFileWithItsColumns) {
       {"contacts.csv", "method,t_begin_s,t_end_s,max_penetration_m,v_in_mps,v_out_mps"},
       {"apexes.csv", "method,t_s,height_m,energy_J,energy_change_rel"},
       {"samples.csv", "method,t_s,y_m,v_mps,energy_J,dissipated_J"},
-      {"stats.csv", "method,status,t_reached_s,steps,failed_steps,rhs_evals,jac_evals,newton_iters,"
-                    "linear_setups,root_evals,events,restarts,wall_time_s,message"},
+      {"stats.csv",
+       "method,status,t_reached_s,steps,failed_steps,rhs_evals,jac_evals,newton_iters,"
+       "linear_setups,root_evals,events,restarts,wall_time_s,message"},
       {"comparison.csv", "method,status,contacts,first_penetration_m"},
   };
   for (const auto& [name, header] : files) {
@@ -93,7 +94,8 @@ TEST_F(BallDropCli, SuccessfulRunWritesEveryDeclaredFileWithItsColumns) {
     EXPECT_EQ(text.rfind(header, 0), 0u) << name << " starts with: " << text.substr(0, 120);
     EXPECT_GT(std::count(text.begin(), text.end(), '\n'), 1) << name << " has no rows";
   }
-  for (const char* name : {"comparison.md", "comparison.tex"}) EXPECT_TRUE(fs::exists(dir_ / "results" / name)) << name;
+  for (const char* name : {"comparison.md", "comparison.tex"})
+    EXPECT_TRUE(fs::exists(dir_ / "results" / name)) << name;
   const auto meta = nlohmann::json::parse(slurp(dir_ / "results" / "meta.json"));
   EXPECT_EQ(meta["experiment"], "ball_drop");
   EXPECT_EQ(meta["options"]["t-end"], "1");
@@ -110,7 +112,10 @@ TEST_F(BallDropCli, SweepPrintsOneRowPerStiffnessAndMethod) {
   const Outcome r = run("--sweep --k-min 1e2 --k-max 1e4 --t-end 1 --out sweep");
   ASSERT_EQ(r.code, 0) << r.err;
   const std::string csv = slurp(dir_ / "sweep" / "sweep.csv");
-  // 3 stiffnesses x 4 stiffness-dependent methods + 4 independent ones, plus the header.
-  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 3 * 4 + 4 + 1) << csv;
-  EXPECT_EQ(csv.rfind("k_N_per_m,method,omega_dt,closed_form_penetration_m,closed_form_duration_s,status", 0), 0u);
+  // 3 stiffnesses x 4 stiffness-dependent methods (penalty, penalty-dq, game-euler-spring,
+  // game-symplectic-spring) + 6 independent ones (game-euler, game-symplectic,
+  // game-symplectic-projection, event-ode, event-ode-reversed, event-exact), plus the header.
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 3 * 4 + 6 + 1) << csv;
+  EXPECT_EQ(csv.rfind("k_N_per_m,method,omega_dt,closed_form_penetration_m,closed_form_duration_s,status", 0),
+            0u);
 }

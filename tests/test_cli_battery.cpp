@@ -81,7 +81,8 @@ TEST_F(CliBattery, OutRefusesPathsNoRunMayWriteTo) {
       const Outcome r = run(path(exe), base_args(exe) + " --out '" + out + "'");
       EXPECT_EQ(r.code, 2) << exe << " --out '" << out << "': " << r.err;
       EXPECT_NE(r.err.find("--out"), std::string::npos) << exe << " --out '" << out << "': " << r.err;
-      EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << exe << " --out '" << out << "': " << r.err;
+      EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1)
+          << exe << " --out '" << out << "': " << r.err;
     }
     // Nothing but the file that was there.
     std::size_t entries = 0;

@@ -9,22 +9,24 @@ class ContactAdvisorCli : public CliTest {};
 }  // namespace
 
 TEST_F(ContactAdvisorCli, NonPhysicalRequestsAreRefused) {
-  expect_refused(CONTACT_ADVISOR_EXE, {
-      {"--v -5 --max-penetration 1e-3", "--v", "'-5'", "(0, inf)"},
-      {"--v 0 --max-penetration 1e-3", "--v", "'0'", "(0, inf)"},
-      {"--e 1.5 --max-penetration 1e-3", "--e", "'1.5'", "[0, 1]"},
-      {"--e nan --max-penetration 1e-3", "--e", "'nan'", "[0, 1]"},
-      {"--max-penetration 0", "--max-penetration", "'0'", "(0, inf)"},
-      {"--max-penetration -1e-3", "--max-penetration", "'-1e-3'", "(0, inf)"},
-      {"--duration -2", "--duration", "'-2'", "(0, inf)"},
-      {"--m 0 --duration 1e-3", "--m", "'0'", "(0, inf)"},
-      {"--law hertz --radius 0.01 --young 2e11 --poisson 0.5", "--poisson", "'0.5'", "(-1, 0.5)"},
-      {"--law hertz --radius 0.01 --young 2e11 --poisson -1", "--poisson", "'-1'", "(-1, 0.5)"},
-      {"--law hooke --e 0.8 --max-penetration 1e-3", "--e", "'0.8'", "[1, 1]"},
-      {"--law kelvin-voigt-clamped --e 0.1 --max-penetration 1e-3", "--e", "'0.1'", "0.1353"},
-      {"--law jelly --max-penetration 1e-3", "--law", "'jelly'", "hertz"},
-      {"--max-penetration 1e-3 --duration 1e-3", "--max-penetration", "", "exactly one"},
-  });
+  expect_refused(
+      CONTACT_ADVISOR_EXE,
+      {
+          {"--v -5 --max-penetration 1e-3", "--v", "'-5'", "(0, inf)"},
+          {"--v 0 --max-penetration 1e-3", "--v", "'0'", "(0, inf)"},
+          {"--e 1.5 --max-penetration 1e-3", "--e", "'1.5'", "[0, 1]"},
+          {"--e nan --max-penetration 1e-3", "--e", "'nan'", "[0, 1]"},
+          {"--max-penetration 0", "--max-penetration", "'0'", "(0, inf)"},
+          {"--max-penetration -1e-3", "--max-penetration", "'-1e-3'", "(0, inf)"},
+          {"--duration -2", "--duration", "'-2'", "(0, inf)"},
+          {"--m 0 --duration 1e-3", "--m", "'0'", "(0, inf)"},
+          {"--law hertz --radius 0.01 --young 2e11 --poisson 0.5", "--poisson", "'0.5'", "(-1, 0.5)"},
+          {"--law hertz --radius 0.01 --young 2e11 --poisson -1", "--poisson", "'-1'", "(-1, 0.5)"},
+          {"--law hooke --e 0.8 --max-penetration 1e-3", "--e", "'0.8'", "[1, 1]"},
+          {"--law kelvin-voigt-clamped --e 0.1 --max-penetration 1e-3", "--e", "'0.1'", "0.1353"},
+          {"--law jelly --max-penetration 1e-3", "--law", "'jelly'", "hertz"},
+          {"--max-penetration 1e-3 --duration 1e-3", "--max-penetration", "", "exactly one"},
+      });
 }
 
 TEST_F(ContactAdvisorCli, WritesTheAdviceTable) {

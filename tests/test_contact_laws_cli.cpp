@@ -18,7 +18,8 @@ TEST_F(ContactLawsCli, WritesTableAndFigureWithTheDeclaredColumns) {
   EXPECT_EQ(csv.rfind("law,target_e,achieved_e,miss\n", 0), 0u);
   // 10 laws x 4 targets + header.
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 41);
-  for (const char* f : {"restitution.png", "restitution.pdf", "restitution.gp", "restitution.md", "restitution.tex", "meta.json"})
+  for (const char* f : {"restitution.png", "restitution.pdf", "restitution.gp", "restitution.md",
+                        "restitution.tex", "meta.json"})
     EXPECT_GT(fs::file_size(dir_ / "laws" / f), 100u) << f;
   EXPECT_EQ(slurp(dir_ / "laws" / "restitution.png").substr(1, 3), "PNG");
   EXPECT_EQ(slurp(dir_ / "laws" / "restitution.pdf").substr(0, 4), "%PDF");
@@ -59,9 +60,9 @@ TEST_F(ContactLawsCli, HuntCrossleyRowsMatchTheExactRestitution) {
 
 TEST_F(ContactLawsCli, BadInputIsRefused) {
   expect_refused(CONTACT_LAWS_EXE, {
-      {"--v -1", "--v", "'-1'", "(0, inf)"},
-      {"--m 0", "--m", "'0'", "(0, inf)"},
-      {"--depth nan", "--depth", "'nan'", "(0, inf)"},
-      {"--points 1", "--points", "'1'", ">= 2"},
-  });
+                                       {"--v -1", "--v", "'-1'", "(0, inf)"},
+                                       {"--m 0", "--m", "'0'", "(0, inf)"},
+                                       {"--depth nan", "--depth", "'nan'", "(0, inf)"},
+                                       {"--points 1", "--points", "'1'", ">= 2"},
+                                   });
 }

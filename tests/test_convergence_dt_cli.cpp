@@ -14,7 +14,8 @@ class ConvergenceDtCli : public CliTest {
     return out;
   }
   // The last row (finest step or tightest tolerance) of an integrator: {step or rtol, error}.
-  std::pair<double, double> finest_row(const std::string& table, const std::string& integrator, const std::string& events) const {
+  std::pair<double, double> finest_row(const std::string& table, const std::string& integrator,
+                                       const std::string& events) const {
     std::pair<double, double> row{std::nan(""), std::nan("")};
     for (auto& cells : csv_rows(slurp(dir_ / "cd" / (table + ".csv"))))
       if (cells[0] == integrator && cells[1] == events) row = {std::stod(cells[2]), std::stod(cells[3])};
@@ -28,7 +29,9 @@ class ConvergenceDtCli : public CliTest {
 }  // namespace
 
 TEST_F(ConvergenceDtCli, LocatedSwitchesRestoreTheOrderTheKinkTakes) {
-  const Outcome r = run(CONVERGENCE_DT_EXE, "--integrators euler,semi-implicit-euler,velocity-verlet,rk4,gsl-rkf45,cvode-bdf --out cd");
+  const Outcome r =
+      run(CONVERGENCE_DT_EXE,
+          "--integrators euler,semi-implicit-euler,velocity-verlet,rk4,gsl-rkf45,cvode-bdf --out cd");
   ASSERT_EQ(r.code, 0) << r.err;
   auto o = orders();
   // Located: every switch is a step end, the solution is smooth inside each step, and the method
@@ -48,7 +51,8 @@ TEST_F(ConvergenceDtCli, LocatedSwitchesRestoreTheOrderTheKinkTakes) {
   // across it errs by O(dt^2) in v. For rk4 at the finest step (w dt = 0.003) that leaves the
   // error ~ 1/(w dt)^2 ~ 1e5 times the located one; 100x is asserted.
   EXPECT_GT(finest("fixed_step", "rk4", "unlocated"), 100 * finest("fixed_step", "rk4", "located"));
-  EXPECT_GT(finest("fixed_step", "gsl-rkf45", "unlocated"), 100 * finest("fixed_step", "gsl-rkf45", "located"));
+  EXPECT_GT(finest("fixed_step", "gsl-rkf45", "unlocated"),
+            100 * finest("fixed_step", "gsl-rkf45", "located"));
   // CVODE with located switches meets its tolerance: the error at the tightest rtol is within
   // 1000 rtol (the global error of a few hundred steps, each controlled to rtol).
   const auto [rtol, error] = finest_row("adaptive", "cvode-bdf", "located");
@@ -59,9 +63,9 @@ TEST_F(ConvergenceDtCli, LocatedSwitchesRestoreTheOrderTheKinkTakes) {
 
 TEST_F(ConvergenceDtCli, BadInputIsRefused) {
   expect_refused(CONVERGENCE_DT_EXE, {
-      {"--dt-max 2", "--dt-max", "'2'", "(0, t-final)"},
-      {"--halvings 0", "--halvings", "'0'", ">= 1"},
-      {"--integrators rk5", "--integrators", "'rk5'", "rk4"},
-      {"--tol-min 1e-20", "--tol-min", "'1e-20'", "[1e-14, 0.0001]"},
-  });
+                                         {"--dt-max 2", "--dt-max", "'2'", "(0, t-final)"},
+                                         {"--halvings 0", "--halvings", "'0'", ">= 1"},
+                                         {"--integrators rk5", "--integrators", "'rk5'", "rk4"},
+                                         {"--tol-min 1e-20", "--tol-min", "'1e-20'", "[1e-14, 0.0001]"},
+                                     });
 }

@@ -58,11 +58,11 @@ TEST_F(ConvergenceExperimentsCli, ZenoStopsAtTheAccumulationAndNothingFallsThrou
 
 TEST_F(ConvergenceExperimentsCli, BadInputIsRefused) {
   expect_refused(CONVERGENCE_K_EXE, {
-      {"--k-min 1e6 --k-max 1e6", "--k-max", "'1e+06'", "(k-min, inf)"},
-      {"--bounces 0", "--bounces", "'0'", ">= 1"},
-  });
+                                        {"--k-min 1e6 --k-max 1e6", "--k-max", "'1e+06'", "(k-min, inf)"},
+                                        {"--bounces 0", "--bounces", "'0'", ">= 1"},
+                                    });
   expect_refused(ZENO_EXE, {
-      {"--e 1", "--e", "'1'", "(0, 1)"},
-      {"--t-end -6", "--t-end", "'-6'", "(0, inf)"},
-  });
+                               {"--e 1", "--e", "'1'", "(0, 1)"},
+                               {"--t-end -6", "--t-end", "'-6'", "(0, inf)"},
+                           });
 }

@@ -17,10 +17,10 @@ constexpr double kEps = 2.220446049250313e-16;
 
 BallDrop ball(double e, double h0 = 1.0) { return BallDrop({1.0, 9.81, h0, 0.0, e, Hooke{1e5}}); }
 
-EventOptions options(double t_end) {
+SolveOptions span(double t_end) { return {.t_end = t_end, .sample_dt = 0.05}; }
+
+EventOptions options() {
   EventOptions o;
-  o.t_end = t_end;
-  o.sample_dt = 0.05;
   o.integrator.rtol = 1e-10;
   o.integrator.atol = 1e-12;
   return o;
@@ -34,7 +34,7 @@ TEST_P(EventDrivenExact, ImpactTimesAndApexHeightsMatchTheClosedForm) {
   const double e = GetParam();
   const BallDrop model = ball(e);
   const RigidBounces ref(1.0, 0.0, 9.81, e);
-  const RunResult r = run_event_driven(model, model, options(6.0));
+  const RunResult r = run_event_driven(model, model, options(), span(6.0));
   ASSERT_TRUE(r.ok()) << r.message;
   ASSERT_GE(r.contacts.size(), 5u);
   ASSERT_GE(r.apexes.size(), 5u);
@@ -60,10 +60,12 @@ TEST(EventDriven, ZenoCascadeStopsAtTheZenoTimeAndTheBallRests) {
   const double e = 0.8;
   const BallDrop model = ball(e);
   const RigidBounces ref(1.0, 0.0, 9.81, e);
-  EventOptions o = options(6.0);
+  EventOptions o = options();
+  const SolveOptions o_span = span(6.0);
   o.rest_speed = 1e-7;
   for (bool exact : {true, false}) {
-    const RunResult r = exact ? run_event_driven(model, model, o) : run_event_driven(model, o);
+    const RunResult r =
+        exact ? run_event_driven(model, model, o, o_span) : run_event_driven(model, o, o_span);
     ASSERT_TRUE(r.ok()) << r.message;
     // The rest guard stops the cascade at the first bounce slower than rest_speed; the bounces it
     // skips would have lasted 2 v / (g (1-e)) < 2 rest_speed / (g (1-e)) ~ 1e-7 s. The CVODE
@@ -95,7 +97,7 @@ TEST(EventDriven, ZenoCascadeStopsAtTheZenoTimeAndTheBallRests) {
 TEST(EventDriven, PerfectlyInelasticBallStopsAtFirstImpact) {
   const BallDrop model = ball(0.0);
   const RigidBounces ref(1.0, 0.0, 9.81, 0.0);
-  const RunResult r = run_event_driven(model, model, options(2.0));
+  const RunResult r = run_event_driven(model, model, options(), span(2.0));
   ASSERT_TRUE(r.ok());
   ASSERT_EQ(r.contacts.size(), 1u);
   EXPECT_NEAR(r.contacts[0].t_begin, ref.T1, 4 * kEps * ref.T1);
@@ -108,7 +110,7 @@ TEST(EventDriven, PerfectlyElasticBallReturnsToItsHeightForever) {
   const BallDrop model = ball(1.0);
   const RigidBounces ref(1.0, 0.0, 9.81, 1.0);
   EXPECT_TRUE(std::isinf(ref.zeno_time()));
-  const RunResult r = run_event_driven(model, model, options(20.0));
+  const RunResult r = run_event_driven(model, model, options(), span(20.0));
   ASSERT_TRUE(r.ok());
   // 20 s / (2 t0 = 0.903 s) = 22 impacts, all of speed V, all apexes at h0.
   EXPECT_EQ(r.contacts.size(), 22u);
@@ -119,7 +121,7 @@ TEST(EventDriven, PerfectlyElasticBallReturnsToItsHeightForever) {
 TEST(EventDriven, CvodeFlightAgreesWithTheExactFlightToItsTolerance) {
   const BallDrop model = ball(0.8);
   const RigidBounces ref(1.0, 0.0, 9.81, 0.8);
-  const RunResult r = run_event_driven(model, options(3.0));
+  const RunResult r = run_event_driven(model, options(), span(3.0));
   ASSERT_TRUE(r.ok()) << r.message;
   ASSERT_GE(r.contacts.size(), 6u);
   // Free flight is a polynomial of degree 2, which BDF of order >= 2 integrates exactly, so the
@@ -132,9 +134,10 @@ TEST(EventDriven, CvodeFlightAgreesWithTheExactFlightToItsTolerance) {
 
 TEST(EventDriven, ImpactCapEndsTheRunWithZenoStatus) {
   const BallDrop model = ball(0.8);
-  EventOptions o = options(6.0);
+  EventOptions o = options();
+  const SolveOptions o_span = span(6.0);
   o.max_events = 10;
-  const RunResult r = run_event_driven(model, model, o);
+  const RunResult r = run_event_driven(model, model, o, o_span);
   EXPECT_EQ(r.status, Status::ZenoLimit);
   const RigidBounces ref(1.0, 0.0, 9.81, 0.8);
   EXPECT_NEAR(r.t_reached, ref.impact_time(11), 1e-12);
@@ -145,7 +148,7 @@ TEST(EventDriven, ImpactCapEndsTheRunWithZenoStatus) {
 // closes to rounding with the exact flight.
 TEST(EventDriven, LedgerBooksEachImpulseLossExactly) {
   const BallDrop model = ball(0.8);
-  const RunResult r = run_event_driven(model, model, options(3.0));
+  const RunResult r = run_event_driven(model, model, options(), span(3.0));
   ASSERT_TRUE(r.ok());
   for (const auto& s : r.samples)
     EXPECT_NEAR(s.energy + s.dissipated, r.energy0, 64 * kEps * r.energy0) << "t = " << s.t;
@@ -164,7 +167,7 @@ TEST(EventDriven, LedgerBooksEachImpulseLossExactly) {
 TEST(EventDriven, ExactFlightFollowsTheClosedFormTrajectory) {
   for (double e : {1.0, 0.8}) {
     const BallDrop model = ball(e);
-    const RunResult r = run_event_driven(model, model, options(3.5));
+    const RunResult r = run_event_driven(model, model, options(), span(3.5));
     ASSERT_TRUE(r.ok());
     const double V = std::sqrt(2 * 9.81);
     for (const auto& s : r.samples) {

@@ -44,7 +44,8 @@ TEST(ExplicitEuler, EnergyGrowsByExactlyOnePlusOmegaSquaredDtSquaredPerStep) {
       const double E = spring.energy(y);
       fixed_step(FixedStepScheme::ExplicitEuler, f, kPositions, 0.0, h, y, work);
       // One step rounds each of x, v once and the energy's few products: ~8 ulps relative.
-      EXPECT_NEAR(spring.energy(y) / E, 1 + wh * wh, 8 * kEps * (1 + wh * wh)) << "w h = " << wh << ", step " << n;
+      EXPECT_NEAR(spring.energy(y) / E, 1 + wh * wh, 8 * kEps * (1 + wh * wh))
+          << "w h = " << wh << ", step " << n;
     }
   }
 }

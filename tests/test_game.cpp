@@ -32,7 +32,9 @@ TEST(GameImpulse, OneBounceScalesTheNormalVelocityByE) {
 TEST(GameImpulse, EveryLoggedBounceOfAGameRunHasRestitutionE) {
   for (auto scheme : {FixedStepScheme::ExplicitEuler, FixedStepScheme::SemiImplicitEuler}) {
     const BallDrop model({1.0, 9.81, 1.0, 0.0, 0.7, Hooke{1e5}});
-    const RunResult r = run_game(model, {1e-3, 3.0, 0.01, scheme, GameResolution::ProjectionImpulse});
+    const RunResult r =
+        run_game(model, {.dt = 1e-3, .scheme = scheme, .resolution = GameResolution::ProjectionImpulse},
+                 {.t_end = 3.0, .sample_dt = 0.01});
     ASSERT_TRUE(r.ok());
     ASSERT_GE(r.contacts.size(), 4u);
     for (std::size_t n = 0; n < 4; ++n) {
@@ -54,9 +56,12 @@ TEST(GameFreeFall, FirstImpactErrorIsBoundedByFirstOrderTerms) {
   for (auto scheme : {FixedStepScheme::ExplicitEuler, FixedStepScheme::SemiImplicitEuler}) {
     for (double dt : {1e-2, 4e-3, 2e-3, 1e-3, 5e-4, 1e-4}) {
       const BallDrop model({1.0, 9.81, 1.0, 0.0, 0.8, Hooke{1e5}});
-      const RunResult r = run_game(model, {dt, 1.0, 0.01, scheme, GameResolution::ProjectionImpulse});
+      const RunResult r =
+          run_game(model, {.dt = dt, .scheme = scheme, .resolution = GameResolution::ProjectionImpulse},
+                   {.t_end = 1.0, .sample_dt = 0.01});
       ASSERT_FALSE(r.contacts.empty());
-      EXPECT_LT(std::abs(-r.contacts[0].v_in - ref.V), 1.5 * 9.81 * dt) << to_string(scheme) << " dt = " << dt;
+      EXPECT_LT(std::abs(-r.contacts[0].v_in - ref.V), 1.5 * 9.81 * dt)
+          << to_string(scheme) << " dt = " << dt;
       EXPECT_LT(std::abs(r.contacts[0].t_begin - ref.T1), 1.5 * dt) << to_string(scheme) << " dt = " << dt;
     }
   }
@@ -66,7 +71,10 @@ TEST(GameFreeFall, FirstImpactErrorIsBoundedByFirstOrderTerms) {
 // adding g dt of downward speed every step, so its "contact" never ends (the seed's warning).
 TEST(GameProjection, ProjectionAloneNeverLetsGo) {
   const BallDrop model({1.0, 9.81, 1.0, 0.0, 0.8, Hooke{1e5}});
-  const RunResult r = run_game(model, {1e-3, 2.0, 0.01, FixedStepScheme::SemiImplicitEuler, GameResolution::Projection});
+  const RunResult r = run_game(
+      model,
+      {.dt = 1e-3, .scheme = FixedStepScheme::SemiImplicitEuler, .resolution = GameResolution::Projection},
+      {.t_end = 2.0, .sample_dt = 0.01});
   ASSERT_EQ(r.contacts.size(), 1u);
   EXPECT_FALSE(r.contacts[0].closed());
   EXPECT_EQ(r.samples.back().y[0], 0.0);
@@ -75,7 +83,9 @@ TEST(GameProjection, ProjectionAloneNeverLetsGo) {
 
 TEST(GameSpring, ExplicitEulerSpringGainsEnergyInEveryContact) {
   const BallDrop model({1.0, 9.81, 1.0, 0.0, 1.0, Hooke{1e5}});
-  const RunResult r = run_game(model, {1e-3, 3.0, 0.01, FixedStepScheme::ExplicitEuler, GameResolution::Spring});
+  const RunResult r = run_game(
+      model, {.dt = 1e-3, .scheme = FixedStepScheme::ExplicitEuler, .resolution = GameResolution::Spring},
+      {.t_end = 3.0, .sample_dt = 0.01});
   ASSERT_GE(r.contacts.size(), 1u);
   // In contact each step multiplies the oscillator energy by 1 + (w dt)^2 = 1.1 (test_fixed_step),
   // over ~ pi / (w dt) = 10 steps: the ball must leave faster than it came.
@@ -92,7 +102,9 @@ TEST(GameStep, NonFiniteStateIsReportedWithTheTimeReached) {
   // a step (test_fixed_step): the amplitude grows ~1e4 a step from |v| = w = 1e7, so v passes
   // the largest double (1.8e308) after (308 - 7) / 4 ~ 75 steps.
   const SpringMass spring(1.0, 1e14, 1.0, 0.0);
-  const RunResult r = run_game(spring, {1e-3, 1.0, 0.01, FixedStepScheme::ExplicitEuler, GameResolution::Spring});
+  const RunResult r = run_game(
+      spring, {.dt = 1e-3, .scheme = FixedStepScheme::ExplicitEuler, .resolution = GameResolution::Spring},
+      {.t_end = 1.0, .sample_dt = 0.01});
   EXPECT_EQ(r.status, Status::NonFiniteState);
   EXPECT_NEAR(r.t_reached, 0.075, 0.002);
   EXPECT_NE(r.message.find("not finite"), std::string::npos);
@@ -108,17 +120,21 @@ TEST(GameNotifications, BeginAndEndOncePerContactInBatchesAfterTheStep) {
       const BallDrop model({1.0, 9.81, 1.0, 0.0, 0.7, kelvin_voigt_for_restitution(1e5, 1.0, 0.7, false)});
       std::vector<CollisionEvent> seen;
       long calls = 0;
-      GameOptions o{1e-3, 2.0, 0.01, FixedStepScheme::SemiImplicitEuler, resolution, persistence,
-                    [&](const std::vector<CollisionEvent>& batch) {
+      const SolveOptions o_span{.t_end = 2.0, .sample_dt = 0.01};
+      GameOptions o{.dt = 1e-3,
+                    .scheme = FixedStepScheme::SemiImplicitEuler,
+                    .resolution = resolution,
+                    .persistence = persistence,
+                    .on_notifications = [&](const std::vector<CollisionEvent>& batch) {
                       ++calls;
                       ASSERT_FALSE(batch.empty());
                       for (const auto& e : batch) {
-                        EXPECT_EQ(e.step, batch.front().step);  // one step per batch
+                        EXPECT_EQ(e.step, batch.front().step);                        // one step per batch
                         EXPECT_NEAR(e.t, static_cast<double>(e.step) * 1e-3, 1e-12);  // at its end
                       }
                       seen.insert(seen.end(), batch.begin(), batch.end());
                     }};
-      const RunResult r = run_game(model, o);
+      const RunResult r = run_game(model, o, o_span);
       ASSERT_TRUE(r.ok());
       ASSERT_EQ(seen.size(), r.notifications.size());
       ASSERT_GE(r.contacts.size(), 3u);

@@ -40,7 +40,7 @@ OdeSystem cubic_oscillator() {
 }
 
 // The ODE of a model with every contact free (no contacts for the spring; flight for the ball).
-OdeSystem free_ode(const MechanicalSystem& model) {
+OdeSystem free_ode(const Dynamics& model) {
   static const ContactModes none;
   auto modes = std::make_shared<ContactModes>(model.all_modes(ContactMode::Free));
   return mechanical_ode(model, [modes](ConstVectorRef) -> const ContactModes& { return *modes; });
@@ -64,8 +64,8 @@ double final_error(const std::string& method, double dt, double rtol, OdeSystem 
 // measure its interpolant instead of its method. `n0` is the coarsest number of steps per unit
 // time, chosen per problem so that every point lies in the asymptotic range above rounding.
 std::vector<double> steps_for(int order, double T, double n0) {
-  const std::vector<double> factors = order >= 8 ? std::vector<double>{1, 4.0 / 3, 5.0 / 3, 2}
-                                                 : std::vector<double>{1, 2, 4, 8, 16};
+  const std::vector<double> factors =
+      order >= 8 ? std::vector<double>{1, 4.0 / 3, 5.0 / 3, 2} : std::vector<double>{1, 2, 4, 8, 16};
   std::vector<double> h;
   for (double f : factors) h.push_back(T / std::round(n0 * T * f));
   return h;
@@ -104,13 +104,15 @@ class FixedStepOrder : public ::testing::TestWithParam<std::string> {};
 // Error = C h^p (1 + O(h)): over a factor 16 in h the O(h) term moves a least-squares slope by
 // less than 0.1 for p <= 5 in the ranges chosen; for p = 8 the range is a factor 2 and the band
 // 0.15 (rk8pd's local slope measured here climbs 7.74, 7.79, 7.84, 7.88 from h = 0.17 to 0.04:
-// order 8 approached from below). Implicit methods run with rtol = 1e-13 so that their Newton iterations, whose stopping
-// test follows the tolerance, add nothing measurable to the truncation error.
+// order 8 approached from below). Implicit methods run with rtol = 1e-13 so that their Newton iterations,
+// whose stopping test follows the tolerance, add nothing measurable to the truncation error.
 TEST_P(FixedStepOrder, NonlinearProblemShowsTheTheoreticalOrder) {
   const IntegratorInfo& info = integrator_info(GetParam());
   const auto h = steps_for(info.order, 0.5, nonlinear_n0(info.order));
   std::vector<double> err;
-  for (double hk : h) err.push_back(final_error(info.name, hk, 1e-13, cubic_oscillator(), Vector{{1.0, 1.0}}, 0.5, Vector{{2.0, 4.0}}));
+  for (double hk : h)
+    err.push_back(
+        final_error(info.name, hk, 1e-13, cubic_oscillator(), Vector{{1.0, 1.0}}, 0.5, Vector{{2.0, 4.0}}));
   const PowerFit fit = fit_above_floor(h, err);
   EXPECT_NEAR(fit.exponent, info.order, info.order >= 8 ? 0.15 : 0.1) << info.name;
 }
@@ -137,7 +139,8 @@ TEST_P(FixedStepOrder, FreeFlightParabolaIsExactFromOrderTwo) {
   const Vector exact{{1.0 + 3.0 * T - 0.5 * 9.81 * T * T, 3.0 - 9.81 * T}};
   const std::vector<double> h = {1e-2, 5e-3, 2.5e-3, 1.25e-3};
   std::vector<double> err;
-  for (double hk : h) err.push_back(final_error(info.name, hk, 1e-13, free_ode(ball), ball.initial_state(), T, exact));
+  for (double hk : h)
+    err.push_back(final_error(info.name, hk, 1e-13, free_ode(ball), ball.initial_state(), T, exact));
   if (info.order == 1) {
     EXPECT_NEAR(fit_power_law(h, err).exponent, 1.0, 0.02) << info.name;
     EXPECT_NEAR(err.back(), 0.5 * 9.81 * h.back() * T, 1e-9) << info.name << ": error g h t / 2";
@@ -147,8 +150,14 @@ TEST_P(FixedStepOrder, FreeFlightParabolaIsExactFromOrderTwo) {
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryIntegrator, FixedStepOrder,
-                         ::testing::ValuesIn(names_where([](const IntegratorInfo& i) { return i.fixed_step_capable; })),
-                         [](const auto& p) { std::string s = p.param; std::replace(s.begin(), s.end(), '-', '_'); return s; });
+                         ::testing::ValuesIn(names_where([](const IntegratorInfo& i) {
+                           return i.fixed_step_capable;
+                         })),
+                         [](const auto& p) {
+                           std::string s = p.param;
+                           std::replace(s.begin(), s.end(), '-', '_');
+                           return s;
+                         });
 
 // --- Variable-order adaptive integrators: tolerance behaviour -------------------------------
 
@@ -190,7 +199,11 @@ TEST_P(AdaptiveTolerance, MaxStepIsHonoured) {
 
 INSTANTIATE_TEST_SUITE_P(EveryAdaptiveIntegrator, AdaptiveTolerance,
                          ::testing::ValuesIn(names_where([](const IntegratorInfo& i) { return i.adaptive; })),
-                         [](const auto& p) { std::string s = p.param; std::replace(s.begin(), s.end(), '-', '_'); return s; });
+                         [](const auto& p) {
+                           std::string s = p.param;
+                           std::replace(s.begin(), s.end(), '-', '_');
+                           return s;
+                         });
 
 // --- All integrators agree on the ball-drop penalty solution --------------------------------
 
@@ -205,11 +218,12 @@ TEST_P(BallDropAgreement, FirstContactAndApexMatchTheReference) {
   const BallDrop model({1.0, 9.81, 1.0, 0.0, 0.8, kelvin_voigt_for_restitution(1e5, 1.0, 0.8, false)});
   auto run = [&](IntegratorOptions o) {
     PenaltyOptions p;
-    p.t_end = 1.0;
-    p.sample_dt = 1.0;
+    SolveOptions p_span;
+    p_span.t_end = 1.0;
+    p_span.sample_dt = 1.0;
     p.integrator = o;
     p.integrator.max_steps = 10000000;
-    return run_penalty(model, p);
+    return run_penalty(model, p, p_span);
   };
   IntegratorOptions ref_options;
   ref_options.rtol = 1e-12;
@@ -235,7 +249,11 @@ TEST_P(BallDropAgreement, FirstContactAndApexMatchTheReference) {
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryIntegrator, BallDropAgreement, ::testing::ValuesIn(integrator_names()),
-                         [](const auto& p) { std::string s = p.param; std::replace(s.begin(), s.end(), '-', '_'); return s; });
+                         [](const auto& p) {
+                           std::string s = p.param;
+                           std::replace(s.begin(), s.end(), '-', '_');
+                           return s;
+                         });
 
 // --- Failure paths ----------------------------------------------------------------------------
 
@@ -283,7 +301,11 @@ TEST_P(FailurePaths, NonFiniteRightHandSideIsReportedNotPropagated) {
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryIntegrator, FailurePaths, ::testing::ValuesIn(integrator_names()),
-                         [](const auto& p) { std::string s = p.param; std::replace(s.begin(), s.end(), '-', '_'); return s; });
+                         [](const auto& p) {
+                           std::string s = p.param;
+                           std::replace(s.begin(), s.end(), '-', '_');
+                           return s;
+                         });
 
 // --- Bad options --------------------------------------------------------------------------------
 

@@ -22,7 +22,7 @@ constexpr double kEps = 2.220446049250313e-16;
 
 double step(ConstVectorRef y, Eigen::Index j) { return 1e-6 * std::max(1.0, std::abs(y[j])); }
 
-Matrix central_difference(const MechanicalSystem& s, ConstVectorRef y, const ContactModes& modes, double& f_max) {
+Matrix central_difference(const Dynamics& s, ConstVectorRef y, const ContactModes& modes, double& f_max) {
   const auto n = y.size();
   Matrix J(n, n);
   Vector yp = y, ym = y, fp(n), fm(n);
@@ -41,7 +41,7 @@ Matrix central_difference(const MechanicalSystem& s, ConstVectorRef y, const Con
 }
 
 // third[j]: a bound on |d^3 f / dy_j^3| at y (0 where f is affine in y_j).
-void expect_jacobian_matches(const MechanicalSystem& s, ConstVectorRef y, const ContactModes& modes,
+void expect_jacobian_matches(const Dynamics& s, ConstVectorRef y, const ContactModes& modes,
                              const std::vector<double>& third) {
   SparseMatrix sparse;
   s.jacobian(0.0, y, modes, sparse);
@@ -58,7 +58,9 @@ void expect_jacobian_matches(const MechanicalSystem& s, ConstVectorRef y, const 
     const double h = step(y, j);
     const double tol = 4 * kEps * f_max / h + h * h / 6 * third[static_cast<std::size_t>(j)];
     EXPECT_LE((analytic.col(j) - numeric.col(j)).cwiseAbs().maxCoeff(), tol)
-        << s.name() << " column " << j << "\n" << analytic << "\n" << numeric;
+        << s.name() << " column " << j << "\n"
+        << analytic << "\n"
+        << numeric;
   }
 }
 

@@ -22,8 +22,10 @@ TEST_F(KSweepCli, ReportsClosedFormNumbersAndExponents) {
   for (std::size_t i = 1; i < table.size(); ++i) {
     if (table[i][1] != "hooke") continue;
     ++hooke;
-    EXPECT_NEAR(std::stod(table[i][2]) / std::stod(table[i][3]), 1.0, 1e-6) << "penetration at k = " << table[i][0];
-    EXPECT_NEAR(std::stod(table[i][4]) / std::stod(table[i][5]), 1.0, 1e-6) << "duration at k = " << table[i][0];
+    EXPECT_NEAR(std::stod(table[i][2]) / std::stod(table[i][3]), 1.0, 1e-6)
+        << "penetration at k = " << table[i][0];
+    EXPECT_NEAR(std::stod(table[i][4]) / std::stod(table[i][5]), 1.0, 1e-6)
+        << "duration at k = " << table[i][0];
     EXPECT_NEAR(std::stod(table[i][6]), 1.0, 1e-6) << "undamped restitution";
   }
   EXPECT_EQ(hooke, 5);
@@ -33,16 +35,17 @@ TEST_F(KSweepCli, ReportsClosedFormNumbersAndExponents) {
     EXPECT_NEAR(std::stod(exps[i][1]), -0.5, 0.005) << exps[i][0];
     EXPECT_NEAR(std::stod(exps[i][3]), -0.5, 0.005) << exps[i][0];
   }
-  for (const char* f : {"penetration.png", "penetration.pdf", "duration.png", "cost.png", "stable_dt.png", "meta.json", "k_sweep.md", "k_sweep.tex"})
+  for (const char* f : {"penetration.png", "penetration.pdf", "duration.png", "cost.png", "stable_dt.png",
+                        "meta.json", "k_sweep.md", "k_sweep.tex"})
     EXPECT_TRUE(fs::exists(dir_ / "ks" / f)) << f;
 }
 
 TEST_F(KSweepCli, BadInputIsRefused) {
   expect_refused(K_SWEEP_EXE, {
-      {"--k-min 0", "--k-min", "'0'", "(0, inf)"},
-      {"--k-max -1e5", "--k-max", "'-1e5'", "(0, inf)"},
-      {"--k-min 1e6 --k-max 1e3", "--k-max", "'1000'", "k-min"},
-      {"--e 0", "--e", "'0'", "(0, 1]"},
-      {"--per-decade 0", "--per-decade", "'0'", ">= 1"},
-  });
+                                  {"--k-min 0", "--k-min", "'0'", "(0, inf)"},
+                                  {"--k-max -1e5", "--k-max", "'-1e5'", "(0, inf)"},
+                                  {"--k-min 1e6 --k-max 1e3", "--k-max", "'1000'", "k-min"},
+                                  {"--e 0", "--e", "'0'", "(0, 1]"},
+                                  {"--per-decade 0", "--per-decade", "'0'", ">= 1"},
+                              });
 }

@@ -87,7 +87,8 @@ TEST_F(NewtonCradleCli, ImpulsesExchangeExactlyAndSpringsConserveMomentumAndEner
     if (method == "event" || method == "game") {
       // Equal masses, e = 1: each impulse swaps two velocities, so the last ball leaves at 1 m/s
       // and the others stop, exactly.
-      for (int b = 0; b < 4; ++b) EXPECT_EQ(std::stod(c[2 + b]), 0.0) << method << " " << spacing << " ball " << b;
+      for (int b = 0; b < 4; ++b)
+        EXPECT_EQ(std::stod(c[2 + b]), 0.0) << method << " " << spacing << " ball " << b;
       EXPECT_EQ(std::stod(c[6]), 1.0) << method << " " << spacing;
     } else {
       // Undamped springs keep the energy to CVODE's tolerance (rtol 1e-10, a few hundred steps).
@@ -104,9 +105,9 @@ TEST_F(NewtonCradleCli, ImpulsesExchangeExactlyAndSpringsConserveMomentumAndEner
 
 TEST_F(NewtonCradleCli, BadInputIsRefused) {
   expect_refused(NEWTON_CRADLE_EXE, {
-      {"--balls 1", "--balls", "'1'", "[2, 1000]"},
-      {"--balls 10000000", "--balls", "'10000000'", "[2, 1000]"},
-      {"--spacings 0,-1e-3", "--spacings", "'-1e-3'", "[0, inf)"},
-      {"--dt 0", "--dt", "'0'", "(0, inf)"},
-  });
+                                        {"--balls 1", "--balls", "'1'", "[2, 1000]"},
+                                        {"--balls 10000000", "--balls", "'10000000'", "[2, 1000]"},
+                                        {"--spacings 0,-1e-3", "--spacings", "'-1e-3'", "[0, inf)"},
+                                        {"--dt 0", "--dt", "'0'", "(0, inf)"},
+                                    });
 }

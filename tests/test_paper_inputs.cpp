@@ -24,8 +24,10 @@ TEST(PaperInputs, EveryInputIsADeclaredExperimentOutput) {
     if (path == "numbers.tex") continue;  // written by paper_numbers from the results
     const fs::path p(path);
     ASSERT_TRUE(p.extension() == ".tex" || p.extension() == ".pdf") << path;
-    const std::string source = fs::path(p).replace_extension(p.extension() == ".tex" ? ".csv" : ".png").string();
-    EXPECT_TRUE(declared.count(source)) << path << " is not the rendering of a declared output (" << source << ")";
+    const std::string source =
+        fs::path(p).replace_extension(p.extension() == ".tex" ? ".csv" : ".png").string();
+    EXPECT_TRUE(declared.count(source))
+        << path << " is not the rendering of a declared output (" << source << ")";
     (p.extension() == ".tex" ? tables : figures) += 1;
   }
   EXPECT_GE(tables, 5u);
@@ -35,5 +37,6 @@ TEST(PaperInputs, EveryInputIsADeclaredExperimentOutput) {
 TEST(PaperInputs, PaperFolderHoldsOnlySources) {
   const std::set<std::string> sources = {"paper.tex", "references.bib", "CMakeLists.txt"};
   for (const auto& entry : fs::directory_iterator(PAPER_DIR))
-    EXPECT_TRUE(sources.count(entry.path().filename().string())) << entry.path() << " is not a source of the paper";
+    EXPECT_TRUE(sources.count(entry.path().filename().string()))
+        << entry.path() << " is not a source of the paper";
 }

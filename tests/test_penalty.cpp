@@ -25,17 +25,17 @@ namespace {
 
 constexpr double kRel = 1e-6;
 
-PenaltyOptions tight(double t_end) {
+SolveOptions span(double t_end) { return {.t_end = t_end, .sample_dt = 0.01}; }
+
+PenaltyOptions tight() {
   PenaltyOptions o;
-  o.t_end = t_end;
-  o.sample_dt = 0.01;
   o.integrator.rtol = 1e-10;
   o.integrator.atol = 1e-12;
   return o;
 }
 
 RunResult drop(ContactLaw law, double g, double h0, double v0, double t_end, double e = 1.0) {
-  return run_penalty(BallDrop({1.0, g, h0, v0, e, law}), tight(t_end));
+  return run_penalty(BallDrop({1.0, g, h0, v0, e, law}), tight(), span(t_end));
 }
 
 }  // namespace
@@ -100,7 +100,9 @@ TEST(PenaltyHooke, TrajectoryFollowsTheClosedForm) {
     EXPECT_NEAR(energy, g, 1e-12) << "t = " << s.t;  // rounding of terms up to k x^2 / 2 ~ 10 J/kg
   }
   for (std::size_t n = 1; n <= 3; ++n)
-    EXPECT_NEAR(hooke_ball_state(1.0, k, 1.0, 0.0, g, hooke_impact_time(1.0, k, 1.0, 0.0, g, n)).x, 0.0, 1e-12) << n;
+    EXPECT_NEAR(hooke_ball_state(1.0, k, 1.0, 0.0, g, hooke_impact_time(1.0, k, 1.0, 0.0, g, n)).x, 0.0,
+                1e-12)
+        << n;
 }
 
 TEST(PenaltyKelvinVoigt, UnclampedRestitutionEqualsTheTargetWithoutGravity) {
@@ -137,7 +139,8 @@ TEST(PenaltyKelvinVoigt, ClampedContactLastsUntilTheOverlapCloses) {
     const RunResult r = drop(kelvin_voigt_for_restitution(k, 1.0, e, true), 0.0, 0.1, -1.0, 0.2);
     ASSERT_TRUE(r.ok()) << r.message;
     ASSERT_EQ(r.contacts.size(), 1u);
-    const double expected = ((std::numbers::pi - 2 * std::asin(zeta)) / std::sqrt(1 - zeta * zeta) + 2 * zeta) / w;
+    const double expected =
+        ((std::numbers::pi - 2 * std::asin(zeta)) / std::sqrt(1 - zeta * zeta) + 2 * zeta) / w;
     EXPECT_NEAR(r.contacts[0].duration() / expected, 1.0, kRel) << "e = " << e;
   }
 }
@@ -152,7 +155,7 @@ TEST(PenaltyKelvinVoigt, ClampedContactLastsUntilTheOverlapCloses) {
 TEST(PenaltyKelvinVoigt, ClampedContactUnderGravityAgreesWithApexImpactAndLedger) {
   const double m = 4.0, g = 9.81, h0 = 0.05;
   const auto law = kelvin_voigt_for_restitution(300.0, m, 0.9, true);
-  const RunResult r = run_penalty(BallDrop({m, g, h0, 0.0, 0.9, law}), tight(1.0));
+  const RunResult r = run_penalty(BallDrop({m, g, h0, 0.0, 0.9, law}), tight(), span(1.0));
   ASSERT_TRUE(r.ok()) << r.message;
   ASSERT_GE(r.contacts.size(), 2u);
   ASSERT_GE(r.apexes.size(), 1u);
@@ -174,8 +177,9 @@ TEST(PenaltyKelvinVoigt, ClampedContactUnderGravityAgreesWithApexImpactAndLedger
 TEST(PenaltyConvergence, BounceTimesApproachTheEventDrivenOnesAsKToTheMinusOneHalf) {
   const BallDrop rigid({1.0, 9.81, 1.0, 0.0, 1.0, Hooke{1.0}});
   EventOptions eo;
-  eo.t_end = 1.5;
-  const RunResult reference = run_event_driven(rigid, rigid, eo);
+  SolveOptions eo_span;
+  eo_span.t_end = 1.5;
+  const RunResult reference = run_event_driven(rigid, rigid, eo, eo_span);
   ASSERT_GE(reference.contacts.size(), 2u);
   std::vector<double> ks, errors;
   for (double k = 1e4; k <= 1e8 * 1.0001; k *= 10) {
@@ -207,9 +211,11 @@ TEST(PenaltyConvergence, DampedRestitutionApproachesTheTargetWithGravity) {
 
 TEST(PenaltyLocating, SwitchesLocatedOrNotGiveTheSameContactAtTightTolerance) {
   const BallDrop model({1.0, 9.81, 1.0, 0.0, 0.8, kelvin_voigt_for_restitution(1e5, 1.0, 0.8, false)});
-  PenaltyOptions located = tight(0.6), stepped = tight(0.6);
+  PenaltyOptions located = tight(), stepped = tight();
+  const SolveOptions span_located = span(0.6);
   stepped.locate_switches = false;
-  const RunResult a = run_penalty(model, located), b = run_penalty(model, stepped);
+  const RunResult a = run_penalty(model, located, span_located),
+                  b = run_penalty(model, stepped, span_located);
   ASSERT_TRUE(a.ok() && b.ok());
   ASSERT_EQ(a.contacts.size(), b.contacts.size());
   // The unlocated run steps over the force's jump (c delta_dot at delta = 0): CVODE's error test
@@ -225,10 +231,11 @@ TEST(EnergyLedger, PenaltyDriftShrinksWithTheToleranceWhileTheLossIsPhysical) {
   const BallDrop model({1.0, 9.81, 1.0, 0.0, 0.8, kelvin_voigt_for_restitution(1e5, 1.0, 0.8, false)});
   double previous = 1.0;
   for (double rtol : {1e-6, 1e-8, 1e-10}) {
-    PenaltyOptions o = tight(3.0);
+    PenaltyOptions o = tight();
+    const SolveOptions o_span = span(3.0);
     o.integrator.rtol = rtol;
     o.integrator.atol = rtol * 1e-2;
-    const RunResult r = run_penalty(model, o);
+    const RunResult r = run_penalty(model, o, o_span);
     ASSERT_TRUE(r.ok()) << r.message;
     const RunMetrics m = compute_metrics(r);
     EXPECT_LT(m.max_energy_drift, 1000 * rtol) << "rtol " << rtol;

@@ -100,7 +100,8 @@ TEST(RigidImpulse, CentralImpactLosesHalfMuOneMinusESquaredVSquared) {
 }
 
 TEST(RigidImpulse, EqualMassesExchangeVelocitiesHeadOn) {
-  RigidBody cue = RigidBody::sphere("cue", 0.17, 0.026, 1.0), red = RigidBody::sphere("red", 0.17, 0.026, 1.0);
+  RigidBody cue = RigidBody::sphere("cue", 0.17, 0.026, 1.0),
+            red = RigidBody::sphere("red", 0.17, 0.026, 1.0);
   cue.velocity = Vec3(2.5, 0, 0);
   red.position = Vec3(0.052 - 1e-5, 0, 0);
   std::vector<RigidBody> bodies{cue, red};
@@ -110,7 +111,8 @@ TEST(RigidImpulse, EqualMassesExchangeVelocitiesHeadOn) {
 }
 
 TEST(RigidImpulse, AxisAlignedBoxesNeverSpin) {
-  std::vector<RigidBody> bodies{RigidBody::sphere("ball", 1.0, 0.1, 1.0), RigidBody::aabb("crate", 3.0, Vec3(0.5, 0.5, 0.5), 1.0)};
+  std::vector<RigidBody> bodies{RigidBody::sphere("ball", 1.0, 0.1, 1.0),
+                                RigidBody::aabb("crate", 3.0, Vec3(0.5, 0.5, 0.5), 1.0)};
   bodies[0].position = Vec3(0.55, 0.45, 0.3) + Vec3(0.09, 0, 0);  // beside a face, off-centre
   bodies[0].velocity = Vec3(-1, 0.2, 0);
   const auto c = contact_candidates(bodies, 0, 1)[0];
@@ -136,9 +138,10 @@ TEST(RigidImpulse, SpinningBoxKnocksARestingSphere) {
 
 TEST(RigidContacts, GeometryOfEveryPair) {
   std::vector<RigidBody> b{RigidBody::sphere("s1", 1, 0.5, 1), RigidBody::sphere("s2", 1, 0.25, 1),
-                           RigidBody::plane("floor", Vec3(0, 0, 1), 0.0, 1), RigidBody::cuboid("box", 1, Vec3(1, 1, 1), 1)};
-  b[0].position = Vec3(0, 0, 0.4);   // 0.1 into the floor
-  b[1].position = Vec3(0.7, 0, 0.4); // 0.05 into s1
+                           RigidBody::plane("floor", Vec3(0, 0, 1), 0.0, 1),
+                           RigidBody::cuboid("box", 1, Vec3(1, 1, 1), 1)};
+  b[0].position = Vec3(0, 0, 0.4);    // 0.1 into the floor
+  b[1].position = Vec3(0.7, 0, 0.4);  // 0.05 into s1
   b[3].position = Vec3(0, 0, 5);
   auto ss = contact_candidates(b, 0, 1)[0];
   EXPECT_NEAR(ss.penetration, 0.05, 1e-15);

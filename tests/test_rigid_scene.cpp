@@ -15,13 +15,16 @@ namespace {
 
 // Cue ball rolling into a resting red ball, no gravity, 1 mm apart.
 RigidScene snooker(double red_mass = 0.17) {
-  RigidBody cue = RigidBody::sphere("cue", 0.17, 0.026, 1.0), red = RigidBody::sphere("red", red_mass, 0.026, 1.0);
+  RigidBody cue = RigidBody::sphere("cue", 0.17, 0.026, 1.0),
+            red = RigidBody::sphere("red", red_mass, 0.026, 1.0);
   cue.velocity = Vec3(2.0, 0, 0);
   red.position = Vec3(0.053, 0, 0);
   return RigidScene("snooker", {cue, red}, Vec3::Zero(), Hooke{1e6});
 }
 
-Vec3 velocity(const RigidScene& s, const Vector& y, std::size_t body) { return s.bodies_at(y)[body].velocity; }
+Vec3 velocity(const RigidScene& s, const Vector& y, std::size_t body) {
+  return s.bodies_at(y)[body].velocity;
+}
 
 }  // namespace
 
@@ -31,11 +34,12 @@ Vec3 velocity(const RigidScene& s, const Vector& y, std::size_t body) { return s
 TEST(RigidScene, PenaltyExchangesEqualMassVelocitiesUnderCvodeWithDifferenceQuotients) {
   const RigidScene s = snooker();
   PenaltyOptions o;
-  o.t_end = 0.01;
-  o.sample_dt = 0.01;
+  SolveOptions o_span;
+  o_span.t_end = 0.01;
+  o_span.sample_dt = 0.01;
   o.integrator.rtol = 1e-10;
   o.integrator.atol = 1e-12;
-  const RunResult r = run_penalty(s, o);
+  const RunResult r = run_penalty(s, o, o_span);
   ASSERT_TRUE(r.ok()) << r.message;
   ASSERT_EQ(r.contacts.size(), 1u);
   const Vector& y = r.samples.back().y;
@@ -45,11 +49,16 @@ TEST(RigidScene, PenaltyExchangesEqualMassVelocitiesUnderCvodeWithDifferenceQuot
 
 TEST(RigidScene, GameAndEventDrivenExchangeEqualMassVelocitiesExactly) {
   const RigidScene s = snooker();
-  const RunResult game = run_game(s, {1e-4, 0.01, 0.01, FixedStepScheme::SemiImplicitEuler, GameResolution::ProjectionImpulse});
+  const RunResult game = run_game(s,
+                                  {.dt = 1e-4,
+                                   .scheme = FixedStepScheme::SemiImplicitEuler,
+                                   .resolution = GameResolution::ProjectionImpulse},
+                                  {.t_end = 0.01, .sample_dt = 0.01});
   EventOptions eo;
-  eo.t_end = 0.01;
-  eo.sample_dt = 0.01;
-  const RunResult event = run_event_driven(s, eo);
+  SolveOptions eo_span;
+  eo_span.t_end = 0.01;
+  eo_span.sample_dt = 0.01;
+  const RunResult event = run_event_driven(s, eo, eo_span);
   for (const RunResult* r : {&game, &event}) {
     ASSERT_TRUE(r->ok()) << r->message;
     const Vector& y = r->samples.back().y;
@@ -63,11 +72,17 @@ TEST(RigidScene, GameAndEventDrivenExchangeEqualMassVelocitiesExactly) {
 TEST(RigidScene, PlanetDoesNotMove) {
   const RigidScene s = snooker(0.17e6);
   PenaltyOptions po;
-  po.t_end = po.sample_dt = 0.01;
+  SolveOptions po_span;
+  po_span.t_end = po_span.sample_dt = 0.01;
   const std::vector<RunResult> runs = {
-      run_penalty(s, po),
-      run_game(s, {1e-4, 0.01, 0.01, FixedStepScheme::SemiImplicitEuler, GameResolution::ProjectionImpulse}),
-      run_event_driven(s, EventOptions{.t_end = 0.01, .sample_dt = 0.01, .rest_speed = 1e-7, .max_events = 1000000})};
+      run_penalty(s, po, po_span),
+      run_game(s,
+               {.dt = 1e-4,
+                .scheme = FixedStepScheme::SemiImplicitEuler,
+                .resolution = GameResolution::ProjectionImpulse},
+               {.t_end = 0.01, .sample_dt = 0.01}),
+      run_event_driven(s, EventOptions{.rest_speed = 1e-7, .max_events = 1000000},
+                       {.t_end = 0.01, .sample_dt = 0.01})};
   for (const auto& r : runs) {
     ASSERT_TRUE(r.ok()) << r.method << ": " << r.message;
     EXPECT_LE(velocity(s, r.samples.back().y, 1).norm(), 2 * 1e-6 * 2.0 * (1 + 1e-9)) << r.method;
@@ -102,13 +117,18 @@ TEST(RigidScene, QuaternionsStayUnit) {
   RigidBody box = RigidBody::cuboid("box", 1.0, Vec3(0.3, 0.2, 0.1), 1.0);
   box.angular_velocity = Vec3(3, 7, -2);
   const RigidScene s("tumble", {box}, Vec3::Zero(), Hooke{1e5});
-  const RunResult game = run_game(s, {1e-3, 2.0, 0.1, FixedStepScheme::SemiImplicitEuler, GameResolution::ProjectionImpulse});
+  const RunResult game = run_game(s,
+                                  {.dt = 1e-3,
+                                   .scheme = FixedStepScheme::SemiImplicitEuler,
+                                   .resolution = GameResolution::ProjectionImpulse},
+                                  {.t_end = 2.0, .sample_dt = 0.1});
   PenaltyOptions o;
-  o.t_end = 2.0;
-  o.sample_dt = 0.1;
+  SolveOptions o_span;
+  o_span.t_end = 2.0;
+  o_span.sample_dt = 0.1;
   o.integrator.rtol = 1e-10;
   o.integrator.atol = 1e-12;
-  const RunResult ode = run_penalty(s, o);
+  const RunResult ode = run_penalty(s, o, o_span);
   for (const auto& smp : game.samples) EXPECT_NEAR(smp.y.segment<4>(3).norm(), 1.0, 4e-16);
   for (const auto& smp : ode.samples) EXPECT_NEAR(smp.y.segment<4>(3).norm(), 1.0, 1e-8);
   // Torque-free: the angular momentum in the world frame stays put (CVODE, to its tolerance).
@@ -123,7 +143,8 @@ TEST(RigidScene, QuaternionsStayUnit) {
 // the end differs from the impulse run's by O(T_c), i.e. as k^(-1/2) (fitted exponent within 0.05).
 TEST(RigidScene, PenaltyHeadOnConvergesToTheImpulseResultAsKGrows) {
   auto scene = [](double k) {
-    RigidBody cue = RigidBody::sphere("cue", 0.17, 0.026, 0.8), red = RigidBody::sphere("red", 0.17, 0.026, 1.0);
+    RigidBody cue = RigidBody::sphere("cue", 0.17, 0.026, 0.8),
+              red = RigidBody::sphere("red", 0.17, 0.026, 1.0);
     cue.velocity = Vec3(2.0, 0, 0);
     red.position = Vec3(0.053, 0, 0);
     return RigidScene("pair", {cue, red}, Vec3::Zero(), [k](double e, double m_eff) {
@@ -131,16 +152,18 @@ TEST(RigidScene, PenaltyHeadOnConvergesToTheImpulseResultAsKGrows) {
     });
   };
   EventOptions eo;
-  eo.t_end = eo.sample_dt = 0.02;
-  const RunResult impulse = run_event_driven(scene(1e6), eo);
+  SolveOptions eo_span;
+  eo_span.t_end = eo_span.sample_dt = 0.02;
+  const RunResult impulse = run_event_driven(scene(1e6), eo, eo_span);
   const double x_impulse = scene(1e6).bodies_at(impulse.samples.back().y)[1].position.x();
   std::vector<double> ks, errors;
   for (double k : {1e4, 1e5, 1e6, 1e7}) {
     PenaltyOptions o;
-    o.t_end = o.sample_dt = 0.02;
+    SolveOptions o_span;
+    o_span.t_end = o_span.sample_dt = 0.02;
     o.integrator.rtol = 1e-10;
     o.integrator.atol = 1e-13;
-    const RunResult r = run_penalty(scene(k), o);
+    const RunResult r = run_penalty(scene(k), o, o_span);
     ASSERT_TRUE(r.ok()) << r.message;
     const auto bodies = scene(k).bodies_at(r.samples.back().y);
     EXPECT_NEAR(bodies[1].velocity.x(), 0.9 * 2.0, 1e-6) << "exit velocity (1+e)/2 v at k = " << k;

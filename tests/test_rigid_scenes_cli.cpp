@@ -45,13 +45,14 @@ TEST_F(RigidScenesCli, ScenesBehaveAsPhysicsSays) {
   const Outcome r = run(RIGID_SCENES_EXE, "--out scenes");
   ASSERT_EQ(r.code, 0) << r.err;
   auto o = observables(slurp(dir_ / "scenes" / "observables.csv"));
-  for (const char* m : {"penalty", "game", "event"}) {
+  for (const char* m : {"penalty", "game-symplectic", "event-ode"}) {
     const std::string M = m;
     EXPECT_NEAR(o["snooker," + M + ",cue_vx_mps"], 0.0, 1e-5) << m;
     EXPECT_NEAR(o["snooker," + M + ",red_vx_mps"], 2.0, 1e-5) << m;
     EXPECT_LE(o["planet," + M + ",planet_speed_mps"], 4e-6 * (1 + 1e-6)) << m;
     EXPECT_NEAR(o["planet," + M + ",cue_vx_mps"], -2.0, 1e-5) << m;
-    EXPECT_NEAR(o["spinning-box," + M + ",ball_speed_mps"], o["spinning-box,event,ball_speed_mps"], 1e-2) << m;
+    EXPECT_NEAR(o["spinning-box," + M + ",ball_speed_mps"], o["spinning-box,event-ode,ball_speed_mps"], 1e-2)
+        << m;
     // Off-centre (closed form below): event and game apply the exact impulse; the penalty
     // spring's contact lasts ~1 ms while the box turns, which moves the lever arm by ~1e-3.
     const double tol = M == "penalty" ? 1e-2 : 1e-9;
@@ -60,46 +61,51 @@ TEST_F(RigidScenesCli, ScenesBehaveAsPhysicsSays) {
     EXPECT_NEAR(o["rubber-steel," + M + ",rubber_apex_ratio"], 0.81, 1e-2) << m;
     EXPECT_NEAR(o["rubber-steel," + M + ",steel_apex_ratio"], 0.16, 1e-2) << m;
   }
-  EXPECT_GT(o["spinning-box,event,ball_speed_mps"], 0.5) << "spin alone knocks the ball away";
-  EXPECT_NEAR(o["rubber-steel,event,rubber_apex_ratio"], 0.81, 1e-6);
-  EXPECT_NEAR(o["cradle,event,last_vx_mps"], 1.0, 1e-12);
-  EXPECT_NEAR(o["cradle,game,last_vx_mps"], 1.0, 1e-12);
-  EXPECT_NEAR(o["snooker,game-projection,cue_vx_mps"], 2.0, 1e-12) << "projection never changes velocity";
+  EXPECT_GT(o["spinning-box,event-ode,ball_speed_mps"], 0.5) << "spin alone knocks the ball away";
+  EXPECT_NEAR(o["rubber-steel,event-ode,rubber_apex_ratio"], 0.81, 1e-6);
+  EXPECT_NEAR(o["cradle,event-ode,last_vx_mps"], 1.0, 1e-12);
+  EXPECT_NEAR(o["cradle,game-symplectic,last_vx_mps"], 1.0, 1e-12);
+  EXPECT_NEAR(o["snooker,game-symplectic-projection,cue_vx_mps"], 2.0, 1e-12)
+      << "projection never changes velocity";
   // The cue ball pushes the red ball along: each step's overlap 2 dt is split by inverse mass,
   // so the red ball advances at half the cue's 2 m/s from contact (after the 1 mm gap, 0.5 ms)
   // to the end (0.05 s): 0.0495 m, to within a step's advance.
-  EXPECT_NEAR(o["snooker,game-projection,red_displacement_m"], 0.5 * 2.0 * (0.05 - 0.0005), 2.0 * 1e-4);
-  EXPECT_NEAR(o["snooker,game-projection,contact_duration_s"], 0.05 - 0.0005, 2e-4) << "it pushes to the end";
+  EXPECT_NEAR(o["snooker,game-symplectic-projection,red_displacement_m"], 0.5 * 2.0 * (0.05 - 0.0005),
+              2.0 * 1e-4);
+  EXPECT_NEAR(o["snooker,game-symplectic-projection,contact_duration_s"], 0.05 - 0.0005, 2e-4)
+      << "it pushes to the end";
   // The sequential rule's order-dependence, measured: two simultaneous contacts. Penalty springs
   // act together and keep the symmetry; sequential impulses break it, and resolving in the other
   // order mirrors the outcome exactly.
   EXPECT_NEAR(o["wedge,penalty,upper_speed_mps"], o["wedge,penalty,lower_speed_mps"], 1e-6);
   EXPECT_NEAR(o["wedge,penalty,striker_vy_mps"], 0.0, 1e-6);
-  EXPECT_GT(o["wedge,event,upper_speed_mps"] - o["wedge,event,lower_speed_mps"], 0.1);
-  EXPECT_NEAR(o["wedge,event,upper_speed_mps"], o["wedge,event-reversed,lower_speed_mps"], 1e-12);
-  EXPECT_NEAR(o["wedge,event,striker_vy_mps"], -o["wedge,event-reversed,striker_vy_mps"], 1e-12);
+  EXPECT_GT(o["wedge,event-ode,upper_speed_mps"] - o["wedge,event-ode,lower_speed_mps"], 0.1);
+  EXPECT_NEAR(o["wedge,event-ode,upper_speed_mps"], o["wedge,event-ode-reversed,lower_speed_mps"], 1e-12);
+  EXPECT_NEAR(o["wedge,event-ode,striker_vy_mps"], -o["wedge,event-ode-reversed,striker_vy_mps"], 1e-12);
 }
 
 // The same hit with the box turned any way (and given as an unnormalised quaternion of huge
 // entries, whose plain norm overflows): the spin's magnitude is frame-independent.
 TEST_F(RigidScenesCli, OffCentreSpinIsTheSameInEveryOrientation) {
   for (const char* q : {"0.9 0.1 0.3 0.2", "1e200 1e200 1e200 1e200"}) {
-    const Outcome r = run(RIGID_SCENES_EXE, std::string("--scene off-centre --method event --quaternion ") + q + " --out s");
+    const Outcome r =
+        run(RIGID_SCENES_EXE,
+            std::string("--scene off-centre --method event-ode --quaternion ") + q + " --out s");
     ASSERT_EQ(r.code, 0) << q << ": " << r.err;
     auto o = observables(slurp(dir_ / "s" / "observables.csv"));
-    EXPECT_NEAR(o["off-centre,event,box_spin_radps"] / off_centre_spin(), 1.0, 1e-9) << q;
+    EXPECT_NEAR(o["off-centre,event-ode,box_spin_radps"] / off_centre_spin(), 1.0, 1e-9) << q;
   }
 }
 
 TEST_F(RigidScenesCli, BadInputIsRefused) {
   expect_refused(RIGID_SCENES_EXE, {
-      {"--m 0", "--m", "'0'", "(0, inf)"},
-      {"--m -1", "--m", "'-1'", "(0, inf)"},
-      {"--radius 0", "--radius", "'0'", "(0, inf)"},
-      {"--half-extents 0.1 0 0.1", "--half-extents", "'0'", "(0, inf)"},
-      {"--elasticity -0.5", "--elasticity", "'-0.5'", "[0, inf)"},
-      {"--quaternion 0 0 0 0", "--quaternion", "'0 0 0 0'", "non-zero"},
-      {"--quaternion 1 nan 0 0", "--quaternion", "'nan'", "(-inf, inf)"},
-      {"--scene pool", "--scene", "'pool'", "snooker"},
-  });
+                                       {"--m 0", "--m", "'0'", "(0, inf)"},
+                                       {"--m -1", "--m", "'-1'", "(0, inf)"},
+                                       {"--radius 0", "--radius", "'0'", "(0, inf)"},
+                                       {"--half-extents 0.1 0 0.1", "--half-extents", "'0'", "(0, inf)"},
+                                       {"--elasticity -0.5", "--elasticity", "'-0.5'", "[0, inf)"},
+                                       {"--quaternion 0 0 0 0", "--quaternion", "'0 0 0 0'", "non-zero"},
+                                       {"--quaternion 1 nan 0 0", "--quaternion", "'nan'", "(-inf, inf)"},
+                                       {"--scene pool", "--scene", "'pool'", "snooker"},
+                                   });
 }

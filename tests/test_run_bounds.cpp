@@ -22,12 +22,13 @@ RunResult chain_run(std::size_t n) {
   p.n = n;
   p.approach = 0.0;  // the striker touches ball 1: every gap starts exactly at zero
   p.law = Hooke{1e6};
-  PenaltyOptions o{.t_end = 2e-3, .sample_dt = 2e-3};
+  PenaltyOptions o{};
+  SolveOptions o_span{.t_end = 2e-3, .sample_dt = 2e-3};
   o.integrator.rtol = 1e-6;
   o.integrator.atol = 1e-10;
   o.integrator.linear_solver = LinearSolverKind::Band;
   o.integrator.max_steps = 1000000;
-  return run_penalty(BallChain(p), o);
+  return run_penalty(BallChain(p), o, o_span);
 }
 
 }  // namespace
@@ -45,7 +46,8 @@ TEST(RunBounds, TouchingChainRunsAtEveryLengthAndOpensContactsOnlyOnRealOverlaps
     ASSERT_TRUE(r.ok()) << "N = " << n << ": " << to_string(r.status) << " " << r.message;
     ASSERT_FALSE(r.contacts.empty());
     for (const auto& c : r.contacts)
-      EXPECT_GE(c.max_penetration, threshold) << "N = " << n << ", contact " << c.contact << " at t = " << c.t_begin;
+      EXPECT_GE(c.max_penetration, threshold)
+          << "N = " << n << ", contact " << c.contact << " at t = " << c.t_begin;
     // In 2 ms the wave compresses only the first ~15 contacts above the threshold; a longer
     // chain adds balls nobody reaches, so it must report exactly the same contacts.
     if (n == 200) {
@@ -61,7 +63,7 @@ TEST(RunBounds, TouchingChainRunsAtEveryLengthAndOpensContactsOnlyOnRealOverlaps
 // t_end / dt = 1e20 used to overflow the step count to 0 and report success.
 TEST(RunBounds, GameStepCountBeyondTheRunLimitFailsTyped) {
   const BallDrop model({});
-  const RunResult r = run_game(model, GameOptions{.dt = 1e-16, .t_end = 1e4});
+  const RunResult r = run_game(model, GameOptions{.dt = 1e-16}, {.t_end = 1e4});
   EXPECT_EQ(r.status, Status::WorkLimit) << to_string(r.status);
   EXPECT_EQ(r.stats.steps, 0);
   EXPECT_NE(r.message.find("steps"), std::string::npos) << r.message;
@@ -76,7 +78,7 @@ TEST(RunBounds, RestingGameContactIsOneRecord) {
   const BallDrop model({.e = 0.8});
   const double V = std::sqrt(2 * 9.81), dt = 1e-3;
   const auto bounces = static_cast<std::size_t>(std::ceil(std::log(9.81 * dt / V) / std::log(0.8)));
-  const RunResult r = run_game(model, GameOptions{.dt = dt, .t_end = 100.0, .sample_dt = 1.0});
+  const RunResult r = run_game(model, GameOptions{.dt = dt}, {.t_end = 100.0, .sample_dt = 1.0});
   ASSERT_TRUE(r.ok()) << r.message;
   EXPECT_LE(r.contacts.size(), bounces + 1);
   EXPECT_EQ(r.contacts.back().t_end, 100.0) << "the resting contact lasts to the end";
@@ -86,9 +88,10 @@ TEST(RunBounds, RestingGameContactIsOneRecord) {
 
 TEST(RunBounds, RecordsBeyondTheRunLimitFailTyped) {
   const BallDrop model({.e = 1.0});
-  GameOptions o{.dt = 1e-3, .t_end = 100.0, .sample_dt = 1.0};
-  o.limits.max_records = 10;  // the elastic ball bounces every 0.9 s: 110 contacts and apexes
-  const RunResult r = run_game(model, o);
+  GameOptions o{.dt = 1e-3};
+  SolveOptions o_span{.t_end = 100.0, .sample_dt = 1.0};
+  o_span.limits.max_records = 10;  // the elastic ball bounces every 0.9 s: 110 contacts and apexes
+  const RunResult r = run_game(model, o, o_span);
   EXPECT_EQ(r.status, Status::WorkLimit);
   EXPECT_GT(r.t_reached, 0.0);
   EXPECT_LT(r.t_reached, 100.0);
@@ -96,17 +99,19 @@ TEST(RunBounds, RecordsBeyondTheRunLimitFailTyped) {
 
 TEST(RunBounds, SamplesBeyondTheRunLimitFailTypedWithoutAllocatingTheGrid) {
   const BallDrop model({});
-  PenaltyOptions o{.t_end = 1e4, .sample_dt = 1e-12};  // 1e16 samples
-  const RunResult r = run_penalty(model, o);
+  PenaltyOptions o{};
+  SolveOptions o_span{.t_end = 1e4, .sample_dt = 1e-12};  // 1e16 samples
+  const RunResult r = run_penalty(model, o, o_span);
   EXPECT_EQ(r.status, Status::WorkLimit);
   EXPECT_NE(r.message.find("sample"), std::string::npos) << r.message;
 }
 
 TEST(RunBounds, PenaltyStepsBeyondTheRunLimitFailTyped) {
   const BallDrop model({});
-  PenaltyOptions o{.t_end = 3.0};
-  o.limits.max_steps = 50;  // the default run takes ~800 steps
-  const RunResult r = run_penalty(model, o);
+  PenaltyOptions o{};
+  SolveOptions o_span{.t_end = 3.0};
+  o_span.limits.max_steps = 50;  // the default run takes ~800 steps
+  const RunResult r = run_penalty(model, o, o_span);
   EXPECT_EQ(r.status, Status::WorkLimit);
 }
 
@@ -115,9 +120,10 @@ TEST(RunBounds, PenaltyStepsBeyondTheRunLimitFailTyped) {
 TEST(RunBounds, EventFlightBelowItsToleranceFailsTyped) {
   for (double e : {1.0, 0.9}) {
     const BallDrop model({.h0 = 1e-9, .e = e});
-    EventOptions o{.t_end = 1e-3};
+    EventOptions o{};
+    SolveOptions o_span{.t_end = 1e-3};
     o.integrator.atol = 1e-10;
-    const RunResult r = run_event_driven(model, o);
+    const RunResult r = run_event_driven(model, o, o_span);
     EXPECT_EQ(r.status, Status::Unresolved) << "e = " << e << ": " << to_string(r.status);
     EXPECT_NE(r.message.find("atol"), std::string::npos) << r.message;
   }
@@ -127,9 +133,10 @@ TEST(RunBounds, EventFlightBelowItsToleranceFailsTyped) {
 // elastic ball's energy over 2000 bounces, to about the CVODE tolerance times the bounce count.
 TEST(RunBounds, EventFlightWithAScaledToleranceResolvesATinyDrop) {
   const BallDrop model({.h0 = 1e-9, .e = 1.0});
-  EventOptions o{.t_end = 2000 * 2 * std::sqrt(2e-9 / 9.81), .sample_dt = 1e-3};
+  EventOptions o{};
+  SolveOptions o_span{.t_end = 2000 * 2 * std::sqrt(2e-9 / 9.81), .sample_dt = 1e-3};
   o.integrator.atol = 1e-19;
-  const RunResult r = run_event_driven(model, o);
+  const RunResult r = run_event_driven(model, o, o_span);
   ASSERT_TRUE(r.ok()) << r.message;
   EXPECT_NEAR(static_cast<double>(r.contacts.size()), 2000.0, 2.0);
   for (const auto& s : r.samples) EXPECT_NEAR(s.energy, r.energy0, 1e-4 * r.energy0) << "t = " << s.t;
@@ -148,8 +155,9 @@ TEST(RunBounds, EventCascadeReachesTheZenoTimeForRestitutionsNearOne) {
   for (double e : {0.9, 0.99}) {
     const BallDrop model({.e = e});
     const RigidBounces ref(1.0, 0.0, 9.81, e);
-    EventOptions o{.t_end = ref.zeno_time() + 1.0, .sample_dt = 0.5};
-    const RunResult r = run_event_driven(model, o);
+    EventOptions o{};
+    SolveOptions o_span{.t_end = ref.zeno_time() + 1.0, .sample_dt = 0.5};
+    const RunResult r = run_event_driven(model, o, o_span);
     ASSERT_TRUE(r.ok()) << "e = " << e << ": " << r.message;
     const double g = 9.81, eps = 2 * o.integrator.atol, v_r = std::sqrt(2 * g * 100 * o.integrator.atol);
     const double D = eps * g / (v_r * v_r * (1 - e * e));
@@ -172,7 +180,8 @@ TEST(RunBounds, RigidBallStateNearTheZenoTime) {
       const BallState s = rigid_ball_state(1.0, 0.0, 9.81, e, t);
       const double delta = t_inf - t;
       EXPECT_GE(s.x, 0.0) << "e = " << e << ", t_inf - t = " << delta;
-      EXPECT_LE(s.x, 9.81 * delta * delta / 8 * (1 + 1e-9) + 1e-300) << "e = " << e << ", t_inf - t = " << delta;
+      EXPECT_LE(s.x, 9.81 * delta * delta / 8 * (1 + 1e-9) + 1e-300)
+          << "e = " << e << ", t_inf - t = " << delta;
       EXPECT_LE(std::abs(s.v), 9.81 * delta / 2 * (1 + 1e-9)) << "e = " << e << ", t_inf - t = " << delta;
     }
   }
@@ -188,7 +197,8 @@ TEST(RunBounds, RigidBallStateMatchesTheBounceSequence) {
       EXPECT_NEAR(apex.v, 0.0, 1e-11) << "e = " << e << ", n = " << n;
       // Just after impact n + 1 the ball leaves upwards at e^(n+1) V.
       const BallState after = rigid_ball_state(1.0, 0.0, 9.81, e, ref.impact_time(n + 1) + 1e-12);
-      EXPECT_NEAR(after.v, std::pow(e, static_cast<double>(n + 1)) * ref.V, 1e-10) << "e = " << e << ", n = " << n;
+      EXPECT_NEAR(after.v, std::pow(e, static_cast<double>(n + 1)) * ref.V, 1e-10)
+          << "e = " << e << ", n = " << n;
     }
   }
 }

@@ -1,7 +1,7 @@
 // Solver failures become typed results carrying the time reached and CVODE's message.
 #include "ball_drop.hpp"
-#include "penalty.hpp"
 #include "event_driven.hpp"
+#include "penalty.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,10 +13,11 @@ using namespace contact;
 TEST(SolverFailure, TooFewStepsStopsWithMaxStepsTheTimeReachedAndCvodesMessage) {
   const BallDrop model({1.0, 9.81, 1.0, 0.0, 0.8, Hooke{1e8}});
   PenaltyOptions o;
-  o.t_end = 1.0;
-  o.sample_dt = 1.0;  // one output interval: the step budget applies to all of it
+  SolveOptions o_span;
+  o_span.t_end = 1.0;
+  o_span.sample_dt = 1.0;  // one output interval: the step budget applies to all of it
   o.integrator.max_steps = 20;
-  const RunResult r = run_penalty(model, o);
+  const RunResult r = run_penalty(model, o, o_span);
   EXPECT_EQ(r.status, Status::MaxSteps);
   EXPECT_GT(r.t_reached, 0.0);
   EXPECT_LT(r.t_reached, 1.0);
@@ -37,13 +38,17 @@ class PoisonedBall final : public MechanicalSystem {
     ball_.rhs(t, y, m, yd);
     if (y[0] < -1e-4) yd[1] = std::numeric_limits<double>::quiet_NaN();
   }
-  void jacobian(double t, ConstVectorRef y, const ContactModes& m, SparseMatrix& J) const override { ball_.jacobian(t, y, m, J); }
+  void jacobian(double t, ConstVectorRef y, const ContactModes& m, SparseMatrix& J) const override {
+    ball_.jacobian(t, y, m, J);
+  }
   double energy(ConstVectorRef y) const override { return ball_.energy(y); }
   std::size_t contact_count() const override { return 1; }
   double gap(std::size_t i, ConstVectorRef y) const override { return ball_.gap(i, y); }
   double gap_rate(std::size_t i, ConstVectorRef y) const override { return ball_.gap_rate(i, y); }
   double switching(std::size_t i, ConstVectorRef y) const override { return ball_.switching(i, y); }
-  double dissipated_power(std::size_t i, ConstVectorRef y) const override { return ball_.dissipated_power(i, y); }
+  double dissipated_power(std::size_t i, ConstVectorRef y) const override {
+    return ball_.dissipated_power(i, y);
+  }
   double elastic_energy(std::size_t i, ConstVectorRef y) const override { return ball_.elastic_energy(i, y); }
   double restitution(std::size_t i) const override { return ball_.restitution(i); }
   void project(std::size_t i, VectorRef y) const override { ball_.project(i, y); }
@@ -57,8 +62,9 @@ class PoisonedBall final : public MechanicalSystem {
 TEST(SolverFailure, NonFiniteRightHandSideIsReportedNotPropagated) {
   const PoisonedBall model({1.0, 9.81, 1.0, 0.0, 0.8, Hooke{1e5}});
   PenaltyOptions o;
-  o.t_end = 1.0;
-  const RunResult r = run_penalty(model, o);
+  SolveOptions o_span;
+  o_span.t_end = 1.0;
+  const RunResult r = run_penalty(model, o, o_span);
   EXPECT_EQ(r.status, Status::NonFiniteState) << r.message;
   // Trial states of over-long steps may touch the poison earlier; those are retried with smaller
   // steps. The run fails only where the trajectory itself gets there: 1e-4 m below the floor,

@@ -29,8 +29,10 @@ double replica(bool semi_implicit, double k, double wdt) {
       v += dt * a;
     }
     if (!std::isfinite(x) || !std::isfinite(v)) return INFINITY;
-    if (x < 0) in_contact = true;
-    else if (in_contact && v >= 0) return v;
+    if (x < 0)
+      in_contact = true;
+    else if (in_contact && v >= 0)
+      return v;
   }
   return INFINITY;
 }
@@ -62,8 +64,10 @@ TEST_F(StabilityMapCli, RestitutionFollowsTheAnalyticReferences) {
     // The experiment's number is the scheme's own, to rounding: the replica repeats its
     // arithmetic, and ~1e3 steps of rounding stay below 1e-10.
     const double expected = replica(c[1] == "semi-implicit-euler", std::stod(c[0]), x);
-    if (std::isinf(expected)) EXPECT_TRUE(std::isinf(e)) << c[1] << " w dt " << x;
-    else EXPECT_NEAR(e / expected, 1.0, 1e-10) << c[1] << " w dt " << x;
+    if (std::isinf(expected))
+      EXPECT_TRUE(std::isinf(e)) << c[1] << " w dt " << x;
+    else
+      EXPECT_NEAR(e / expected, 1.0, 1e-10) << c[1] << " w dt " << x;
     if (c[1] == "explicit-euler") {
       EXPECT_GT(e, 1.0) << "explicit Euler gains at w dt = " << x;
     } else if (x < 2) {
@@ -83,7 +87,7 @@ TEST_F(StabilityMapCli, RestitutionFollowsTheAnalyticReferences) {
 
 TEST_F(StabilityMapCli, BadInputIsRefused) {
   expect_refused(STABILITY_MAP_EXE, {
-      {"--points 1", "--points", "'1'", ">= 2"},
-      {"--wdt-max 0.001", "--wdt-max", "'0.001'", "(0.01, 100]"},
-  });
+                                        {"--points 1", "--points", "'1'", ">= 2"},
+                                        {"--wdt-max 0.001", "--wdt-max", "'0.001'", "(0.01, 100]"},
+                                    });
 }

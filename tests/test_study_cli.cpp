@@ -20,7 +20,8 @@ TEST_F(StudyCli, EveryExperimentLeavesItsDeclaredOutputsAndTheIndexLinksThem) {
     EXPECT_TRUE(fs::is_directory(dir_ / "s" / e.name)) << e.name;
     const auto problems = check_outputs(e, dir_ / "s" / e.name);
     EXPECT_TRUE(problems.empty()) << e.name << ": " << (problems.empty() ? "" : problems.front());
-    for (const auto& o : e.outputs) EXPECT_NE(index.find("(" + e.name + "/" + o.file + ")"), std::string::npos) << e.name << "/" << o.file;
+    for (const auto& o : e.outputs)
+      EXPECT_NE(index.find("(" + e.name + "/" + o.file + ")"), std::string::npos) << e.name << "/" << o.file;
   }
   EXPECT_TRUE(nlohmann::json::accept(slurp(dir_ / "s" / "study.json")));
 }
@@ -28,13 +29,15 @@ TEST_F(StudyCli, EveryExperimentLeavesItsDeclaredOutputsAndTheIndexLinksThem) {
 // The check is not vacuous: a missing column, a short row, a figure without its PDF and a missing
 // file are each reported.
 TEST_F(StudyCli, OutputCheckReportsEveryKindOfDefect) {
-  StudyExperiment e{"x", "x", {}, {}, "", {{"t.csv", {"a", "b"}, ""}, {"f.png", {}, ""}, {"gone.csv", {}, ""}}};
+  StudyExperiment e{"x", "x", {},
+                    {},  "",  {{"t.csv", {"a", "b"}, ""}, {"f.png", {}, ""}, {"gone.csv", {}, ""}}};
   std::ofstream(dir_ / "t.csv") << "a,c\n1\n";
   std::ofstream(dir_ / "f.png") << "\x89PNG\r\n\x1a\n....";
   std::ofstream(dir_ / "meta.json") << "{}";
   const auto problems = check_outputs(e, dir_);
   auto reported = [&](const std::string& what) {
-    return std::any_of(problems.begin(), problems.end(), [&](const std::string& p) { return p.find(what) != std::string::npos; });
+    return std::any_of(problems.begin(), problems.end(),
+                       [&](const std::string& p) { return p.find(what) != std::string::npos; });
   };
   EXPECT_TRUE(reported("column 'b' missing"));
   EXPECT_TRUE(reported("row 1 does not have the header's 2 cells"));
@@ -45,7 +48,7 @@ TEST_F(StudyCli, OutputCheckReportsEveryKindOfDefect) {
 
 TEST_F(StudyCli, BadInputIsRefused) {
   expect_refused(STUDY_EXE, {
-      {"--only ball_drop,moon", "--only", "'moon'", "ball_drop"},
-      {"--manifest nowhere.json", "--manifest", "nowhere.json", "exist"},
-  });
+                                {"--only ball_drop,moon", "--only", "'moon'", "ball_drop"},
+                                {"--manifest nowhere.json", "--manifest", "nowhere.json", "exist"},
+                            });
 }

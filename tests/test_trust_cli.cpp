@@ -82,7 +82,8 @@ TEST_F(TrustCli, MessagesNameTheRealCause) {
   EXPECT_EQ(r.code, 0) << r.err;
   const auto k_rows = csv_rows(slurp(dir_ / "ck2" / "convergence_k.csv"));
   ASSERT_EQ(k_rows.size(), 3u);  // the header and both ends
-  for (std::size_t j = 1; j < k_rows.size(); ++j) EXPECT_TRUE(std::isfinite(std::stod(k_rows[j][0]))) << k_rows[j][0];
+  for (std::size_t j = 1; j < k_rows.size(); ++j)
+    EXPECT_TRUE(std::isfinite(std::stod(k_rows[j][0]))) << k_rows[j][0];
   // A sweep into unstable territory says which runs failed.
   r = run(exe("ball_drop"), "--sweep --k-min 1e10 --k-max 1e16 --out sw");
   EXPECT_EQ(r.code, 0) << r.err;
@@ -124,9 +125,11 @@ TEST_F(TrustCli, InterruptsLeaveNothingBehindAndKeepEarlierResults) {
   ASSERT_EQ(r.code, 0) << r.err;
   const std::string before = slurp(dir_ / "res" / "newton_cradle" / "meta.json");
   // convergence_dt (~4 s, before newton_cradle in the manifest) is running when the signal comes.
-  r = run(exe("study"), "--only convergence_dt,newton_cradle --out res", "timeout --preserve-status -s INT 1");
+  r = run(exe("study"), "--only convergence_dt,newton_cradle --out res",
+          "timeout --preserve-status -s INT 1");
   EXPECT_EQ(r.code, 130) << r.err;
-  EXPECT_EQ(slurp(dir_ / "res" / "newton_cradle" / "meta.json"), before) << "the earlier results were touched";
+  EXPECT_EQ(slurp(dir_ / "res" / "newton_cradle" / "meta.json"), before)
+      << "the earlier results were touched";
   EXPECT_FALSE(fs::exists(dir_ / "res" / "convergence_dt")) << "an interrupted experiment left a folder";
   for (const auto& e : fs::directory_iterator(dir_ / "res"))
     EXPECT_EQ(e.path().filename().string().find(".staging"), std::string::npos) << e.path();

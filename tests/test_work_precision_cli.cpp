@@ -14,10 +14,12 @@ class WorkPrecisionCli : public CliTest {
     double value, error;  // the step or tolerance, and the error
   };
   // The rows matching problem, paradigm and integrator, in order.
-  std::vector<Point> points(const std::string& problem, const std::string& paradigm, const std::string& integrator) const {
+  std::vector<Point> points(const std::string& problem, const std::string& paradigm,
+                            const std::string& integrator) const {
     std::vector<Point> out;
     for (auto& c : csv_rows(slurp(dir_ / "wp" / "work_precision.csv")))
-      if (c[0] == problem && c[1] == paradigm && c[2] == integrator) out.push_back({std::stod(c[4]), std::stod(c[5])});
+      if (c[0] == problem && c[1] == paradigm && c[2] == integrator)
+        out.push_back({std::stod(c[4]), std::stod(c[5])});
     return out;
   }
 };
@@ -33,7 +35,8 @@ TEST_F(WorkPrecisionCli, ParadigmsReachTheirExactLimits) {
   // whatever the game step or the flight tolerance.
   for (const char* paradigm : {"game", "event"})
     for (const char* integrator : {"semi-implicit-euler", "cvode-bdf"})
-      for (const auto& p : points("chain", paradigm, integrator)) EXPECT_LT(p.error, 1e-15) << paradigm << " " << integrator;
+      for (const auto& p : points("chain", paradigm, integrator))
+        EXPECT_LT(p.error, 1e-15) << paradigm << " " << integrator;
   // Event-driven CVODE flight: the error follows the tolerance (exponent 1 within 0.1 from the
   // loosest to the tightest).
   const auto ev = points("ball", "event", "cvode-bdf");
@@ -47,13 +50,14 @@ TEST_F(WorkPrecisionCli, ParadigmsReachTheirExactLimits) {
   const auto rk4 = points("chain", "penalty", "rk4");
   ASSERT_GE(rk4.size(), 2u);
   EXPECT_NEAR(observed_order(rk4[0].value, rk4[0].error, rk4[1].value, rk4[1].error), 4.0, 0.5);
-  for (const char* f : {"ball_rhs.png", "ball_time.pdf", "chain_rhs.pdf", "chain_time.png"}) EXPECT_TRUE(fs::exists(dir_ / "wp" / f)) << f;
+  for (const char* f : {"ball_rhs.png", "ball_time.pdf", "chain_rhs.pdf", "chain_time.png"})
+    EXPECT_TRUE(fs::exists(dir_ / "wp" / f)) << f;
 }
 
 TEST_F(WorkPrecisionCli, BadInputIsRefused) {
   expect_refused(WORK_PRECISION_EXE, {
-      {"--balls 1", "--balls", "'1'", ">= 2"},
-      {"--chain-k -5", "--chain-k", "'-5'", "(0, inf)"},
-      {"--problems moon", "--problems", "'moon'", "chain"},
-  });
+                                         {"--balls 1", "--balls", "'1'", ">= 2"},
+                                         {"--chain-k -5", "--chain-k", "'-5'", "(0, inf)"},
+                                         {"--problems moon", "--problems", "'moon'", "chain"},
+                                     });
 }

@@ -10,7 +10,9 @@ namespace contact::rigid {
 namespace {
 
 void require(bool ok, const std::string& what, double value, const std::string& range) {
-  if (!ok) throw std::invalid_argument(fmt::format("{}: value '{:g}' is out of range; accepted range {}", what, value, range));
+  if (!ok)
+    throw std::invalid_argument(
+        fmt::format("{}: value '{:g}' is out of range; accepted range {}", what, value, range));
 }
 
 }  // namespace
@@ -28,12 +30,14 @@ RigidBody RigidBody::sphere(std::string name, double mass, double radius, double
 RigidBody RigidBody::cuboid(std::string name, double mass, const Vec3& h, double elasticity) {
   RigidBody b{std::move(name), Cuboid{h, false}};
   require(std::isfinite(mass) && mass > 0, b.name + " mass", mass, "(0, inf)");
-  for (int i = 0; i < 3; ++i) require(std::isfinite(h[i]) && h[i] > 0, b.name + " half extent", h[i], "(0, inf)");
+  for (int i = 0; i < 3; ++i)
+    require(std::isfinite(h[i]) && h[i] > 0, b.name + " half extent", h[i], "(0, inf)");
   const Vec3 s = 2 * h;  // full sides
   b.inverse_mass = 1.0 / mass;
-  b.inverse_inertia = Vec3(12 / (mass * (s[1] * s[1] + s[2] * s[2])), 12 / (mass * (s[0] * s[0] + s[2] * s[2])),
-                           12 / (mass * (s[0] * s[0] + s[1] * s[1])))
-                          .asDiagonal();
+  b.inverse_inertia =
+      Vec3(12 / (mass * (s[1] * s[1] + s[2] * s[2])), 12 / (mass * (s[0] * s[0] + s[2] * s[2])),
+           12 / (mass * (s[0] * s[0] + s[1] * s[1])))
+          .asDiagonal();
   b.elasticity = elasticity;
   return b;
 }
@@ -82,8 +86,8 @@ void RigidBody::validate() const {
   require(std::isfinite(elasticity) && elasticity >= 0, name + " elasticity", elasticity, "[0, inf)");
   const double qn = orientation.coeffs().norm();
   require(orientation.coeffs().allFinite() && qn > 0, name + " quaternion norm", qn, "(0, inf), finite");
-  require(position.allFinite() && velocity.allFinite() && angular_velocity.allFinite(), name + " state finite", 0.0,
-          "finite values");
+  require(position.allFinite() && velocity.allFinite() && angular_velocity.allFinite(),
+          name + " state finite", 0.0, "finite values");
 }
 
 }  // namespace contact::rigid

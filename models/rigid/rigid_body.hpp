@@ -25,7 +25,7 @@ struct Cuboid {
   bool axis_aligned = false;  // an AABB: never rotates
 };
 struct Plane {
-  Vec3 normal;  // unit; the solid side is behind it
+  Vec3 normal;    // unit; the solid side is behind it
   double offset;  // points x with normal . x = offset lie on the plane
 };
 using Shape = std::variant<Sphere, Cuboid, Plane>;
@@ -53,8 +53,8 @@ struct RigidBody {
   // Velocity of the material point at world offset r from the centre: v + w x r.
   Vec3 point_velocity(const Vec3& r) const { return velocity + angular_velocity.cross(r); }
   double kinetic_energy() const;
-  Vec3 momentum() const;                          // m v (zero for infinite mass)
-  Vec3 angular_momentum(const Vec3& about) const; // (x - about) x m v + I w
+  Vec3 momentum() const;                           // m v (zero for infinite mass)
+  Vec3 angular_momentum(const Vec3& about) const;  // (x - about) x m v + I w
 
   // Throws std::invalid_argument naming the field, the value and the accepted range.
   void validate() const;

@@ -45,8 +45,8 @@ RigidContact sphere_cuboid(const std::vector<RigidBody>& bodies, std::size_t a, 
   const Mat3 R = box.orientation.toRotationMatrix();
   const Vec3 p = R.transpose() * (bodies[a].position - box.position);  // centre in the box frame
   const Vec3 q = p.cwiseMax(-h).cwiseMin(h);
-  Vec3 out_of_box;   // box frame, unit, from the box towards the sphere
-  double distance;   // signed: centre outside (> 0) or inside (< 0) the box
+  Vec3 out_of_box;  // box frame, unit, from the box towards the sphere
+  double distance;  // signed: centre outside (> 0) or inside (< 0) the box
   if ((p - q).squaredNorm() > 0) {
     distance = (p - q).norm();
     out_of_box = (p - q) / distance;
@@ -90,7 +90,8 @@ std::vector<Vec3> vertices(const RigidBody& body) {
   return out;
 }
 
-std::vector<RigidContact> contact_candidates(const std::vector<RigidBody>& bodies, std::size_t a, std::size_t b) {
+std::vector<RigidContact> contact_candidates(const std::vector<RigidBody>& bodies, std::size_t a,
+                                             std::size_t b) {
   const Shape &A = bodies[a].shape, &B = bodies[b].shape;
   const bool as = std::holds_alternative<Sphere>(A), bs = std::holds_alternative<Sphere>(B);
   const bool ac = std::holds_alternative<Cuboid>(A), bc = std::holds_alternative<Cuboid>(B);

@@ -26,7 +26,8 @@ struct RigidContact {
 
 // Every candidate between bodies a and b (indices into `bodies`); empty for pairs no scene needs
 // (cuboid-cuboid, plane-plane).
-std::vector<RigidContact> contact_candidates(const std::vector<RigidBody>& bodies, std::size_t a, std::size_t b);
+std::vector<RigidContact> contact_candidates(const std::vector<RigidBody>& bodies, std::size_t a,
+                                             std::size_t b);
 
 // World positions of a cuboid's eight vertices.
 std::vector<Vec3> vertices(const RigidBody& cuboid);

@@ -10,8 +10,10 @@ void project(std::vector<RigidBody>& bodies, const RigidContact& c, ProjectionSh
   const bool a_moves = A.inverse_mass > 0, b_moves = B.inverse_mass > 0;
   if (!a_moves && !b_moves) return;
   double share_a;
-  if (share == ProjectionShare::Equal) share_a = a_moves && b_moves ? 0.5 : (a_moves ? 1.0 : 0.0);
-  else share_a = A.inverse_mass / (A.inverse_mass + B.inverse_mass);
+  if (share == ProjectionShare::Equal)
+    share_a = a_moves && b_moves ? 0.5 : (a_moves ? 1.0 : 0.0);
+  else
+    share_a = A.inverse_mass / (A.inverse_mass + B.inverse_mass);
   A.position -= c.normal * (c.penetration * share_a);
   B.position += c.normal * (c.penetration * (1.0 - share_a));
 }

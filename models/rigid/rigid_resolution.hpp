@@ -5,10 +5,10 @@
 //                 naive version; a body of infinite mass does not move and the other takes all),
 //                 or by inverse-mass share (a moves -n p m_a^-1 / (m_a^-1 + m_b^-1), b the rest)
 //   impulse       v_r = (v_b + w_b x r_b) - (v_a + w_a x r_a),
-//                 J = -(1 + e) v_r.n / (m_a^-1 + m_b^-1 + [I_a^-1 (r_a x n) x r_a + I_b^-1 (r_b x n) x r_b].n),
-//                 v_a -= m_a^-1 J n, w_a -= I_a^-1 (r_a x J n), v_b += m_b^-1 J n, w_b += I_b^-1 (r_b x J n),
-//                 applied only while approaching (v_r.n < 0): on a separating contact it would pull
-//                 the bodies back together.
+//                 J = -(1 + e) v_r.n / (m_a^-1 + m_b^-1 + [I_a^-1 (r_a x n) x r_a + I_b^-1 (r_b x n) x
+//                 r_b].n), v_a -= m_a^-1 J n, w_a -= I_a^-1 (r_a x J n), v_b += m_b^-1 J n, w_b += I_b^-1
+//                 (r_b x J n), applied only while approaching (v_r.n < 0): on a separating contact it would
+//                 pull the bodies back together.
 #include "rigid_contacts.hpp"
 
 namespace contact::rigid {

@@ -25,7 +25,8 @@ RigidScene::RigidScene(std::string name, std::vector<RigidBody> bodies, Vec3 gra
 }
 
 RigidScene::RigidScene(std::string name, std::vector<RigidBody> bodies, Vec3 gravity, ContactLaw law)
-    : RigidScene(std::move(name), std::move(bodies), std::move(gravity), [law](double, double) { return law; }) {}
+    : RigidScene(std::move(name), std::move(bodies), std::move(gravity),
+                 [law](double, double) { return law; }) {}
 
 std::vector<RigidBody> RigidScene::bodies_at(ConstVectorRef y) const {
   std::vector<RigidBody> out = bodies_;
@@ -65,8 +66,8 @@ Vector RigidScene::initial_state() const {
 std::vector<std::string> RigidScene::state_labels() const {
   std::vector<std::string> labels;
   for (const auto& b : bodies_)
-    for (const char* f : {"x_m", "y_m", "z_m", "qw", "qx", "qy", "qz", "vx_mps", "vy_mps", "vz_mps", "wx_radps",
-                          "wy_radps", "wz_radps"})
+    for (const char* f : {"x_m", "y_m", "z_m", "qw", "qx", "qy", "qz", "vx_mps", "vy_mps", "vz_mps",
+                          "wx_radps", "wy_radps", "wz_radps"})
       labels.push_back(b.name + "_" + f);
   return labels;
 }

@@ -37,7 +37,9 @@ class RigidScene final : public MechanicalSystem {
   void store(const std::vector<RigidBody>& bodies, VectorRef y) const;
   const std::vector<RigidBody>& bodies() const { return bodies_; }
   // Which bodies candidate contact i joins.
-  std::pair<std::size_t, std::size_t> pair(std::size_t i) const { return {candidates_[i].a, candidates_[i].b}; }
+  std::pair<std::size_t, std::size_t> pair(std::size_t i) const {
+    return {candidates_[i].a, candidates_[i].b};
+  }
 
   std::string name() const override { return name_; }
   Mask position_mask() const override;

@@ -1,5 +1,9 @@
 #include "rigid_scenes.hpp"
 
+#include "registry.hpp"
+
+#include "scene_registry.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -14,7 +18,9 @@ constexpr double kGap = 1e-3;  // initial clearance of the moving body [m]
 // Each pair's spring: stiffness k, Kelvin–Voigt damping tuned to the pair's restitution and
 // effective mass.
 RigidScene::LawForPair law_for(const SceneParams& p) {
-  return [k = p.k](double e, double m_eff) { return ContactLaw{kelvin_voigt_for_restitution(k, m_eff, e, false)}; };
+  return [k = p.k](double e, double m_eff) {
+    return ContactLaw{kelvin_voigt_for_restitution(k, m_eff, e, false)};
+  };
 }
 
 RigidScene snooker(const SceneParams& p, double other_mass, double other_radius) {
@@ -52,7 +58,8 @@ RigidScene off_centre(const SceneParams& p) {
 }
 
 RigidScene rubber_steel(const SceneParams& p) {
-  RigidBody rubber = RigidBody::sphere("rubber", p.m, p.radius, 0.9), steel = RigidBody::sphere("steel", p.m, p.radius, 0.4);
+  RigidBody rubber = RigidBody::sphere("rubber", p.m, p.radius, 0.9),
+            steel = RigidBody::sphere("steel", p.m, p.radius, 0.4);
   rubber.position = Vec3(0, 0, 1.0);
   steel.position = Vec3(1.0, 0, 1.0);
   return RigidScene("rubber-steel", {rubber, steel, RigidBody::plane("floor", Vec3::UnitZ(), 0.0, 1.0)},
@@ -76,7 +83,8 @@ RigidScene wedge(const SceneParams& p) {
   RigidBody striker = RigidBody::sphere("striker", p.m, p.radius, p.elasticity);
   striker.velocity = Vec3(1.0, 0, 0);
   const double d = 2 * p.radius + kGap, c = std::sqrt(3.0) / 2;
-  RigidBody upper = RigidBody::sphere("upper", p.m, p.radius, 1.0), lower = RigidBody::sphere("lower", p.m, p.radius, 1.0);
+  RigidBody upper = RigidBody::sphere("upper", p.m, p.radius, 1.0),
+            lower = RigidBody::sphere("lower", p.m, p.radius, 1.0);
   upper.position = Vec3(d * c, d * 0.5, 0);
   lower.position = Vec3(d * c, -d * 0.5, 0);
   return RigidScene("wedge", {striker, upper, lower}, Vec3::Zero(), law_for(p));
@@ -94,23 +102,47 @@ const std::vector<SceneInfo>& rigid_scene_registry() {
       {"off-centre", "a sphere hits a resting cuboid off its centre line", 0.05, off_centre},
       {"rubber-steel", "a rubber (0.9) and a steel (0.4) ball dropped on the floor", 1.5, rubber_steel},
       {"cradle", "Newton's cradle: a striker into four touching balls", 0.05, cradle},
-      {"wedge", "a striker meets two balls at once, symmetric about its path (order-dependence)", 0.05, wedge},
+      {"wedge", "a striker meets two balls at once, symmetric about its path (order-dependence)", 0.05,
+       wedge},
   };
   return scenes;
 }
 
-std::vector<std::string> rigid_scene_names() {
-  std::vector<std::string> names;
-  for (const auto& s : rigid_scene_registry()) names.push_back(s.name);
-  return names;
-}
+std::vector<std::string> rigid_scene_names() { return names_of(rigid_scene_registry()); }
 
 const SceneInfo& rigid_scene(const std::string& name) {
-  const auto& all = rigid_scene_registry();
-  const auto it = std::find_if(all.begin(), all.end(), [&](const auto& s) { return s.name == name; });
-  if (it == all.end())
-    throw std::invalid_argument(fmt::format("--scene: value '{}' is not one of: {}", name, fmt::join(rigid_scene_names(), ", ")));
-  return *it;
+  return find_named(rigid_scene_registry(), name, "--scene");
 }
 
 }  // namespace contact::rigid
+
+namespace contact {
+
+std::vector<SceneEntry> rigid_scene_entries() {
+  const rigid::SceneParams d;
+  std::vector<SceneEntry> entries;
+  for (const auto& info : rigid::rigid_scene_registry()) {
+    entries.push_back(
+        {info.name,
+         info.description,
+         {{"m", "kg", d.m, "mass of the moving ball"},
+          {"radius", "m", d.radius, "its radius"},
+          {"elasticity", "", d.elasticity, "its elasticity (restitution: the product of the pair's)"},
+          {"k", "N/m", d.k, "penalty stiffness (Kelvin-Voigt, damping tuned to each pair's e)"}},
+         false,
+         {"velocities", "momentum", "angular momentum", "energy", "contact log"},
+         "",
+         info.t_end,
+         [make = info.make](const ParameterValues& v, const std::string&) -> std::unique_ptr<Dynamics> {
+           rigid::SceneParams p;
+           p.m = v.at("m");
+           p.radius = v.at("radius");
+           p.elasticity = v.at("elasticity");
+           p.k = v.at("k");
+           return std::make_unique<rigid::RigidScene>(make(p));
+         }});
+  }
+  return entries;
+}
+
+}  // namespace contact

@@ -18,12 +18,12 @@
 namespace contact::rigid {
 
 struct SceneParams {
-  double m = 0.17;                         // mass of the moving ball [kg]
-  double radius = 0.026;                   // its radius [m]
-  double elasticity = 1.0;                 // its elasticity
-  Vec3 half_extents = Vec3(0.3, 0.2, 0.1); // the cuboid's [m]
-  Quat orientation = Quat::Identity();     // the cuboid's initial orientation
-  double k = 1e6;                          // penalty stiffness [N/m]
+  double m = 0.17;                          // mass of the moving ball [kg]
+  double radius = 0.026;                    // its radius [m]
+  double elasticity = 1.0;                  // its elasticity
+  Vec3 half_extents = Vec3(0.3, 0.2, 0.1);  // the cuboid's [m]
+  Quat orientation = Quat::Identity();      // the cuboid's initial orientation
+  double k = 1e6;                           // penalty stiffness [N/m]
 };
 
 struct SceneInfo {

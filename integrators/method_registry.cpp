@@ -1,0 +1,52 @@
+#include "method_registry.hpp"
+
+#include "registry.hpp"
+
+#include "registry.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace contact {
+
+const std::vector<MethodInfo>& method_registry() {
+  static const std::vector<MethodInfo> all = [] {
+    std::vector<MethodInfo> methods;
+    for (auto family : {penalty_methods, game_methods, event_methods}) {  // one entry per family
+      auto entries = family();
+      methods.insert(methods.end(), entries.begin(), entries.end());
+    }
+    return methods;
+  }();
+  return all;
+}
+
+std::vector<std::string> method_names() { return names_of(method_registry()); }
+
+const MethodInfo& method_info(const std::string& name) {
+  return find_named(method_registry(), name, "--method");
+}
+
+RunResult solve(const Dynamics& scene, const Method& method, const SolveOptions& options) {
+  const MethodInfo& info = method_info(method.name);
+  if (!info.can_run(scene))
+    throw std::invalid_argument(
+        fmt::format("method '{}' cannot run scene '{}': it needs {}", info.name, scene.name(), info.needs));
+  if (!(std::isfinite(options.t_end) && options.t_end > 0))
+    throw std::invalid_argument(
+        fmt::format("--t-end: value '{}' is out of range; accepted range (0, inf)", options.t_end));
+  if (!(std::isfinite(options.sample_dt) && options.sample_dt > 0))
+    throw std::invalid_argument(
+        fmt::format("--sample-dt: value '{}' is out of range; accepted range (0, inf)", options.sample_dt));
+  if (info.fixed_step && !(std::isfinite(method.dt) && method.dt > 0))
+    throw std::invalid_argument(
+        fmt::format("--dt: value '{}' is out of range; accepted range (0, inf)", method.dt));
+  RunResult r = info.run(scene, method, options);
+  r.method = info.name;
+  return r;
+}
+
+}  // namespace contact

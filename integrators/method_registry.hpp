@@ -1,0 +1,62 @@
+#pragma once
+// Every method by name, and the one entry point: solve(scene, method, options) -> RunResult.
+//
+//   scene    a models/ system (Dynamics, with contact geometry and an impulse map where the
+//            method needs them);
+//   method   a name from method_registry() and the settings a method reads (a fixed step, an
+//            ODE integrator, event guards), each method using those that apply to it;
+//   options  what every run shares: time span, output spacing, work limits (SolveOptions).
+//
+// A method family is defined beside its paradigm (penalty.cpp, game_step.cpp, event_driven.cpp)
+// as a function returning its entries; method_registry.cpp lists the families, one line each.
+// Experiments, tests, benchmarks and the Python module enumerate methods from here only.
+#include "integrator.hpp"
+#include "mechanical_system.hpp"
+#include "run_recorder.hpp"
+#include "run_result.hpp"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace contact {
+
+struct Method {
+  std::string name = "penalty";  // a name from method_registry()
+  double dt = 1e-3;              // fixed step of the time-stepping methods [s]
+  IntegratorOptions integrator;  // the penalty ODE and the event-driven flight (CVODE BDF by default)
+  double rest_speed = 1e-7;      // event-driven guards (event_driven.hpp) [m/s]
+  double rest_height = -1;       // [m]; < 0: 100 atol for a numerical flight, 0 for the exact one
+  double min_event_spacing = 0;  // [s]
+  long max_events = 1'000'000;
+  int persistence = 1;  // game notifications: frames a pair stays listed
+  std::function<void(const std::vector<CollisionEvent>&)> on_notifications;  // game loop, per step
+};
+
+struct MethodInfo {
+  std::string name;
+  std::string description;
+  std::string family;     // "penalty", "game", "event-driven": the paradigm
+  bool fixed_step;        // its accuracy setting is Method::dt (otherwise the integrator's tolerances)
+  bool uses_contact_law;  // whether the scene's penalty law (stiffness, damping) affects it
+  std::string needs;      // the capabilities it asks of a scene, in words
+  std::function<bool(const Dynamics&)> can_run;
+  std::function<RunResult(const Dynamics&, const Method&, const SolveOptions&)> run;
+};
+
+const std::vector<MethodInfo>& method_registry();
+std::vector<std::string> method_names();
+// Throws std::invalid_argument naming the accepted methods.
+const MethodInfo& method_info(const std::string& name);
+
+// Runs `method` on `scene` over options' span. Throws std::invalid_argument for an unknown
+// method, a scene the method cannot run (naming what it lacks) or a setting out of range; a
+// solver failure is a RunResult with its status, the time reached and the solver's message.
+RunResult solve(const Dynamics& scene, const Method& method, const SolveOptions& options = {});
+
+// The families, each defined beside its paradigm.
+std::vector<MethodInfo> penalty_methods();
+std::vector<MethodInfo> game_methods();
+std::vector<MethodInfo> event_methods();
+
+}  // namespace contact

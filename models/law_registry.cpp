@@ -1,0 +1,75 @@
+#include "law_registry.hpp"
+
+#include "registry.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace contact {
+
+namespace {
+
+const ParameterInfo kStiffness{"k", "N/m", 1e5, "stiffness"};
+const ParameterInfo kPowerStiffness{"k", "N/m^n", 1e9, "stiffness K of K delta^n"};
+const ParameterInfo kMass{"m", "kg", 1.0, "effective mass the damping is tuned for"};
+const ParameterInfo kRestitution{"e", "", 0.8, "target restitution"};
+const ParameterInfo kSpeed{"v", "m/s", 1.0, "impact speed the damping is tuned at"};
+
+LawInfo hunt_crossley(std::string name, std::string description, double n) {
+  return {std::move(name),
+          std::move(description),
+          n,
+          true,
+          false,
+          "restitution exact in chi V (hunt_crossley_restitution); undamped penetration and duration "
+          "(power_law_contact)",
+          {kPowerStiffness, kRestitution, kSpeed},
+          [n](const LawSpec& s) {
+            return ContactLaw{HuntCrossley{s.k, n, damping_factor(s.rule, s.e, s.v)}};
+          }};
+}
+
+}  // namespace
+
+const std::vector<LawInfo>& law_registry() {
+  static const std::vector<LawInfo> laws = {
+      {"hooke",
+       "the seed's spring, F = k delta (undamped)",
+       1.0,
+       false,
+       false,
+       "penetration and duration, with and without gravity (hooke_contact)",
+       {kStiffness},
+       [](const LawSpec& s) { return ContactLaw{Hooke{s.k}}; }},
+      {"kelvin-voigt",
+       "spring and dashpot, F = k delta + c delta', c tuned to e (pulls near the end)",
+       1.0,
+       true,
+       true,
+       "penetration, duration and restitution without gravity (kelvin_voigt_contact)",
+       {kStiffness, kMass, kRestitution},
+       [](const LawSpec& s) { return ContactLaw{kelvin_voigt_for_restitution(s.k, s.m, s.e, false)}; }},
+      {"kelvin-voigt-clamped",
+       "as kelvin-voigt, clamped to F >= 0 (lets go while overlapping)",
+       1.0,
+       true,
+       false,
+       "penetration and duration without gravity",
+       {kStiffness, kMass, kRestitution},
+       [](const LawSpec& s) { return ContactLaw{kelvin_voigt_for_restitution(s.k, s.m, s.e, true)}; }},
+      hunt_crossley("hertz",
+                    "Hunt-Crossley, n = 3/2: F = K delta^1.5 (1 + chi delta'), chi by the damping rule", 1.5),
+      hunt_crossley("hunt-crossley-linear", "Hunt-Crossley, n = 1: F = K delta (1 + chi delta')", 1.0),
+  };
+  return laws;
+}
+
+std::vector<std::string> law_names() { return names_of(law_registry()); }
+
+const LawInfo& law_info(const std::string& name) { return find_named(law_registry(), name, "--law"); }
+
+ContactLaw make_law(const std::string& name, const LawSpec& spec) { return law_info(name).make(spec); }
+
+}  // namespace contact

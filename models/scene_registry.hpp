@@ -1,0 +1,42 @@
+#pragma once
+// Every scene by name: one registry for the 1-D scenes and the rigid-body ones, shared by
+// experiments, tests, benchmarks and the Python module. A new scene is one file defining its
+// model and its entry, and one line in scene_registry.cpp.
+#include "mechanical_system.hpp"
+#include "parameters.hpp"
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace contact {
+
+struct SceneEntry {
+  std::string name;
+  std::string description;
+  std::vector<ParameterInfo> parameters;
+  bool takes_law;                        // its contacts use the law the caller names (law_registry.hpp)
+  std::vector<std::string> observables;  // what the study reads off it
+  std::string exact;                     // the exact solutions known for it, in words ("" none)
+  double t_end;                          // a span that shows its behaviour [s]
+  std::function<std::unique_ptr<Dynamics>(const ParameterValues& values, const std::string& law)> make;
+};
+
+const std::vector<SceneEntry>& scene_registry();
+std::vector<std::string> scene_names();
+// Throws std::invalid_argument naming the accepted scenes.
+const SceneEntry& scene_entry(const std::string& name);
+// The scene with the given parameters (the others at their defaults) and, for a scene that takes
+// one, the named law (empty: the scene's default). Throws std::invalid_argument for an unknown
+// scene, parameter or law.
+std::unique_ptr<Dynamics> make_scene(const std::string& name, const ParameterValues& given = {},
+                                     const std::string& law = "");
+
+// The entries, each defined beside its model.
+SceneEntry ball_drop_scene();
+SceneEntry ball_chain_scene();
+SceneEntry spring_mass_scene();
+std::vector<SceneEntry> rigid_scene_entries();
+
+}  // namespace contact

@@ -1,0 +1,120 @@
+// The registries and solve(): every scene, law and method reachable by name; a method refuses a
+// scene that lacks a capability it needs, naming it; solve() by name gives the physics the
+// paradigm functions give (closed forms checked through the registry route).
+#include "law_registry.hpp"
+#include "method_registry.hpp"
+#include "references.hpp"
+#include "scene_registry.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <set>
+
+using namespace contact;
+
+namespace {
+
+template <class F>
+std::string refusal(F&& f) {
+  try {
+    f();
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(Registries, NamesAreUniqueAndEveryEntryIsDescribed) {
+  for (const auto& names : {method_names(), law_names(), scene_names()}) {
+    EXPECT_EQ(std::set<std::string>(names.begin(), names.end()).size(), names.size());
+    EXPECT_FALSE(names.empty());
+  }
+  for (const auto& m : method_registry()) EXPECT_FALSE(m.description.empty() || m.needs.empty()) << m.name;
+  for (const auto& l : law_registry()) EXPECT_FALSE(l.description.empty() || l.parameters.empty()) << l.name;
+  for (const auto& s : scene_registry()) EXPECT_GT(s.t_end, 0) << s.name;
+}
+
+// Every scene at its defaults under every method that says it can run it, over a short span:
+// each runs to the end (or fails with a typed status, never an exception); every method that says
+// it cannot is refused by solve() with what it needs.
+TEST(Registries, EveryMethodRunsEverySceneItCanAndRefusesTheOthersByName) {
+  for (const auto& s : scene_registry()) {
+    const auto scene = make_scene(s.name);
+    for (const auto& m : method_registry()) {
+      Method method{.name = m.name, .dt = 1e-5};
+      const SolveOptions span{.t_end = 1e-3, .sample_dt = 1e-3};
+      if (m.can_run(*scene)) {
+        const RunResult r = solve(*scene, method, span);
+        EXPECT_TRUE(r.ok()) << s.name << " " << m.name << ": " << r.message;
+        EXPECT_EQ(r.method, m.name);
+      } else {
+        const std::string why = refusal([&] { solve(*scene, method, span); });
+        EXPECT_NE(why.find(m.needs), std::string::npos) << s.name << " " << m.name << ": " << why;
+      }
+    }
+  }
+  // The free spring has no impulse map and no closed-form flight: impulses and exact flight refuse it.
+  const auto spring = make_scene("spring-mass");
+  EXPECT_FALSE(method_info("game-symplectic").can_run(*spring));
+  EXPECT_FALSE(method_info("event-ode").can_run(*spring));
+  EXPECT_FALSE(method_info("event-exact").can_run(*make_scene("ball-chain")));
+  EXPECT_TRUE(method_info("game-symplectic-spring").can_run(*spring));
+}
+
+TEST(Registries, UnknownNamesAndParametersAreRefusedWithWhatIsAccepted) {
+  EXPECT_NE(refusal([] { method_info("rk45"); }).find("--method: value 'rk45' is not one of: penalty"),
+            std::string::npos);
+  EXPECT_NE(refusal([] { law_info("spring"); }).find("--law: value 'spring' is not one of: hooke"),
+            std::string::npos);
+  EXPECT_NE(refusal([] {
+              make_scene("ball-drop", {{"height", 1.0}});
+            }).find("parameter 'height' is not one of: m, g, h0"),
+            std::string::npos);
+  EXPECT_NE(refusal([] { make_scene("snooker", {}, "hooke"); }).find("fixes its own contact law"),
+            std::string::npos);
+  EXPECT_NE(refusal([] { make_scene("ball-chain", {{"n", 2.5}}); }).find("'n' = 2.5"), std::string::npos);
+  const auto ball = make_scene("ball-drop");
+  EXPECT_NE(refusal([&] { solve(*ball, {.name = "game-symplectic", .dt = 0.0}); }).find("--dt: value '0'"),
+            std::string::npos);
+  EXPECT_NE(refusal([&] { solve(*ball, {.name = "penalty"}, {.t_end = -1.0}); }).find("--t-end"),
+            std::string::npos);
+}
+
+// The laws by name are the laws the closed forms describe: Kelvin–Voigt tuned to e has the
+// damping ratio of e (contact_law.hpp), Hertz has exponent 3/2, Hooke k.
+TEST(Registries, LawsByNameAreTunedAsTheirEntriesSay) {
+  const LawSpec spec{.k = 1e6, .m = 0.5, .e = 0.7, .v = 2.0};
+  EXPECT_EQ(stiffness(make_law("hooke", spec)), 1e6);
+  const auto kv = std::get<KelvinVoigt>(make_law("kelvin-voigt", spec));
+  EXPECT_NEAR(kv.c / (2 * std::sqrt(kv.k * spec.m)), damping_ratio_for_restitution(0.7), 1e-15);
+  EXPECT_FALSE(kv.no_pull);
+  EXPECT_TRUE(std::get<KelvinVoigt>(make_law("kelvin-voigt-clamped", spec)).no_pull);
+  EXPECT_EQ(exponent(make_law("hertz", spec)), 1.5);
+  EXPECT_EQ(exponent(make_law("hunt-crossley-linear", spec)), 1.0);
+  for (const auto& l : law_registry()) EXPECT_EQ(exponent(l.make(spec)), l.exponent) << l.name;
+}
+
+// Through the registry route: the exact event-driven ball's apexes are e^(2n) h0 to rounding, and
+// the penalty spring-mass follows x = x0 cos(w t) to the integrator's tolerance (rtol 1e-10 over
+// one period: a global error of a few hundred rtol at most).
+TEST(Solve, ByNameGivesTheClosedForms) {
+  const auto ball = make_scene("ball-drop", {{"e", 0.8}, {"h0", 2.0}});
+  const RunResult r = solve(*ball, {.name = "event-exact"}, {.t_end = 4.0, .sample_dt = 0.1});
+  ASSERT_TRUE(r.ok()) << r.message;
+  const RigidBounces ref(2.0, 0.0, 9.81, 0.8);
+  ASSERT_GE(r.apexes.size(), 3u);
+  for (std::size_t n = 1; n <= 3; ++n) EXPECT_NEAR(r.apexes[n - 1].gap, ref.apex_height(n), 1e-12 * 2.0) << n;
+
+  const auto spring = make_scene("spring-mass", {{"m", 1.0}, {"k", 100.0}, {"x0", 0.1}});
+  Method penalty{.name = "penalty"};
+  penalty.integrator.rtol = 1e-10;
+  penalty.integrator.atol = 1e-12;
+  const double period = 2 * std::numbers::pi / 10.0;
+  const RunResult s = solve(*spring, penalty, {.t_end = period, .sample_dt = period / 8});
+  ASSERT_TRUE(s.ok()) << s.message;
+  for (const auto& smp : s.samples) EXPECT_NEAR(smp.y[0], 0.1 * std::cos(10.0 * smp.t), 1e-8) << smp.t;
+}
