@@ -17,7 +17,9 @@ if [ "${1:-}" = "--sanitize" ]; then
 fi
 
 # CI builds with warnings as errors (.ci/run sets CONTACT_ODE_WERROR=ON); a newcomer's build only warns.
-if [ "${CONTACT_ODE_WERROR:-OFF}" = "ON" ]; then
+# Only the Release build: with -fsanitize GCC 12 reports false -Wmaybe-uninitialized inside
+# libstdc++'s <regex> (the instrumentation hides the initialisation from the flow analysis).
+if [ "${CONTACT_ODE_WERROR:-OFF}" = "ON" ] && [ "$build_dir" = build ]; then
   config+=(-DCMAKE_COMPILE_WARNING_AS_ERROR=ON)
 fi
 
