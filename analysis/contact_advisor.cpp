@@ -1,12 +1,12 @@
-#include "contact_advisor.hpp"
+#include "contact_ode/analysis/contact_advisor.hpp"
 
-#include "law_registry.hpp"
+#include "contact_ode/models/law_registry.hpp"
 
-#include "ball_drop.hpp"
-#include "contact_measurement.hpp"
-#include "game_step.hpp"
-#include "gsl_handles.hpp"
-#include "references.hpp"
+#include "contact_ode/analysis/contact_measurement.hpp"
+#include "contact_ode/analysis/references.hpp"
+#include "contact_ode/integrators/game_step.hpp"
+#include "contact_ode/integrators/gsl_handles.hpp"
+#include "contact_ode/models/ball_drop.hpp"
 
 #include <fmt/format.h>
 #include <gsl/gsl_errno.h>

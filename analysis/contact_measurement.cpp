@@ -1,7 +1,7 @@
-#include "contact_measurement.hpp"
+#include "contact_ode/analysis/contact_measurement.hpp"
 
-#include "ball_drop.hpp"
-#include "penalty.hpp"
+#include "contact_ode/integrators/penalty.hpp"
+#include "contact_ode/models/ball_drop.hpp"
 
 #include <fmt/format.h>
 

@@ -1,6 +1,6 @@
-#include "fit.hpp"
+#include "contact_ode/analysis/fit.hpp"
 
-#include "gsl_handles.hpp"
+#include "contact_ode/integrators/gsl_handles.hpp"
 
 #include <gsl/gsl_fit.h>
 #include <gsl/gsl_statistics_double.h>

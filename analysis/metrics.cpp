@@ -1,4 +1,4 @@
-#include "metrics.hpp"
+#include "contact_ode/analysis/metrics.hpp"
 
 #include <algorithm>
 #include <cmath>

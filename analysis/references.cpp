@@ -1,4 +1,4 @@
-#include "references.hpp"
+#include "contact_ode/analysis/references.hpp"
 
 #include <algorithm>
 #include <cmath>

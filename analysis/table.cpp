@@ -1,4 +1,4 @@
-#include "table.hpp"
+#include "contact_ode/analysis/table.hpp"
 
 #include <fmt/format.h>
 

@@ -2,8 +2,8 @@
 // its N^3 factorisations already take seconds). Ten touching balls' worth of wave: t in
 // [0, 2 ms] after the striker (touching ball 1, v0 = 1 m/s) hits; Hooke k = 1e6 N/m, m = 0.1 kg.
 // Counter time_per_sim_s: wall time per simulated second, the number the targets are about.
-#include "ball_chain.hpp"
-#include "penalty.hpp"
+#include "contact_ode/integrators/penalty.hpp"
+#include "contact_ode/models/ball_chain.hpp"
 
 #include <benchmark/benchmark.h>
 

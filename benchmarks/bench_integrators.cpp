@@ -7,9 +7,9 @@
 //     impact speed) and the right-hand sides it took.
 //   ExactBounces: event-driven impacts per second with the closed-form flight.
 // Counters are work, not time: steps, rhs_evals, jac_evals, contacts, steps_per_contact.
-#include "ball_drop.hpp"
-#include "event_driven.hpp"
-#include "penalty.hpp"
+#include "contact_ode/integrators/event_driven.hpp"
+#include "contact_ode/integrators/penalty.hpp"
+#include "contact_ode/models/ball_drop.hpp"
 
 #include <benchmark/benchmark.h>
 

@@ -1,7 +1,7 @@
 // bench_report — turns Google Benchmark JSON (bench_integrators, bench_chain) into Markdown:
 // the machine, one table per benchmark family, and each target of the study checked from the
 // measured numbers. Usage: bench_report RESULT.json [...] > benchmarks.md
-#include "fit.hpp"
+#include "contact_ode/analysis/fit.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>

@@ -13,18 +13,18 @@
 // apexes.csv, samples.csv, stats.csv, heights.{png,pdf,gp}, meta.json; with --sweep,
 // sweep.{csv,md,tex}, penetration.{png,pdf,gp} (first penetration against k) and meta.json.
 // Exit codes: 0 success, 1 solver failure (status, time reached and message on stderr), 2 bad input.
-#include "ball_drop.hpp"
+#include "contact_ode/models/ball_drop.hpp"
+#include "contact_ode/analysis/fit.hpp"
+#include "contact_ode/analysis/metrics.hpp"
+#include "contact_ode/analysis/references.hpp"
+#include "contact_ode/analysis/table.hpp"
+#include "contact_ode/integrators/method_registry.hpp"
+#include "contact_ode/models/law_registry.hpp"
 #include "experiment.hpp"
 #include "figure.hpp"
-#include "fit.hpp"
-#include "law_registry.hpp"
-#include "method_registry.hpp"
-#include "metrics.hpp"
 #include "output.hpp"
 #include "process.hpp"
 #include "progress.hpp"
-#include "references.hpp"
-#include "table.hpp"
 
 #include <fmt/format.h>
 

@@ -7,12 +7,12 @@
 // Derivations: analysis/contact_advisor.hpp and models/engine_conventions.hpp.
 // Outputs in --out (default results/contact_advisor): advice.{csv,md,tex}, meta.json.
 // Exit codes: 0 success, 1 the check's simulation failed, 2 bad input.
-#include "contact_advisor.hpp"
+#include "contact_ode/analysis/contact_advisor.hpp"
+#include "contact_ode/analysis/table.hpp"
+#include "contact_ode/models/law_registry.hpp"
 #include "experiment.hpp"
-#include "law_registry.hpp"
 #include "output.hpp"
 #include "process.hpp"
-#include "table.hpp"
 
 #include <fmt/format.h>
 

@@ -7,13 +7,13 @@
 // depend on K or V for these laws (dimensional analysis: e depends on chi V and n only).
 // Outputs in --out (default results/contact_laws): restitution.{csv,md,tex},
 // restitution.{png,pdf,gp}, meta.json. Exit codes: 0, 1 simulation failure, 2 bad input.
-#include "contact_measurement.hpp"
+#include "contact_ode/analysis/contact_measurement.hpp"
+#include "contact_ode/analysis/table.hpp"
 #include "experiment.hpp"
 #include "figure.hpp"
 #include "output.hpp"
 #include "process.hpp"
 #include "progress.hpp"
-#include "table.hpp"
 
 #include <fmt/format.h>
 

@@ -18,17 +18,17 @@
 // adaptive.{csv,md,tex}, orders.{csv,md,tex}, fixed_step_errors.{png,pdf,gp},
 // adaptive_errors.{png,pdf,gp},
 // meta.json. Exit codes: 0, 1 solver failure, 2 bad input.
-#include "ball_drop.hpp"
+#include "contact_ode/analysis/fit.hpp"
+#include "contact_ode/analysis/references.hpp"
+#include "contact_ode/analysis/table.hpp"
+#include "contact_ode/integrators/penalty.hpp"
+#include "contact_ode/models/ball_drop.hpp"
 #include "experiment.hpp"
 #include "figure.hpp"
-#include "fit.hpp"
 #include "output.hpp"
-#include "penalty.hpp"
 #include "process.hpp"
 #include "progress.hpp"
-#include "references.hpp"
 #include "sweep_setting.hpp"
-#include "table.hpp"
 
 #include <fmt/format.h>
 

@@ -8,17 +8,17 @@
 // of k) and the least-squares exponent (GSL) over all rows.
 // Outputs in --out (default results/convergence_k): convergence_k.{csv,md,tex}, rates.{csv,md,tex},
 // errors.{png,pdf,gp}, meta.json. Exit codes: 0, 1 solver failure, 2 bad input.
-#include "ball_drop.hpp"
+#include "contact_ode/analysis/fit.hpp"
+#include "contact_ode/analysis/table.hpp"
+#include "contact_ode/integrators/method_registry.hpp"
+#include "contact_ode/integrators/penalty.hpp"
+#include "contact_ode/models/ball_drop.hpp"
+#include "contact_ode/models/law_registry.hpp"
 #include "experiment.hpp"
 #include "figure.hpp"
-#include "fit.hpp"
-#include "law_registry.hpp"
-#include "method_registry.hpp"
 #include "output.hpp"
-#include "penalty.hpp"
 #include "process.hpp"
 #include "progress.hpp"
-#include "table.hpp"
 
 #include <fmt/format.h>
 

@@ -11,17 +11,17 @@
 // (|error| against t for the ball), rigid_energy.{png,pdf,gp} (largest |error| per scene at the first
 // --rigid-dts and last --rigid-rtols),
 // meta.json. Exit codes: 0, 1 solver failure, 2 bad input.
-#include "ball_drop.hpp"
+#include "contact_ode/analysis/fit.hpp"
+#include "contact_ode/analysis/metrics.hpp"
+#include "contact_ode/analysis/table.hpp"
+#include "contact_ode/models/ball_drop.hpp"
+#include "contact_ode/models/rigid/rigid_scenes.hpp"
 #include "experiment.hpp"
 #include "figure.hpp"
-#include "fit.hpp"
-#include "metrics.hpp"
 #include "output.hpp"
 #include "process.hpp"
 #include "progress.hpp"
-#include "rigid_scenes.hpp"
 #include "sweep_setting.hpp"
-#include "table.hpp"
 
 #include <fmt/format.h>
 

@@ -1,7 +1,7 @@
 #include "experiment.hpp"
 
+#include "contact_ode/integrators/run_result.hpp"
 #include "process.hpp"
-#include "run_result.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>

@@ -12,18 +12,18 @@
 // Outputs in --out (default results/k_sweep): k_sweep.{csv,md,tex}, exponents.{csv,md,tex},
 // penetration.{png,pdf,gp}, duration.{png,pdf,gp}, cost.{png,pdf,gp}, stable_dt.{png,pdf,gp},
 // meta.json. Exit codes: 0, 1 solver failure, 2 bad input.
-#include "ball_drop.hpp"
+#include "contact_ode/analysis/fit.hpp"
+#include "contact_ode/analysis/metrics.hpp"
+#include "contact_ode/analysis/references.hpp"
+#include "contact_ode/analysis/table.hpp"
+#include "contact_ode/integrators/method_registry.hpp"
+#include "contact_ode/models/ball_drop.hpp"
+#include "contact_ode/models/law_registry.hpp"
 #include "experiment.hpp"
 #include "figure.hpp"
-#include "fit.hpp"
-#include "law_registry.hpp"
-#include "method_registry.hpp"
-#include "metrics.hpp"
 #include "output.hpp"
 #include "process.hpp"
 #include "progress.hpp"
-#include "references.hpp"
-#include "table.hpp"
 
 #include <fmt/format.h>
 

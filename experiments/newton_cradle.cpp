@@ -15,18 +15,18 @@
 // Outputs in --out (default results/newton_cradle): velocities.{csv,md,tex},
 // final_velocities.{png,pdf,gp} (touching balls), energy_share.{png,pdf,gp} (against spacing),
 // meta.json. Exit codes: 0, 1 solver failure, 2 bad input.
-#include "ball_chain.hpp"
+#include "contact_ode/analysis/metrics.hpp"
+#include "contact_ode/analysis/references.hpp"
+#include "contact_ode/analysis/table.hpp"
+#include "contact_ode/integrators/game_step.hpp"
+#include "contact_ode/integrators/method_registry.hpp"
+#include "contact_ode/integrators/penalty.hpp"
+#include "contact_ode/models/ball_chain.hpp"
 #include "experiment.hpp"
 #include "figure.hpp"
-#include "game_step.hpp"
-#include "method_registry.hpp"
-#include "metrics.hpp"
 #include "output.hpp"
-#include "penalty.hpp"
 #include "process.hpp"
 #include "progress.hpp"
-#include "references.hpp"
-#include "table.hpp"
 
 #include <fmt/format.h>
 

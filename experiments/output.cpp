@@ -1,9 +1,9 @@
 #include "output.hpp"
 
-#include "fit.hpp"
-#include "integrator.hpp"
+#include "contact_ode/analysis/fit.hpp"
+#include "contact_ode/analysis/table.hpp"
+#include "contact_ode/integrators/integrator.hpp"
 #include "process.hpp"
-#include "table.hpp"
 
 #include <fmt/format.h>
 #include <CLI/Version.hpp>

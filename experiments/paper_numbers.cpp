@@ -5,9 +5,9 @@
 // partial study.
 // Usage: paper_numbers --results DIR --out FILE.  Exit codes: 0, 1 a number is missing, 2 bad input.
 #include "cli.hpp"
+#include "contact_ode/analysis/table.hpp"
 #include "output.hpp"
 #include "process.hpp"
-#include "table.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>

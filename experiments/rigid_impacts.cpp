@@ -13,14 +13,14 @@
 // Outputs in --out (default results/rigid_impacts): conservation.{csv,md,tex},
 // conservation.{png,pdf,gp} (largest error over the scenes against step or tolerance),
 // meta.json. Exit codes: 0, 1 solver failure, 2 bad input.
+#include "contact_ode/analysis/table.hpp"
+#include "contact_ode/models/rigid/rigid_scenes.hpp"
 #include "experiment.hpp"
 #include "figure.hpp"
 #include "output.hpp"
 #include "process.hpp"
 #include "progress.hpp"
-#include "rigid_scenes.hpp"
 #include "sweep_setting.hpp"
-#include "table.hpp"
 
 #include <fmt/format.h>
 

@@ -10,15 +10,15 @@
 // method), observables.csv (scene, method, quantity, value), penetration.{png,pdf,gp} (largest
 // penetration per scene and method), meta.json.
 // Exit codes: 0 success, 1 solver failure, 2 bad input (option, value, accepted range).
-#include "rigid_scenes.hpp"
+#include "contact_ode/models/rigid/rigid_scenes.hpp"
+#include "contact_ode/analysis/metrics.hpp"
+#include "contact_ode/analysis/table.hpp"
 #include "experiment.hpp"
 #include "figure.hpp"
-#include "metrics.hpp"
 #include "output.hpp"
 #include "process.hpp"
 #include "progress.hpp"
 #include "sweep_setting.hpp"
-#include "table.hpp"
 
 #include <fmt/format.h>
 

@@ -9,14 +9,14 @@
 // keeps it within (1 + w dt/2)/(1 - w dt/2) of the entry value below w dt = 2 and is unstable above.
 // Outputs in --out (default results/stability_map): stability.{csv,md,tex},
 // restitution.{png,pdf,gp}, meta.json. Exit codes: 0, 1 failure, 2 bad input.
-#include "ball_drop.hpp"
+#include "contact_ode/analysis/table.hpp"
+#include "contact_ode/integrators/game_step.hpp"
+#include "contact_ode/models/ball_drop.hpp"
 #include "experiment.hpp"
 #include "figure.hpp"
-#include "game_step.hpp"
 #include "output.hpp"
 #include "process.hpp"
 #include "progress.hpp"
-#include "table.hpp"
 
 #include <fmt/format.h>
 

@@ -1,6 +1,6 @@
 #include "study_manifest.hpp"
 
-#include "table.hpp"
+#include "contact_ode/analysis/table.hpp"
 
 #include <fmt/format.h>
 

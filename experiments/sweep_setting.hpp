@@ -2,8 +2,8 @@
 // The one setting a sweep varies, set the same way in every experiment: a fixed step, or a
 // relative tolerance with atol = rtol / 100 (the study's states are of order one in SI units:
 // metres and metres per second).
-#include "integrator.hpp"
-#include "method_registry.hpp"
+#include "contact_ode/integrators/integrator.hpp"
+#include "contact_ode/integrators/method_registry.hpp"
 
 #include <string>
 #include <vector>

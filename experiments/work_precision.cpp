@@ -17,19 +17,19 @@
 // from 1/16 of a contact's duration (w dt = pi/16: 2.0e-3 s for the ball, 4.4e-5 s for the chain).
 // Outputs in --out (default results/work_precision): work_precision.{csv,md,tex},
 // {ball,chain}_{rhs,time}.{png,pdf,gp}, meta.json. Exit codes: 0, 1 solver failure, 2 bad input.
-#include "ball_chain.hpp"
-#include "ball_drop.hpp"
-#include "event_driven.hpp"
+#include "contact_ode/analysis/references.hpp"
+#include "contact_ode/analysis/table.hpp"
+#include "contact_ode/integrators/event_driven.hpp"
+#include "contact_ode/integrators/game_step.hpp"
+#include "contact_ode/integrators/penalty.hpp"
+#include "contact_ode/models/ball_chain.hpp"
+#include "contact_ode/models/ball_drop.hpp"
 #include "experiment.hpp"
 #include "figure.hpp"
-#include "game_step.hpp"
 #include "output.hpp"
-#include "penalty.hpp"
 #include "process.hpp"
 #include "progress.hpp"
-#include "references.hpp"
 #include "sweep_setting.hpp"
-#include "table.hpp"
 
 #include <fmt/format.h>
 

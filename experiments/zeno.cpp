@@ -7,16 +7,16 @@
 // spring at the static deflection m g / k; the game loop's contact flickers every step at rest.
 // Outputs in --out (default results/zeno): zeno.{csv,md,tex}, heights.{png,pdf,gp}, meta.json.
 // Exit codes: 0, 1 solver failure, 2 bad input.
-#include "ball_drop.hpp"
+#include "contact_ode/analysis/references.hpp"
+#include "contact_ode/analysis/table.hpp"
+#include "contact_ode/integrators/method_registry.hpp"
+#include "contact_ode/models/ball_drop.hpp"
+#include "contact_ode/models/law_registry.hpp"
 #include "experiment.hpp"
 #include "figure.hpp"
-#include "law_registry.hpp"
-#include "method_registry.hpp"
 #include "output.hpp"
 #include "process.hpp"
 #include "progress.hpp"
-#include "references.hpp"
-#include "table.hpp"
 
 #include <fmt/format.h>
 

@@ -1,4 +1,4 @@
-#include "capabilities.hpp"
+#include "contact_ode/integrators/capabilities.hpp"
 
 #include <fmt/format.h>
 

@@ -1,9 +1,9 @@
-#include "event_driven.hpp"
+#include "contact_ode/integrators/event_driven.hpp"
 
-#include "method_registry.hpp"
+#include "contact_ode/integrators/method_registry.hpp"
 
+#include "contact_ode/integrators/run_recorder.hpp"
 #include "integrator_driver.hpp"
-#include "run_recorder.hpp"
 
 #include <fmt/format.h>
 

@@ -1,4 +1,4 @@
-#include "fixed_step.hpp"
+#include "contact_ode/integrators/fixed_step.hpp"
 
 namespace contact {
 

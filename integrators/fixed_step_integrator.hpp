@@ -2,8 +2,8 @@
 // The fixed-step schemes (fixed_step.hpp) behind the Integrator interface: steps on the grid
 // t0 + n dt from the last (re)start, outputs and roots inside a step by re-stepping from its
 // start with the shorter step (the scheme's own dense output).
-#include "fixed_step.hpp"
-#include "integrator.hpp"
+#include "contact_ode/integrators/fixed_step.hpp"
+#include "contact_ode/integrators/integrator.hpp"
 
 namespace contact {
 

@@ -1,9 +1,9 @@
-#include "game_step.hpp"
+#include "contact_ode/integrators/game_step.hpp"
 
-#include "method_registry.hpp"
+#include "contact_ode/integrators/method_registry.hpp"
 
-#include "capabilities.hpp"
-#include "run_recorder.hpp"
+#include "contact_ode/integrators/capabilities.hpp"
+#include "contact_ode/integrators/run_recorder.hpp"
 
 #include <fmt/format.h>
 

@@ -1,4 +1,4 @@
-#include "gsl_handles.hpp"
+#include "contact_ode/integrators/gsl_handles.hpp"
 
 #include <gsl/gsl_errno.h>
 

@@ -1,6 +1,6 @@
 #include "gsl_integrator.hpp"
 
-#include "gsl_handles.hpp"
+#include "contact_ode/integrators/gsl_handles.hpp"
 #include "stepping_integrator.hpp"
 
 #include <fmt/format.h>

@@ -9,7 +9,7 @@
 // the step instead. Outputs and roots inside a step come from re-stepping from its start with
 // a separate stepper (one-step methods) or, for the multistep msbdf, from the cubic Hermite
 // interpolant of the step's end values and slopes (error O(h^4) on the step).
-#include "integrator.hpp"
+#include "contact_ode/integrators/integrator.hpp"
 
 namespace contact {
 

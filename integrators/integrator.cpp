@@ -1,6 +1,6 @@
-#include "integrator.hpp"
+#include "contact_ode/integrators/integrator.hpp"
 
-#include "registry.hpp"
+#include "contact_ode/models/registry.hpp"
 
 #include "fixed_step_integrator.hpp"
 #include "gsl_integrator.hpp"

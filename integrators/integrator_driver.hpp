@@ -3,9 +3,9 @@
 // through the recorder's output times, stop at each root, let the paradigm act on it (log it,
 // switch a contact mode, apply an impulse), restart the integrator when the paradigm changed the
 // state or the right-hand side, and end the run with the solver's status on failure.
-#include "integrator.hpp"
-#include "mechanical_system.hpp"
-#include "run_recorder.hpp"
+#include "contact_ode/integrators/integrator.hpp"
+#include "contact_ode/integrators/run_recorder.hpp"
+#include "contact_ode/models/mechanical_system.hpp"
 
 #include <functional>
 

@@ -1,8 +1,8 @@
-#include "method_registry.hpp"
+#include "contact_ode/integrators/method_registry.hpp"
 
-#include "registry.hpp"
+#include "contact_ode/models/registry.hpp"
 
-#include "registry.hpp"
+#include "contact_ode/models/registry.hpp"
 
 #include <fmt/format.h>
 

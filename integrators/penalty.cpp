@@ -1,8 +1,8 @@
-#include "penalty.hpp"
+#include "contact_ode/integrators/penalty.hpp"
 
-#include "method_registry.hpp"
+#include "contact_ode/integrators/method_registry.hpp"
 
-#include "capabilities.hpp"
+#include "contact_ode/integrators/capabilities.hpp"
 #include "integrator_driver.hpp"
 
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "run_recorder.hpp"
+#include "contact_ode/integrators/run_recorder.hpp"
 
 #include <fmt/format.h>
 

@@ -1,4 +1,4 @@
-#include "status.hpp"
+#include "contact_ode/integrators/status.hpp"
 
 #include <fmt/format.h>
 

@@ -1,6 +1,6 @@
 #include "stepping_integrator.hpp"
 
-#include "gsl_handles.hpp"
+#include "contact_ode/integrators/gsl_handles.hpp"
 
 #include <fmt/format.h>
 #include <gsl/gsl_errno.h>

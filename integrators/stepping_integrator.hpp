@@ -5,7 +5,7 @@
 // root function between the current time and the step's end is located by GSL's Brent solver on
 // g(t, y(t)). A root is reported at the first time where g has its new sign (as CVODE does), and
 // the next advance() continues from there through the rest of the step.
-#include "integrator.hpp"
+#include "contact_ode/integrators/integrator.hpp"
 
 namespace contact {
 

@@ -3,8 +3,8 @@
 // user_data back to a CallbackData, calls the OdeSystem through Eigen maps, and turns a
 // non-finite result or an exception into a refusal the solver reports, never into a NaN that
 // propagates.
-#include "ode_system.hpp"
-#include "status.hpp"
+#include "contact_ode/integrators/ode_system.hpp"
+#include "contact_ode/integrators/status.hpp"
 
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_matrix.h>

@@ -1,6 +1,6 @@
 #include "sundials_handles.hpp"
 
-#include "status.hpp"
+#include "contact_ode/integrators/status.hpp"
 
 namespace contact::sundials {
 

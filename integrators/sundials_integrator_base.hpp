@@ -3,7 +3,7 @@
 // context, the state vector and linear system, statistics summed across re-initialisations, root
 // directions re-applied after each one, and failures turned into SolverFailure. A concrete
 // integrator supplies only its own SUNDIALS calls.
-#include "integrator.hpp"
+#include "contact_ode/integrators/integrator.hpp"
 #include "sundials_callbacks.hpp"
 #include "sundials_handles.hpp"
 #include "sundials_linear_solver.hpp"

@@ -6,7 +6,7 @@
 //   arkode-dirk              ARKStep, diagonally implicit RK of order 4 (SDIRK)
 //   arkode-imex              ARKStep, additive RK of order 4: OdeSystem::implicit_rhs implicit,
 //                            the rest explicit
-#include "integrator.hpp"
+#include "contact_ode/integrators/integrator.hpp"
 
 namespace contact {
 

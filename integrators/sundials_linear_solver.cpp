@@ -8,7 +8,7 @@
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
-#include "status.hpp"
+#include "contact_ode/integrators/status.hpp"
 
 #include <fmt/format.h>
 

@@ -1,7 +1,7 @@
-#include "ball_drop.hpp"
+#include "contact_ode/models/ball_drop.hpp"
 
-#include "law_registry.hpp"
-#include "scene_registry.hpp"
+#include "contact_ode/models/law_registry.hpp"
+#include "contact_ode/models/scene_registry.hpp"
 
 #include <cmath>
 #include <limits>

@@ -1,4 +1,4 @@
-#include "contact_law.hpp"
+#include "contact_ode/models/contact_law.hpp"
 
 #include <fmt/format.h>
 

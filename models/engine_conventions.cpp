@@ -1,4 +1,4 @@
-#include "engine_conventions.hpp"
+#include "contact_ode/models/engine_conventions.hpp"
 
 #include <cmath>
 #include <limits>

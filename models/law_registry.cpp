@@ -1,6 +1,6 @@
-#include "law_registry.hpp"
+#include "contact_ode/models/law_registry.hpp"
 
-#include "registry.hpp"
+#include "contact_ode/models/registry.hpp"
 
 #include <fmt/format.h>
 

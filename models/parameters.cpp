@@ -1,4 +1,4 @@
-#include "parameters.hpp"
+#include "contact_ode/models/parameters.hpp"
 
 #include <fmt/format.h>
 

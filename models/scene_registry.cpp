@@ -1,6 +1,6 @@
-#include "scene_registry.hpp"
+#include "contact_ode/models/scene_registry.hpp"
 
-#include "registry.hpp"
+#include "contact_ode/models/registry.hpp"
 
 #include <fmt/format.h>
 

@@ -1,6 +1,6 @@
-#include "spring_mass.hpp"
+#include "contact_ode/models/spring_mass.hpp"
 
-#include "scene_registry.hpp"
+#include "contact_ode/models/scene_registry.hpp"
 
 namespace contact {
 

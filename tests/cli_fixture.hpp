@@ -2,7 +2,7 @@
 // A temporary working directory per test and a way to run an experiment executable in it,
 // capturing its exit code, stdout and stderr: the experiments' command-line contract is tested
 // the way a user meets it.
-#include "table.hpp"
+#include "contact_ode/analysis/table.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,10 +1,10 @@
 // The stiffness advisor and the engine conventions.
-#include "ball_drop.hpp"
-#include "contact_advisor.hpp"
-#include "engine_conventions.hpp"
-#include "fixed_step.hpp"
-#include "game_step.hpp"
-#include "references.hpp"
+#include "contact_ode/analysis/contact_advisor.hpp"
+#include "contact_ode/analysis/references.hpp"
+#include "contact_ode/integrators/fixed_step.hpp"
+#include "contact_ode/integrators/game_step.hpp"
+#include "contact_ode/models/ball_drop.hpp"
+#include "contact_ode/models/engine_conventions.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // The N-ball chain: its analytic Jacobian, band and sparse storage, every linear solver on the
 // same penalty run, and Newton's cradle by sequential impulses.
-#include "ball_chain.hpp"
-#include "event_driven.hpp"
-#include "penalty.hpp"
+#include "contact_ode/integrators/event_driven.hpp"
+#include "contact_ode/integrators/penalty.hpp"
+#include "contact_ode/models/ball_chain.hpp"
 #include "sundials_linear_solver.hpp"
 
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
 // Contact laws: the restitution <-> damping-ratio relation and the laws' values.
-#include "contact_law.hpp"
-#include "contact_measurement.hpp"
-#include "references.hpp"
+#include "contact_ode/analysis/contact_measurement.hpp"
+#include "contact_ode/analysis/references.hpp"
+#include "contact_ode/models/contact_law.hpp"
 
 #include <gtest/gtest.h>
 

@@ -2,8 +2,8 @@
 // their targets (closed form: the dashpot formula is exact without gravity), and bad input is
 // refused.
 #include "cli_fixture.hpp"
-#include "contact_law.hpp"
-#include "references.hpp"
+#include "contact_ode/analysis/references.hpp"
+#include "contact_ode/models/contact_law.hpp"
 
 #include <cmath>
 

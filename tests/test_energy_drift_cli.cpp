@@ -1,6 +1,6 @@
 // energy_drift: the signs and rates of energy error that numerical analysis predicts.
 #include "cli_fixture.hpp"
-#include "fit.hpp"
+#include "contact_ode/analysis/fit.hpp"
 
 #include <cmath>
 

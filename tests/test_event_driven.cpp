@@ -1,9 +1,9 @@
 // Event-driven impulses on the ball drop against the closed-form bounce sequence
 // (analysis/references.hpp): T1 = t0, T(n+1) = T(n) + 2 e^n t0, h_n = e^{2n} h0,
 // t_inf = t0 (1+e)/(1-e).
-#include "ball_drop.hpp"
-#include "event_driven.hpp"
-#include "references.hpp"
+#include "contact_ode/analysis/references.hpp"
+#include "contact_ode/integrators/event_driven.hpp"
+#include "contact_ode/models/ball_drop.hpp"
 
 #include <gtest/gtest.h>
 

@@ -12,8 +12,8 @@
 // largest energy is E_0 / (1 - hw/2), approached as the iterates sweep the ellipse I = const.
 // For hw > 2 one eigenvalue is real with |l| = ((hw)^2 - 2 + hw sqrt((hw)^2 - 4)) / 2 > 1, and the
 // energy grows asymptotically by l^2 per step.
-#include "fixed_step.hpp"
-#include "spring_mass.hpp"
+#include "contact_ode/integrators/fixed_step.hpp"
+#include "contact_ode/models/spring_mass.hpp"
 
 #include <gtest/gtest.h>
 

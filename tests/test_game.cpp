@@ -1,8 +1,8 @@
 // Game-style resolution (the seed's projection + impulse) on the ball drop.
-#include "ball_drop.hpp"
-#include "game_step.hpp"
-#include "references.hpp"
-#include "spring_mass.hpp"
+#include "contact_ode/analysis/references.hpp"
+#include "contact_ode/integrators/game_step.hpp"
+#include "contact_ode/models/ball_drop.hpp"
+#include "contact_ode/models/spring_mass.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,12 +1,12 @@
 // Every integrator behind the one interface: observed order, tolerance behaviour, agreement on
 // the ball drop, failure paths, bad options.
-#include "ball_drop.hpp"
-#include "fit.hpp"
-#include "integrator.hpp"
+#include "contact_ode/analysis/fit.hpp"
+#include "contact_ode/analysis/references.hpp"
+#include "contact_ode/integrators/integrator.hpp"
+#include "contact_ode/integrators/penalty.hpp"
+#include "contact_ode/models/ball_drop.hpp"
+#include "contact_ode/models/spring_mass.hpp"
 #include "integrator_driver.hpp"
-#include "penalty.hpp"
-#include "references.hpp"
-#include "spring_mass.hpp"
 
 #include <gtest/gtest.h>
 

@@ -5,8 +5,8 @@
 // Kelvin–Voigt, and Hunt–Crossley with n = 1, which is bilinear: each column moves one entry), so
 // only rounding remains; the Hertz force K delta^{3/2} (1 + chi delta_dot) / m has
 // |d^3/d delta^3| = (3/8) K delta^{-3/2} |1 + chi delta_dot| / m in the position column.
-#include "ball_drop.hpp"
-#include "spring_mass.hpp"
+#include "contact_ode/models/ball_drop.hpp"
+#include "contact_ode/models/spring_mass.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // newton_cradle: the exchange laws the cradle must obey.
 #include "cli_fixture.hpp"
-#include "contact_law.hpp"
+#include "contact_ode/models/contact_law.hpp"
 
 #include <array>
 #include <functional>

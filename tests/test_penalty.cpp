@@ -7,12 +7,12 @@
 // ~1e-8 relative. Root location adds ~100 ulps of t. A relative tolerance of 1e-6 leaves two
 // orders of margin and is still 10^3-10^4 times smaller than the effects the tests separate
 // (e.g. the gravity correction to the contact time).
-#include "ball_drop.hpp"
-#include "event_driven.hpp"
-#include "fit.hpp"
-#include "metrics.hpp"
-#include "penalty.hpp"
-#include "references.hpp"
+#include "contact_ode/analysis/fit.hpp"
+#include "contact_ode/analysis/metrics.hpp"
+#include "contact_ode/analysis/references.hpp"
+#include "contact_ode/integrators/event_driven.hpp"
+#include "contact_ode/integrators/penalty.hpp"
+#include "contact_ode/models/ball_drop.hpp"
 
 #include <gtest/gtest.h>
 

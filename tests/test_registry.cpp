@@ -1,10 +1,10 @@
 // The registries and solve(): every scene, law and method reachable by name; a method refuses a
 // scene that lacks a capability it needs, naming it; solve() by name gives the physics the
 // paradigm functions give (closed forms checked through the registry route).
-#include "law_registry.hpp"
-#include "method_registry.hpp"
-#include "references.hpp"
-#include "scene_registry.hpp"
+#include "contact_ode/analysis/references.hpp"
+#include "contact_ode/integrators/method_registry.hpp"
+#include "contact_ode/models/law_registry.hpp"
+#include "contact_ode/models/scene_registry.hpp"
 
 #include <gtest/gtest.h>
 

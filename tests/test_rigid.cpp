@@ -9,7 +9,7 @@
 // change is -(1 - e^2) v^2 / (2k), zero for e = 1, and for a central impact (no angular terms)
 // k = 1/mu: a loss of mu (1 - e^2) v^2 / 2 with mu = m_a m_b / (m_a + m_b).
 // Tolerances: a handful of floating-point operations per quantity: 1e-13 relative.
-#include "rigid_resolution.hpp"
+#include "contact_ode/models/rigid/rigid_resolution.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,10 +1,10 @@
 // Rigid scenes under the three paradigms.
-#include "event_driven.hpp"
-#include "fit.hpp"
-#include "game_step.hpp"
-#include "penalty.hpp"
-#include "rigid_resolution.hpp"
-#include "rigid_scene.hpp"
+#include "contact_ode/analysis/fit.hpp"
+#include "contact_ode/integrators/event_driven.hpp"
+#include "contact_ode/integrators/game_step.hpp"
+#include "contact_ode/integrators/penalty.hpp"
+#include "contact_ode/models/rigid/rigid_resolution.hpp"
+#include "contact_ode/models/rigid/rigid_scene.hpp"
 
 #include <gtest/gtest.h>
 

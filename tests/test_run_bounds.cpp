@@ -1,12 +1,12 @@
 // Runs that used to hang, overflow, grow without bound or succeed with a wrong answer: each now
 // ends in bounded work, and a run that cannot give a right answer says so with a typed status.
-#include "ball_chain.hpp"
-#include "ball_drop.hpp"
-#include "event_driven.hpp"
-#include "game_step.hpp"
+#include "contact_ode/analysis/references.hpp"
+#include "contact_ode/integrators/event_driven.hpp"
+#include "contact_ode/integrators/game_step.hpp"
+#include "contact_ode/integrators/penalty.hpp"
+#include "contact_ode/models/ball_chain.hpp"
+#include "contact_ode/models/ball_drop.hpp"
 #include "integrator_driver.hpp"
-#include "penalty.hpp"
-#include "references.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // Solver failures become typed results carrying the time reached and CVODE's message.
-#include "ball_drop.hpp"
-#include "event_driven.hpp"
-#include "penalty.hpp"
+#include "contact_ode/integrators/event_driven.hpp"
+#include "contact_ode/integrators/penalty.hpp"
+#include "contact_ode/models/ball_drop.hpp"
 
 #include <gtest/gtest.h>
 

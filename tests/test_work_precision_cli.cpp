@@ -1,6 +1,6 @@
 // work_precision: the exact limits its measurements must reach.
 #include "cli_fixture.hpp"
-#include "fit.hpp"
+#include "contact_ode/analysis/fit.hpp"
 
 #include <cmath>
 

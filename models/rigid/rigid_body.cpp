@@ -1,4 +1,4 @@
-#include "rigid_body.hpp"
+#include "contact_ode/models/rigid/rigid_body.hpp"
 
 #include <fmt/format.h>
 

@@ -1,4 +1,4 @@
-#include "rigid_contacts.hpp"
+#include "contact_ode/models/rigid/rigid_contacts.hpp"
 
 #include <cmath>
 

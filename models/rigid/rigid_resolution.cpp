@@ -1,4 +1,4 @@
-#include "rigid_resolution.hpp"
+#include "contact_ode/models/rigid/rigid_resolution.hpp"
 
 namespace contact::rigid {
 

@@ -1,6 +1,6 @@
-#include "rigid_scene.hpp"
+#include "contact_ode/models/rigid/rigid_scene.hpp"
 
-#include "rigid_resolution.hpp"
+#include "contact_ode/models/rigid/rigid_resolution.hpp"
 
 #include <fmt/format.h>
 

@@ -1,8 +1,8 @@
-#include "rigid_scenes.hpp"
+#include "contact_ode/models/rigid/rigid_scenes.hpp"
 
-#include "registry.hpp"
+#include "contact_ode/models/registry.hpp"
 
-#include "scene_registry.hpp"
+#include "contact_ode/models/scene_registry.hpp"
 
 #include <fmt/format.h>
 

@@ -3,8 +3,8 @@
 // speed V [m/s], no gravity, and the penalty ODE is integrated by CVODE BDF at a tight tolerance
 // (rtol 1e-10 by default) with the contact's begin and end located by root finding. Used where no
 // closed form exists: the restitution a law really achieves, the advisor's check of its answer.
-#include "contact_law.hpp"
-#include "references.hpp"
+#include "contact_ode/analysis/references.hpp"
+#include "contact_ode/models/contact_law.hpp"
 
 namespace contact {
 

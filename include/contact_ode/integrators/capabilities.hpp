@@ -3,7 +3,7 @@
 // dynamics; contact geometry and an impulse map are found by type. A scene without contacts gets
 // an empty geometry, so a paradigm runs it as a plain ODE; a paradigm that needs an impulse map
 // and meets a scene without one refuses it by name.
-#include "mechanical_system.hpp"
+#include "contact_ode/models/mechanical_system.hpp"
 
 #include <string_view>
 

@@ -11,8 +11,8 @@
 //
 // Impulses: the floor has inverse mass 0, so projection moves the ball by the full overlap and
 // the seed's impulse J = -(1+e) v / m^-1 gives v+ = -e v.
-#include "contact_law.hpp"
-#include "mechanical_system.hpp"
+#include "contact_ode/models/contact_law.hpp"
+#include "contact_ode/models/mechanical_system.hpp"
 
 namespace contact {
 

@@ -3,7 +3,7 @@
 // empty: a sparse Jacobian df/dy with the band that holds it, and root (switching) functions
 // g(t, y) whose sign changes the integrator locates. An IMEX split f = f_explicit + f_implicit
 // is optional too.
-#include "linear_algebra.hpp"
+#include "contact_ode/models/linear_algebra.hpp"
 
 #include <cstddef>
 #include <functional>

@@ -15,8 +15,8 @@
 //   energy    sum m v^2 / 2 + stored spring energy
 // State interleaved as y = [u0, v0, u1, v1, ...], so the Jacobian is banded (3 below the diagonal,
 // 2 above): band and sparse solvers scale linearly in N.
-#include "contact_law.hpp"
-#include "mechanical_system.hpp"
+#include "contact_ode/models/contact_law.hpp"
+#include "contact_ode/models/mechanical_system.hpp"
 
 namespace contact {
 

@@ -23,10 +23,10 @@
 // Two flights: any Integrator with root finding (any model), or the model's closed form (AnalyticFlight),
 // the exact reference. With the closed form a resting contact holds the whole state, which is
 // exact for one body on a static surface, the case closed forms cover here.
-#include "integrator.hpp"
-#include "mechanical_system.hpp"
-#include "run_recorder.hpp"
-#include "run_result.hpp"
+#include "contact_ode/integrators/integrator.hpp"
+#include "contact_ode/integrators/run_recorder.hpp"
+#include "contact_ode/integrators/run_result.hpp"
+#include "contact_ode/models/mechanical_system.hpp"
 
 namespace contact {
 

@@ -14,7 +14,7 @@
 //   Resting  held on the surface: the normal motion is frozen (event-driven rest after Zeno).
 // Integrators that locate the switching roots pass the modes they hold; others use
 // modes_from_state(), which reads them off the sign of each switching function.
-#include "linear_algebra.hpp"
+#include "contact_ode/models/linear_algebra.hpp"
 
 #include <cstddef>
 #include <cstdint>

@@ -9,7 +9,7 @@
 //                         order 2 for position-dependent forces (first order in a damping term)
 //   RK4                   the classical four-stage Runge–Kutta method                  order 4
 // Each full right-hand-side call is counted, also where a scheme uses only half of it.
-#include "ode_system.hpp"
+#include "contact_ode/integrators/ode_system.hpp"
 
 #include <string_view>
 

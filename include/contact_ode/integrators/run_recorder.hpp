@@ -2,8 +2,8 @@
 // Builds a RunResult while a method runs: samples on a uniform output grid, the contact log
 // and the apexes. Shared by the penalty, game-step and event-driven paradigms so that all three
 // report the same things the same way.
-#include "mechanical_system.hpp"
-#include "run_result.hpp"
+#include "contact_ode/integrators/run_result.hpp"
+#include "contact_ode/models/mechanical_system.hpp"
 
 #include <chrono>
 

@@ -9,7 +9,7 @@
 //   wedge          a striker meets two balls at once (the sequential rule's order-dependence)
 // Parameters: the moving ball's mass, radius and elasticity, the cuboid's half extents and
 // orientation, and the penalty stiffness (Kelvin–Voigt damping tuned to the scene's nominal e).
-#include "rigid_scene.hpp"
+#include "contact_ode/models/rigid/rigid_scene.hpp"
 
 #include <functional>
 #include <string>

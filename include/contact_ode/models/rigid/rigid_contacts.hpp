@@ -10,7 +10,7 @@
 // Convention (the tutorial's): the normal points from body a to body b; resolving moves a along
 // -normal and b along +normal. The contact point is the middle of the overlap; lever arms are
 // point - centre, and zero for bodies that do not rotate (axis-aligned boxes, static bodies).
-#include "rigid_body.hpp"
+#include "contact_ode/models/rigid/rigid_body.hpp"
 
 #include <vector>
 

@@ -31,8 +31,8 @@
 //                          h = 2 sqrt(eps / (1 + eps)) / w. Exact for Hooke; for other laws (a
 //                          dashpot breaks the conserved I) the step is checked by a scan over 32
 //                          entry phases and shrunk until it meets the budget.
-#include "contact_law.hpp"
-#include "engine_conventions.hpp"
+#include "contact_ode/models/contact_law.hpp"
+#include "contact_ode/models/engine_conventions.hpp"
 
 #include <optional>
 #include <string>

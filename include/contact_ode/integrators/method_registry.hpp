@@ -10,10 +10,10 @@
 // A method family is defined beside its paradigm (penalty.cpp, game_step.cpp, event_driven.cpp)
 // as a function returning its entries; method_registry.cpp lists the families, one line each.
 // Experiments, tests, benchmarks and the Python module enumerate methods from here only.
-#include "integrator.hpp"
-#include "mechanical_system.hpp"
-#include "run_recorder.hpp"
-#include "run_result.hpp"
+#include "contact_ode/integrators/integrator.hpp"
+#include "contact_ode/integrators/run_recorder.hpp"
+#include "contact_ode/integrators/run_result.hpp"
+#include "contact_ode/models/mechanical_system.hpp"
 
 #include <functional>
 #include <string>

@@ -3,7 +3,7 @@
 //   y = [x, v],  x' = v,  v' = -(k/m) x,  energy (m v^2 + k x^2)/2,  omega = sqrt(k/m).
 // The harmonic oscillator on which the fixed-step schemes' energy behaviour has closed forms.
 // Dynamics only: it has no contacts, so it offers neither contact geometry nor an impulse map.
-#include "mechanical_system.hpp"
+#include "contact_ode/models/mechanical_system.hpp"
 
 #include <cmath>
 

@@ -9,7 +9,7 @@
 //                 r_b].n), v_a -= m_a^-1 J n, w_a -= I_a^-1 (r_a x J n), v_b += m_b^-1 J n, w_b += I_b^-1
 //                 (r_b x J n), applied only while approaching (v_r.n < 0): on a separating contact it would
 //                 pull the bodies back together.
-#include "rigid_contacts.hpp"
+#include "contact_ode/models/rigid/rigid_contacts.hpp"
 
 namespace contact::rigid {
 

@@ -3,9 +3,9 @@
 // odeiv2. Each integrates an OdeSystem towards an output time, stops at the first root of its
 // root functions on the way, can be restarted from an edited state, and reports the same
 // SolverStats. Paradigms (penalty, event-driven) drive an Integrator without knowing which.
-#include "ode_system.hpp"
-#include "solver_stats.hpp"
-#include "status.hpp"
+#include "contact_ode/integrators/ode_system.hpp"
+#include "contact_ode/integrators/solver_stats.hpp"
+#include "contact_ode/integrators/status.hpp"
 
 #include <memory>
 #include <string>

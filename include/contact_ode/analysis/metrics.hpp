@@ -1,6 +1,6 @@
 #pragma once
 // Metrics of one run. All relative energies are (E - E0) / |E0|.
-#include "run_result.hpp"
+#include "contact_ode/integrators/run_result.hpp"
 
 #include <optional>
 #include <vector>

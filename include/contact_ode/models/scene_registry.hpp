@@ -2,8 +2,8 @@
 // Every scene by name: one registry for the 1-D scenes and the rigid-body ones, shared by
 // experiments, tests, benchmarks and the Python module. A new scene is one file defining its
 // model and its entry, and one line in scene_registry.cpp.
-#include "mechanical_system.hpp"
-#include "parameters.hpp"
+#include "contact_ode/models/mechanical_system.hpp"
+#include "contact_ode/models/parameters.hpp"
 
 #include <functional>
 #include <memory>

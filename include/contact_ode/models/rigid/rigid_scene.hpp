@@ -15,9 +15,9 @@
 // No analytic Jacobian (rotations make it long; implicit integrators use difference quotients,
 // which test_rigid_scene checks). The rotation uses q / |q|; normalize() restores unit
 // quaternions after fixed steps.
-#include "contact_law.hpp"
-#include "mechanical_system.hpp"
-#include "rigid_contacts.hpp"
+#include "contact_ode/models/contact_law.hpp"
+#include "contact_ode/models/mechanical_system.hpp"
+#include "contact_ode/models/rigid/rigid_contacts.hpp"
 
 #include <functional>
 

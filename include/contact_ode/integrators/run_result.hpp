@@ -1,9 +1,9 @@
 #pragma once
 // What every method returns: samples at requested times, a contact log, apexes, statistics and
 // how the run ended. Plain values; analysis/ turns them into metrics.
-#include "linear_algebra.hpp"
-#include "solver_stats.hpp"
-#include "status.hpp"
+#include "contact_ode/integrators/solver_stats.hpp"
+#include "contact_ode/integrators/status.hpp"
+#include "contact_ode/models/linear_algebra.hpp"
 
 #include <cstddef>
 #include <string>

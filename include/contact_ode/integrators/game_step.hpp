@@ -25,10 +25,10 @@
 // Contact times are the linear interpolation of the detection function's zero between two step
 // ends, so they carry an O(dt) error by construction; apexes are located where the gap rate,
 // interpolated linearly between step ends, falls through zero.
-#include "fixed_step.hpp"
-#include "mechanical_system.hpp"
-#include "run_recorder.hpp"
-#include "run_result.hpp"
+#include "contact_ode/integrators/fixed_step.hpp"
+#include "contact_ode/integrators/run_recorder.hpp"
+#include "contact_ode/integrators/run_result.hpp"
+#include "contact_ode/models/mechanical_system.hpp"
 
 #include <functional>
 

@@ -2,8 +2,8 @@
 // Every contact law by name, with what it is tuned from. A new law is a value type in
 // contact_law.hpp and one entry in law_registry.cpp; experiments, the advisor, tests and
 // benchmarks enumerate laws from here only.
-#include "contact_law.hpp"
-#include "parameters.hpp"
+#include "contact_ode/models/contact_law.hpp"
+#include "contact_ode/models/parameters.hpp"
 
 #include <functional>
 #include <string>

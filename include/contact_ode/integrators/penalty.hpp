@@ -10,10 +10,10 @@
 // state at each call (the kink is stepped over) and the roots are only logged, which is what
 // convergence studies compare against. Gap-rate roots give the apexes (free flight) and the
 // maximum penetration (in contact) exactly.
-#include "integrator.hpp"
-#include "mechanical_system.hpp"
-#include "run_recorder.hpp"
-#include "run_result.hpp"
+#include "contact_ode/integrators/integrator.hpp"
+#include "contact_ode/integrators/run_recorder.hpp"
+#include "contact_ode/integrators/run_result.hpp"
+#include "contact_ode/models/mechanical_system.hpp"
 
 namespace contact {
 
