@@ -46,6 +46,15 @@ double fitted_order(const std::vector<double>& h, const std::vector<double>& err
   return x.size() >= 2 ? fit_power_law(x, y).exponent : std::nan("");
 }
 
+double fitted_order(const std::vector<ConvergencePoint>& points, double floor, std::size_t rows) {
+  std::vector<double> h, err;
+  for (const auto& p : points) {
+    h.push_back(p.step);
+    err.push_back(p.error);
+  }
+  return fitted_order(h, err, floor, rows);
+}
+
 LineFit fit_line(const std::vector<double>& x, const std::vector<double>& y) {
   gsl::report_errors_by_return_code();
   if (x.size() != y.size() || x.size() < 2)

@@ -1,5 +1,7 @@
 #include "contact_ode/analysis/metrics.hpp"
 
+#include "contact_ode/analysis/fit.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -53,6 +55,25 @@ std::vector<double> restitutions(const RunResult& run) {
   for (const auto& c : run.contacts)
     if (c.closed()) out.push_back(c.restitution());
   return out;
+}
+
+std::string EnergyGain::verdict(double tolerance) const {
+  return std::abs(final_gain) < tolerance ? "conserves" : final_gain > 0 ? "gains" : "loses";
+}
+
+EnergyGain energy_gain(const RunResult& run) {
+  EnergyGain g;
+  const auto drifts = energy_drifts(run);
+  for (std::size_t i = 0; i < drifts.size(); ++i) {
+    g.t.push_back(run.samples[i].t);
+    g.gain.push_back(0.0 - drifts[i]);  // not -drifts[i]: no "-0" in the tables
+  }
+  if (g.gain.empty()) return g;
+  const LineFit fit = fit_line(g.t, g.gain);
+  g.final_gain = g.gain.back();
+  g.rate = fit.slope;
+  g.rate_sd = fit.slope_sd;
+  return g;
 }
 
 }  // namespace contact

@@ -1,5 +1,7 @@
 #include "contact_ode/analysis/references.hpp"
 
+#include "contact_ode/models/contact_law.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -48,6 +50,22 @@ SpringContact kelvin_voigt_contact(double m, double k, double zeta, double V) {
 
 double clamped_kelvin_voigt_restitution(double zeta) {
   return std::exp(-zeta * (std::numbers::pi - 2.0 * std::asin(zeta)) / std::sqrt(1.0 - zeta * zeta));
+}
+
+SpringContact linear_law_first_contact(const std::string& law, double m, double k, double e, double V,
+                                       double g) {
+  const double nan = std::nan("");
+  if (!(k > 0) || !(V > 0)) return {nan, nan, nan};
+  if (law == "hooke") return hooke_contact(m, k, V, g);
+  const bool clamped = law == "kelvin-voigt-clamped";
+  if ((law != "kelvin-voigt" && !clamped) || !(e > 0)) return {nan, nan, nan};
+  const double zeta = damping_ratio_for_restitution(e);
+  SpringContact c = kelvin_voigt_contact(m, k, zeta, V);
+  if (clamped) {
+    c.duration = (std::numbers::pi - 2 * std::asin(zeta)) / (std::sqrt(k / m) * std::sqrt(1 - zeta * zeta));
+    c.exit_speed = clamped_kelvin_voigt_restitution(zeta) * V;
+  }
+  return c;
 }
 
 double power_law_time_factor(double n) {

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <stdexcept>
 
 namespace contact {
@@ -118,6 +119,22 @@ std::vector<std::string> split_csv_line(const std::string& line) {
     }
   }
   return cells;
+}
+
+std::vector<CsvRecord> read_csv(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(fmt::format("cannot read {}", path.string()));
+  std::string line;
+  std::getline(in, line);
+  const auto header = split_csv_line(line);
+  std::vector<CsvRecord> rows;
+  while (std::getline(in, line)) {
+    const auto cells = split_csv_line(line);
+    CsvRecord row;
+    for (std::size_t i = 0; i < header.size() && i < cells.size(); ++i) row[header[i]] = cells[i];
+    rows.push_back(std::move(row));
+  }
+  return rows;
 }
 
 }  // namespace contact

@@ -70,6 +70,18 @@ Check one_of(std::vector<std::string> names, bool list) {
                }};
 }
 
+Check some_of(std::vector<std::string> names, bool allow_none) {
+  names.insert(names.begin(), "all");
+  if (allow_none) names.emplace_back("none");
+  return one_of(std::move(names), true);
+}
+
+std::vector<std::string> chosen(const std::string& value, const std::vector<std::string>& names) {
+  if (value == "all") return names;
+  if (value == "none") return {};
+  return split_list(value);
+}
+
 std::vector<std::string> split_list(const std::string& s) {
   std::vector<std::string> out;
   std::size_t begin = 0;

@@ -33,11 +33,15 @@ Check integer_at_least(long lo);
 Check integer_in(long lo, long hi);
 // One of the names, or a comma-separated list of them when `list` is set.
 Check one_of(std::vector<std::string> names, bool list = false);
+// A comma-separated list of the names, or "all" (and "none" when allow_none is set).
+Check some_of(std::vector<std::string> names, bool allow_none = false);
 Check existing_file();
 Check existing_folder();
 
 // Splits "a,b,c", keeping empty items ("a,,b" and "a," have one), so that checks refuse them.
 std::vector<std::string> split_list(const std::string& s);
+// What a some_of option chose: every one of `names` for "all", none for "none", else the listed.
+std::vector<std::string> chosen(const std::string& value, const std::vector<std::string>& names);
 
 // The options of one program. Values are bound to the caller's variables, whose values at
 // declaration are the defaults --help shows.

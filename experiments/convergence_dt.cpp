@@ -19,22 +19,18 @@
 // adaptive_errors.{png,pdf,gp},
 // meta.json. Exit codes: 0, 1 solver failure, 2 bad input.
 #include "contact_ode/analysis/fit.hpp"
-#include "contact_ode/analysis/references.hpp"
 #include "contact_ode/analysis/table.hpp"
 #include "contact_ode/integrators/penalty.hpp"
-#include "contact_ode/models/ball_drop.hpp"
 #include "experiment.hpp"
 #include "figure.hpp"
-#include "output.hpp"
+#include "problems.hpp"
 #include "process.hpp"
 #include "progress.hpp"
 #include "sweep_setting.hpp"
 
 #include <fmt/format.h>
 
-#include <chrono>
 #include <cmath>
-#include <iostream>
 
 using namespace contact;
 
@@ -42,21 +38,6 @@ namespace {
 
 constexpr double kRoundOff = 1e-10;  // below: root-location (100 ulps of t) and dense-output error
 constexpr std::size_t kFitRows = 5;
-
-struct Point {
-  double step;  // dt or rtol
-  double error;
-  long rhs_evals;
-};
-
-double fitted(const std::vector<Point>& points) {
-  std::vector<double> h, err;
-  for (const auto& p : points) {
-    h.push_back(p.step);
-    err.push_back(p.error);
-  }
-  return fitted_order(h, err, kRoundOff, kFitRows);
-}
 
 }  // namespace
 
@@ -74,76 +55,63 @@ int program(int argc, char** argv) {
   app.add("--halvings", halvings, "fixed steps: dt-max halved this many times", cli::integer_at_least(1));
   app.add("--tol-min", tol_min, "tightest tolerance (adaptive runs go from 1e-3 down to it)",
           cli::real_in(1e-14, 1e-4, false, false));
-  auto names = integrator_names();
-  names.insert(names.begin(), "all");
-  app.add("--integrators", integrators, "integrators, comma-separated or 'all'", cli::one_of(names, true));
+  app.add("--integrators", integrators, "integrators, comma-separated or 'all'",
+          cli::some_of(integrator_names()));
   return app.run(argc, argv, [&](OutputSet& files) {
     if (dt_max >= t_final) {
       throw std::invalid_argument(
           fmt::format("--dt-max: value '{:g}' is not below --t-final = {:g}; accepted range (0, t-final)",
                       dt_max, t_final));
     }
-    const double m = 1.0, g = 9.81, h0 = 1.0, V = std::sqrt(2 * g * h0);
-    const BallDrop model({m, g, h0, 0.0, 1.0, Hooke{k}});
-    const BallState exact = hooke_ball_state(m, k, h0, 0.0, g, t_final);
+    const Problem ball = ball_problem(k, t_final);
 
-    struct Job {
-      std::string integrator;
-      bool located, fixed;
-      double step;
-    };
-    std::vector<Job> jobs;
-    const auto chosen = integrators == "all" ? integrator_names() : cli::split_list(integrators);
-    std::vector<double> tols;
+    const auto chosen = cli::chosen(integrators, integrator_names());
+    std::vector<double> dts, tols;
+    for (long j = 0; j <= halvings; ++j) dts.push_back(dt_max / std::pow(2.0, static_cast<double>(j)));
     for (double tol = 1e-3; tol >= tol_min * (1 - 1e-9); tol /= 10) tols.push_back(tol);
-    for (const auto& name : chosen) {
-      const IntegratorInfo& info = integrator_info(name);
-      for (bool located : {false, true}) {
-        if (info.fixed_step_capable)
-          for (long j = 0; j <= halvings; ++j)
-            jobs.push_back({name, located, true, dt_max / std::pow(2.0, static_cast<double>(j))});
-        if (info.adaptive)
-          for (double tol : tols) jobs.push_back({name, located, false, tol});
-      }
-    }
+    std::size_t runs = 0;
+    for (const auto& name : chosen)
+      runs += 2 * ((integrator_info(name).fixed_step_capable ? dts.size() : 0) +
+                   (integrator_info(name).adaptive ? tols.size() : 0));
 
     Table fixed({"integrator", "events", "dt_s", "error", "observed_order", "rhs_evals"});
     Table adaptive({"integrator", "events", "rtol", "error", "observed_order", "rhs_evals"});
-    std::map<std::pair<std::string, bool>, std::vector<Point>> fixed_points, adaptive_points;
-    Progress progress("convergence_dt", jobs.size());
-    for (const auto& job : jobs) {
-      progress.step(
-          fmt::format("{} {} {:g}", job.integrator, job.located ? "located" : "unlocated", job.step));
-      PenaltyOptions o;
-      o.locate_switches = job.located;
-      o.integrator.method = job.integrator;
+    std::map<std::pair<std::string, bool>, std::vector<ConvergencePoint>> fixed_points, adaptive_points;
+    Progress progress("convergence_dt", runs);
+    auto run = [&](const std::string& name, bool located, bool is_fixed, double step) {
+      const char* events = located ? "located" : "unlocated";
+      progress.step(fmt::format("{} {} {:g}", name, events, step));
+      PenaltyOptions o{.locate_switches = located};
+      o.integrator.method = name;
       o.integrator.max_steps = 10000000;
-      o.integrator = with_setting(o.integrator, job.fixed, job.step);
-      const RunResult r =
-          require(run_penalty(model, o, {.t_end = t_final, .sample_dt = t_final}),
-                  fmt::format("{} ({} {:g})", job.integrator, job.fixed ? "dt" : "rtol", job.step));
-      const auto& y = r.samples.back().y;
-      const double err = std::max(std::abs(y[0] - exact.x) / h0, std::abs(y[1] - exact.v) / V);
-      auto& points = (job.fixed ? fixed_points : adaptive_points)[{job.integrator, job.located}];
-      const double order = points.empty()
-                               ? std::nan("")
-                               : observed_order(points.back().step, points.back().error, job.step, err);
-      points.push_back({job.step, err, r.stats.rhs_evals});
-      (job.fixed ? fixed : adaptive)
-          .add_row({job.integrator, std::string(job.located ? "located" : "unlocated"), job.step, err, order,
-                    r.stats.rhs_evals});
-    }
+      o.integrator = with_setting(o.integrator, is_fixed, step);
+      const RunResult r = require(run_penalty(*ball.model, o, {.t_end = t_final, .sample_dt = t_final}),
+                                  fmt::format("{} ({} {:g})", name, is_fixed ? "dt" : "rtol", step));
+      const double err = ball.error(r, false);
+      auto& points = (is_fixed ? fixed_points : adaptive_points)[{name, located}];
+      const double order =
+          points.empty() ? std::nan("") : observed_order(points.back().step, points.back().error, step, err);
+      points.push_back({step, err, r.stats.rhs_evals});
+      (is_fixed ? fixed : adaptive).add_row({name, std::string(events), step, err, order, r.stats.rhs_evals});
+    };
+    for (const auto& name : chosen)
+      for (bool located : {false, true}) {
+        if (integrator_info(name).fixed_step_capable)
+          for (double dt : dts) run(name, located, true, dt);
+        if (integrator_info(name).adaptive)
+          for (double tol : tols) run(name, located, false, tol);
+      }
 
     Table orders({"integrator", "theoretical_order", "fixed_order_unlocated", "fixed_order_located",
                   "tol_exponent_unlocated", "tol_exponent_located", "rhs_evals_tightest_unlocated",
                   "rhs_evals_tightest_located"});
     auto order_of = [](const auto& map, const std::string& name, bool located) {
       const auto it = map.find({name, located});
-      return it == map.end() ? std::nan("") : fitted(it->second);
+      return it == map.end() ? std::nan("") : fitted_order(it->second, kRoundOff, kFitRows);
     };
     auto tightest_cost = [&](const std::string& name, bool located) {
       const auto it = adaptive_points.find({name, located});
-      return it == adaptive_points.end() ? 0L : it->second.back().rhs_evals;
+      return it == adaptive_points.end() ? 0L : it->second.back().cost;
     };
     for (const auto& name : chosen)
       orders.add_row({name, static_cast<long>(integrator_info(name).order),
@@ -165,9 +133,7 @@ int program(int argc, char** argv) {
       }
       return Figure{
           name, series.data(),
-          fmt::format("set logscale xy\nset format x '10^{{%L}}'\nset format y '10^{{%L}}'\nset xlabel '{}'\n"
-                      "set ylabel 'error at t_{{final}}'\nset key outside right font ',8'\nset grid\nplot {}",
-                      xlabel, series.plot())};
+          loglog(xlabel, "error at t_{final}") + "set key outside right font ',8'\nplot " + series.plot()};
     };
     files.add_table("fixed_step", fixed);
     files.add_table("adaptive", adaptive);

@@ -1,34 +1,28 @@
 // energy_drift — how much energy each method invents or destroys over long runs.
-// Ball drop with e = 1 (Hooke spring k = --k for the penalty methods, m = 1 kg, h0 = 1 m) for
-// --bounces bounces of the rigid solution, and every rigid-body scene (the pair's Kelvin–Voigt
-// spring, impulses and dashpots booked by the energy ledger). Each method runs at every step in
-// --dts (fixed-step) or tolerance in --rtols (adaptive, atol = rtol / 100).
-// Energy error: (E + dissipated - E0) / |E0| at every sample, so physical loss is not counted
-// and > 0 means the method invents energy. The drift rate is the least-squares slope (GSL) of
-// that error against time; the verdict is "gains" or "loses" when the final error exceeds 1e-10
-// in size, else "conserves".
+// Ball drop with e = 1 (Hooke spring k = --k for the penalty methods, m = 1 kg, h0 = 1 m) for --bounces
+// bounces of the rigid solution, and every rigid-body scene (the pair's Kelvin–Voigt spring, impulses and
+// dashpots booked by the energy ledger). Each method runs at every step in --dts (fixed-step) or
+// tolerance in --rtols (adaptive, atol = rtol / 100).
+// Energy error: (E + dissipated - E0) / |E0| at every sample, so physical loss is not counted and > 0
+// means the method invents energy. The drift rate is the least-squares slope (GSL) of that error against
+// time; the verdict is "gains" or "loses" when the final error exceeds 1e-10 in size, else "conserves".
 // Outputs in --out (default results/energy_drift): drift.{csv,md,tex}, ball_energy.{png,pdf,gp}
 // (|error| against t for the ball), rigid_energy.{png,pdf,gp} (largest |error| per scene at the first
-// --rigid-dts and last --rigid-rtols),
-// meta.json. Exit codes: 0, 1 solver failure, 2 bad input.
-#include "contact_ode/analysis/fit.hpp"
+// --rigid-dts and last --rigid-rtols), meta.json. Exit codes: 0, 1 solver failure, 2 bad input.
 #include "contact_ode/analysis/metrics.hpp"
 #include "contact_ode/analysis/table.hpp"
 #include "contact_ode/models/ball_drop.hpp"
 #include "contact_ode/models/rigid/rigid_scenes.hpp"
 #include "experiment.hpp"
 #include "figure.hpp"
-#include "output.hpp"
 #include "process.hpp"
 #include "progress.hpp"
 #include "sweep_setting.hpp"
 
 #include <fmt/format.h>
 
-#include <chrono>
+#include <algorithm>
 #include <cmath>
-#include <functional>
-#include <iostream>
 #include <map>
 #include <memory>
 
@@ -36,34 +30,16 @@ using namespace contact;
 
 namespace {
 
-constexpr double kConserved = 1e-10;  // |final error| below this counts as conserving
-constexpr double kLogFloor = 1e-17;   // zero errors are drawn here on the log axes
+constexpr double kLogFloor = 1e-17;  // zero errors are drawn here on the log axes
 
-struct DriftRow {
-  double final_error, rate, rate_sd;
-  std::string verdict;
-  std::string series;  // "t,|error|" lines for the figure
+// The runs: (system, method, setting name, setting value), the scene, the method and its span.
+struct Job {
+  std::string system, method, setting;
+  double value;
+  std::shared_ptr<const Dynamics> scene;
+  Method settings;
+  SolveOptions span;
 };
-
-// The ledger's numerical part, as a gain: (E + dissipated - E0) / |E0| = -energy_drifts().
-DriftRow drift_of(const RunResult& r) {
-  std::vector<double> t, err;
-  DriftRow row{0, 0, 0, "", ""};
-  const auto drifts = energy_drifts(r);
-  for (std::size_t i = 0; i < drifts.size(); ++i) {
-    t.push_back(r.samples[i].t);
-    err.push_back(0.0 - drifts[i]);  // not -drifts[i]: no "-0" in the tables
-    row.series += fmt::format("{},{}\n", t.back(), std::max(std::abs(err.back()), kLogFloor));
-  }
-  const LineFit fit = fit_line(t, err);
-  row.final_error = err.back();
-  row.rate = fit.slope;
-  row.rate_sd = fit.slope_sd;
-  row.verdict = std::abs(row.final_error) < kConserved ? "conserves"
-                : row.final_error > 0                  ? "gains"
-                                                       : "loses";
-  return row;
-}
 
 }  // namespace
 
@@ -83,19 +59,11 @@ int program(int argc, char** argv) {
   app.add_list("--rigid-dts", rigid_dts, "rigid-scene game steps [s]", cli::positive());
   app.add_list("--rigid-rtols", rigid_rtols, "rigid-scene relative tolerances",
                cli::real_in(0, 1, true, true));
-  auto names = rigid::rigid_scene_names();
-  names.insert(names.begin(), "all");
-  names.emplace_back("none");
-  app.add("--scene", scenes, "rigid scenes, comma-separated, 'all' or 'none'", cli::one_of(names, true));
+  app.add("--scene", scenes, "rigid scenes, comma-separated, 'all' or 'none'",
+          cli::some_of(rigid::rigid_scene_names(), true));
   return app.run(argc, argv, [&](OutputSet& files) {
     const double m = 1.0, g = 9.81, h0 = 1.0, t0 = std::sqrt(2 * h0 / g);
 
-    // The runs: (system, method, setting name, setting value, how to run it).
-    struct Job {
-      std::string system, method, setting;
-      double value;
-      std::function<RunResult()> run;
-    };
     std::vector<Job> jobs;
     auto ball = std::make_shared<BallDrop>(BallDropParams{m, g, h0, 0.0, 1.0, Hooke{k}});
     const double t_ball = 2.0 * static_cast<double>(bounces) * t0;  // the n-th rigid impact is at (2n - 1) t0
@@ -103,19 +71,16 @@ int program(int argc, char** argv) {
     auto ball_job = [&](const std::string& method, const std::string& setting, double value) {
       Method mt{.name = method};
       mt.integrator.max_steps = 10000000;
-      if (setting != "exact") mt = with_setting(mt, value);
-      jobs.push_back({"ball", method, setting, value, [=] { return solve(*ball, mt, ball_span); }});
+      jobs.push_back({"ball", method, setting, value, ball, setting == "exact" ? mt : with_setting(mt, value),
+                      ball_span});
     };
-    for (const std::string method :
-         {"game-euler", "game-symplectic", "game-euler-spring", "game-symplectic-spring"})
-      for (double dt : dts) ball_job(method, "dt", dt);
-    for (const std::string method : {"penalty", "event-ode"})
-      for (double rtol : rtols) ball_job(method, "rtol", rtol);
+    for (const std::string method : {"game-euler", "game-symplectic", "game-euler-spring",
+                                     "game-symplectic-spring", "penalty", "event-ode"}) {
+      const bool fixed = method_info(method).fixed_step;
+      for (double v : fixed ? dts : rtols) ball_job(method, fixed ? "dt" : "rtol", v);
+    }
     ball_job("event-exact", "exact", 0.0);
-    const auto scene_list = scenes == "all"    ? rigid::rigid_scene_names()
-                            : scenes == "none" ? std::vector<std::string>{}
-                                               : cli::split_list(scenes);
-    for (const auto& name : scene_list) {
+    for (const auto& name : cli::chosen(scenes, rigid::rigid_scene_names())) {
       const rigid::SceneInfo& info = rigid::rigid_scene(name);
       auto scene = std::make_shared<rigid::RigidScene>(info.make({}));
       const SolveOptions span{.t_end = info.t_end, .sample_dt = info.t_end / 200};
@@ -123,65 +88,60 @@ int program(int argc, char** argv) {
         const bool fixed = method_info(method).fixed_step;
         for (double v : fixed ? rigid_dts : rigid_rtols)
           jobs.push_back(
-              {name, method, fixed ? "dt" : "rtol", v,
-               [=, mt = with_setting(rigid_method(method), v)] { return solve(*scene, mt, span); }});
+              {name, method, fixed ? "dt" : "rtol", v, scene, with_setting(rigid_method(method), v), span});
       }
     }
 
     Table table({"system", "method", "setting", "value", "contacts", "final_energy_error_rel",
                  "max_abs_energy_error_rel", "drift_rate_per_s", "drift_rate_sd", "verdict", "rhs_evals"});
     Series ball_figure;
-    std::map<std::string, std::vector<std::pair<std::string, double>>>
-        rigid_default;  // method -> (scene, max error)
+    std::map<std::string, std::string> rigid_rows;  // method -> "index,scene,max error" lines
     Progress progress("energy_drift", jobs.size());
     for (const auto& job : jobs) {
       progress.step(fmt::format("{} {} {}={:g}", job.system, job.method, job.setting, job.value));
-      const RunResult r = job.run();
-      if (!r.ok()) {
-        throw std::runtime_error(fmt::format("{} {} {} = {:g}: {} at t = {:.9g} s: {}", job.system,
-                                             job.method, job.setting, job.value, to_string(r.status),
-                                             r.t_reached, r.message));
-      }
-      const DriftRow d = drift_of(r);
+      const RunResult r =
+          require(solve(*job.scene, job.settings, job.span),
+                  fmt::format("{} {} {} = {:g}", job.system, job.method, job.setting, job.value));
+      const EnergyGain d = energy_gain(r);
       const double max_error = compute_metrics(r).max_energy_drift;
       table.add_row({job.system, job.method, job.setting, job.value, static_cast<long>(r.contacts.size()),
-                     d.final_error, max_error, d.rate, d.rate_sd, d.verdict, r.stats.rhs_evals});
+                     d.final_gain, max_error, d.rate, d.rate_sd, d.verdict(), r.stats.rhs_evals});
       // The ball figure shows each method at its first setting (the coarsest by default).
-      const bool first =
-          job.setting == "exact" || job.value == (job.setting == "dt" ? dts.front() : rtols.front());
-      if (job.system == "ball" && first) {
+      if (job.system == "ball" &&
+          (job.setting == "exact" || job.value == (job.setting == "dt" ? dts : rtols).front())) {
         const std::string setting =
             job.setting == "exact" ? "" : fmt::format(" {}={:g}", job.setting, job.value);
+        std::string rows;
+        for (std::size_t i = 0; i < d.t.size(); ++i)
+          rows += fmt::format("{},{}\n", d.t[i], std::max(std::abs(d.gain[i]), kLogFloor));
         ball_figure.add(
-            d.series, fmt::format("using 1:2 with lines title '{}{} ({})'", job.method, setting, d.verdict));
+            rows, fmt::format("using 1:2 with lines title '{}{} ({})'", job.method, setting, d.verdict()));
       }
-      const bool rigid_default_setting =
-          job.value == (job.setting == "dt" ? rigid_dts.front() : rigid_rtols.back());
-      if (job.system != "ball" && rigid_default_setting)
-        rigid_default[job.method].emplace_back(job.system, max_error);
+      // The rigid figure shows each method at the coarsest step or the tightest tolerance.
+      if (std::string& rows = rigid_rows[job.method];
+          job.system != "ball" && job.value == (job.setting == "dt" ? rigid_dts.front() : rigid_rtols.back()))
+        rows += fmt::format("{},{},{}\n", std::count(rows.begin(), rows.end(), '\n'), job.system,
+                            std::max(max_error, kLogFloor));
     }
     Series rigid_figure;
-    for (const auto& [method, values] : rigid_default) {
-      std::string rows;
-      for (std::size_t i = 0; i < values.size(); ++i)
-        rows += fmt::format("{},{},{}\n", i, values[i].first, std::max(values[i].second, kLogFloor));
-      rigid_figure.add(rows, fmt::format("using 1:3:xtic(2) with linespoints title '{}'", method));
-    }
+    for (const auto& [method, rows] : rigid_rows)
+      if (!rows.empty())
+        rigid_figure.add(rows, fmt::format("using 1:3:xtic(2) with linespoints title '{}'", method));
     files.add_table("drift", table);
     render({"ball_energy", ball_figure.data(),
-            fmt::format("set logscale y\nset format y '10^{{%L}}'\nset xlabel 't [s]'\nset ylabel '|E + "
-                        "dissipated - E_0| / E_0'\n"
-                        "set key outside below\nset grid\nset yrange [{:g}:*]\nplot {}",
-                        kLogFloor, ball_figure.plot())},
+            logy("|E + dissipated - E_0| / E_0") +
+                fmt::format("set xlabel 't [s]'\nset key outside below\nset yrange [{:g}:*]\nplot {}",
+                            kLogFloor, ball_figure.plot())},
            files);
     if (!rigid_figure.empty())
-      render({"rigid_energy", rigid_figure.data(),
-              fmt::format("set logscale y\nset format y '10^{{%L}}'\nset ylabel 'max |energy error| (dt = "
-                          "{:g}, rtol = {:g})'\n"
-                          "set xtics rotate by -30\nset key outside below\nset grid\nset yrange "
-                          "[{:g}:*]\nset offsets 0.3, 0.3, 0, 0\nplot {}",
-                          rigid_dts.front(), rigid_rtols.back(), kLogFloor, rigid_figure.plot())},
-             files);
+      render(
+          {"rigid_energy", rigid_figure.data(),
+           logy(fmt::format("max |energy error| (dt = {:g}, rtol = {:g})", rigid_dts.front(),
+                            rigid_rtols.back())) +
+               fmt::format("set xtics rotate by -30\nset key outside below\nset yrange [{:g}:*]\nset offsets "
+                           "0.3, 0.3, 0, 0\nplot {}",
+                           kLogFloor, rigid_figure.plot())},
+          files);
     fmt::print("Energy drift (ball: e = 1, k = {:g} N/m, {} bounces; rigid scenes)\n\n{}", k, bounces,
                table.to_markdown());
   });

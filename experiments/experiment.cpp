@@ -48,11 +48,20 @@ int Experiment::run_body(int argc, char** argv, const std::function<void(OutputS
   return 0;
 }
 
+namespace {
+std::string failure(const RunResult& r, const std::string& what) {
+  return fmt::format("{}: {} at t = {:.9g} s: {}", what, to_string(r.status), r.t_reached, r.message);
+}
+}  // namespace
+
 RunResult require(RunResult r, const std::string& what) {
-  if (!r.ok())
-    throw std::runtime_error(
-        fmt::format("{}: {} at t = {:.6g} s: {}", what, to_string(r.status), r.t_reached, r.message));
+  if (!r.ok()) throw std::runtime_error(failure(r, what));
   return r;
+}
+
+bool report(const RunResult& r, const std::string& what) {
+  if (!r.ok()) std::cerr << failure(r, what) << "\n";
+  return r.ok();
 }
 
 }  // namespace contact

@@ -39,5 +39,8 @@ class Experiment : public cli::Options {
 
 // Throws std::runtime_error "<what>: <status> at t = ... s: <solver message>" unless r succeeded.
 RunResult require(RunResult r, const std::string& what);
+// For sweeps, where a failed run is a row rather than the end: prints that same line on stderr
+// when r failed, and returns whether it succeeded.
+bool report(const RunResult& r, const std::string& what);
 
 }  // namespace contact

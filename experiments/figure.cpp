@@ -32,6 +32,17 @@ void Series::add(const std::string& rows, const std::string& clause) {
   ++count_;
 }
 
+std::string loglog(const std::string& xlabel, const std::string& ylabel) {
+  return fmt::format(
+      "set logscale xy\nset format x '10^{{%L}}'\nset format y '10^{{%L}}'\nset xlabel '{}'\nset ylabel "
+      "'{}'\nset grid\n",
+      xlabel, ylabel);
+}
+
+std::string logy(const std::string& ylabel) {
+  return fmt::format("set logscale y\nset format y '10^{{%L}}'\nset ylabel '{}'\nset grid\n", ylabel);
+}
+
 void render(const Figure& f, OutputSet& out) {
   throw_if_interrupted();
   // A private scratch folder (mkdtemp: unique, not guessable) removed however render() ends.

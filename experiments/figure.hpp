@@ -30,6 +30,12 @@ class Series {
   int count_ = 0;
 };
 
+// The lines that start a log-log figure: both axes logarithmic with powers-of-ten ticks, the
+// axis labels (gnuplot text) and a grid.
+std::string loglog(const std::string& xlabel, const std::string& ylabel);
+// The same with only the y axis logarithmic.
+std::string logy(const std::string& ylabel);
+
 // Renders the figure into `out`: NAME.png and NAME.pdf from one gnuplot run, and, to redraw it,
 // the script NAME.gp with its data NAME-data.csv. Throws std::runtime_error with gnuplot's
 // message if it fails or is missing.

@@ -13,7 +13,6 @@
 // penetration.{png,pdf,gp}, duration.{png,pdf,gp}, cost.{png,pdf,gp}, stable_dt.{png,pdf,gp},
 // meta.json. Exit codes: 0, 1 solver failure, 2 bad input.
 #include "contact_ode/analysis/fit.hpp"
-#include "contact_ode/analysis/metrics.hpp"
 #include "contact_ode/analysis/references.hpp"
 #include "contact_ode/analysis/table.hpp"
 #include "contact_ode/integrators/method_registry.hpp"
@@ -27,9 +26,7 @@
 
 #include <fmt/format.h>
 
-#include <chrono>
 #include <cmath>
-#include <iostream>
 #include <map>
 
 using namespace contact;
@@ -100,26 +97,19 @@ int program(int argc, char** argv) {
           throw std::runtime_error(fmt::format("{} at k = {:g}: no complete first bounce", law, k));
         const auto& c = r.contacts[0];
         const double contacts = static_cast<double>(r.contacts.size());
-        // Closed forms: Hooke exactly (with gravity); Kelvin–Voigt in the gravity-free limit;
-        // the clamped law shares the unclamped penetration (the clamp acts after the maximum).
-        const LawInfo& info = law_info(law);
-        const bool clamped = info.damped && !info.pulls;
-        const double zeta = info.damped ? damping_ratio_for_restitution(e) : 0.0;
-        const SpringContact ref =
-            info.damped ? kelvin_voigt_contact(m, k, zeta, V) : hooke_contact(m, k, V, g);
-        const double ref_duration = clamped ? (std::numbers::pi - 2 * std::asin(zeta)) /
-                                                  (std::sqrt(k / m) * std::sqrt(1 - zeta * zeta))
-                                            : ref.duration;
+        // Closed forms: Hooke exactly (with gravity); Kelvin–Voigt in the gravity-free limit.
+        const SpringContact ref = linear_law_first_contact(law, m, k, e, V, g);
+        const double zeta = law_info(law).damped ? damping_ratio_for_restitution(e) : 0.0;
         const double w = std::sqrt(k / m);
         const double euler_dt = 2 * zeta / w, symplectic_dt = 2 * (std::sqrt(zeta * zeta + 1) - zeta) / w;
         const double energy_left = r.apexes[0].energy / r.energy0;
         const auto& st = r.stats;
         const auto per = [&](long count) { return static_cast<double>(count) / contacts; };
-        table.add_row({k, kLaws[li], c.max_penetration, ref.max_penetration, c.duration(), ref_duration,
+        table.add_row({k, kLaws[li], c.max_penetration, ref.max_penetration, c.duration(), ref.duration,
                        c.restitution(), energy_left, per(st.steps), per(st.rhs_evals), per(st.jac_evals),
                        per(st.newton_iters), st.failed_steps, euler_dt, symplectic_dt});
         data += fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", k, li, c.max_penetration,
-                            ref.max_penetration, c.duration(), ref_duration, per(st.steps), per(st.rhs_evals),
+                            ref.max_penetration, c.duration(), ref.duration, per(st.steps), per(st.rhs_evals),
                             euler_dt > 0 ? euler_dt : NAN, symplectic_dt, c.restitution());
         if (k >= 1e4) {
           fit_k[kLaws[li]].push_back(k);

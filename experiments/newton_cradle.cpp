@@ -18,9 +18,7 @@
 #include "contact_ode/analysis/metrics.hpp"
 #include "contact_ode/analysis/references.hpp"
 #include "contact_ode/analysis/table.hpp"
-#include "contact_ode/integrators/game_step.hpp"
 #include "contact_ode/integrators/method_registry.hpp"
-#include "contact_ode/integrators/penalty.hpp"
 #include "contact_ode/models/ball_chain.hpp"
 #include "experiment.hpp"
 #include "figure.hpp"
@@ -31,9 +29,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <iostream>
 
 using namespace contact;
 
@@ -76,15 +72,13 @@ int program(int argc, char** argv) {
       std::string shares;  // "spacing,share" lines
       for (double spacing : spacings) {
         progress.step(fmt::format("{} spacing {:g}", method, spacing));
-        BallChainParams p;
-        p.n = n;
-        p.m = m;
-        p.v0 = v0;
-        p.approach = approach;
-        p.spacing = spacing;
-        p.law =
-            method == "penalty-hertz" ? ContactLaw{HuntCrossley{hertz_k, 1.5, 0.0}} : ContactLaw{Hooke{k}};
-        const BallChain chain(p);
+        const BallChain chain({.n = n,
+                               .m = m,
+                               .v0 = v0,
+                               .approach = approach,
+                               .spacing = spacing,
+                               .law = method == "penalty-hertz" ? ContactLaw{HuntCrossley{hertz_k, 1.5, 0.0}}
+                                                                : ContactLaw{Hooke{k}}});
         const double t_end =
             (approach + static_cast<double>(n) * spacing) / v0 + 10.0 * static_cast<double>(n) * contact_time;
         // The rows' labels name the law for the penalty runs; the registry's methods run them.

@@ -11,6 +11,7 @@
 #include <atomic>
 #include <cerrno>
 #include <csignal>
+#include <cstdio>
 #include <cstring>
 
 extern char** environ;
@@ -104,6 +105,17 @@ int guarded_main(const char* name, int argc, char** argv, int (*body)(int, char*
     fmt::print(stderr, "{}: unknown error\n", name);
     return cli::kExitFailure;
   }
+}
+
+std::string first_line_of(const std::string& command) {
+  std::string line;
+  if (FILE* pipe = ::popen((command + " 2>/dev/null").c_str(), "r")) {
+    char buffer[512];
+    if (std::fgets(buffer, sizeof buffer, pipe)) line = buffer;
+    ::pclose(pipe);
+  }
+  while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
+  return line;
 }
 
 }  // namespace contact

@@ -32,6 +32,10 @@ void throw_if_interrupted();
 int run_process(const std::vector<std::string>& argv, const std::filesystem::path& cwd = {},
                 const std::filesystem::path& log = {});
 
+// The first line a shell command prints on stdout, without its newline ("" if it prints nothing
+// or cannot run): tool versions and machine facts for the paper.
+std::string first_line_of(const std::string& command);
+
 // main() for every executable: installs the handlers and runs `body`; bad input it throws as
 // std::invalid_argument is exit 2, any other exception exit 1, an interrupt 130, each with one
 // line on stderr naming the program. No exception escapes.

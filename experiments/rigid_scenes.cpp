@@ -12,6 +12,7 @@
 // Exit codes: 0 success, 1 solver failure, 2 bad input (option, value, accepted range).
 #include "contact_ode/models/rigid/rigid_scenes.hpp"
 #include "contact_ode/analysis/metrics.hpp"
+#include "contact_ode/analysis/rigid_observables.hpp"
 #include "contact_ode/analysis/table.hpp"
 #include "experiment.hpp"
 #include "figure.hpp"
@@ -22,63 +23,10 @@
 
 #include <fmt/format.h>
 
-#include <chrono>
-#include <iostream>
 #include <map>
 
 using namespace contact;
 using namespace contact::rigid;
-
-namespace {
-
-using Observables = std::vector<std::pair<std::string, double>>;
-
-// The numbers a reader checks for each scene, read off the end of a run.
-Observables observe(const std::string& scene, const RigidScene& s, const RunResult& r) {
-  const auto bodies = s.bodies_at(r.samples.back().y);
-  // The first apex of a ball's contact with the floor (the scene's last body), over the gap it was
-  // released from: the bounce's e^2.
-  auto first_apex = [&](std::size_t body) {
-    const std::pair<std::size_t, std::size_t> with_floor{body, bodies.size() - 1};
-    const Vector y0 = s.initial_state();
-    for (std::size_t i = 0; i < s.contact_count(); ++i) {
-      if (s.pair(i) != with_floor) continue;
-      const double released = s.gap(i, y0);
-      for (const auto& a : r.apexes)
-        if (a.contact == i) return a.gap / released;
-    }
-    return std::nan("");
-  };
-  if (scene == "snooker") {
-    // With projection alone the first contact never closes: it pushes from its start to the end.
-    const double pushing = r.contacts.empty()            ? 0.0
-                           : r.contacts.front().closed() ? r.contacts.front().duration()
-                                                         : r.t_reached - r.contacts.front().t_begin;
-    return {{"cue_vx_mps", bodies[0].velocity.x()},
-            {"red_vx_mps", bodies[1].velocity.x()},
-            {"red_displacement_m", bodies[1].position.x() - s.bodies()[1].position.x()},
-            {"contact_duration_s", pushing}};
-  }
-  if (scene == "planet")
-    return {{"cue_vx_mps", bodies[0].velocity.x()}, {"planet_speed_mps", bodies[1].velocity.norm()}};
-  if (scene == "spinning-box")
-    return {{"ball_speed_mps", bodies[1].velocity.norm()},
-            {"box_spin_radps", bodies[0].angular_velocity.norm()}};
-  if (scene == "off-centre")
-    return {{"box_spin_radps", bodies[1].angular_velocity.norm()},
-            {"box_speed_mps", bodies[1].velocity.norm()}};
-  if (scene == "rubber-steel")
-    return {{"rubber_apex_ratio", first_apex(0)}, {"steel_apex_ratio", first_apex(1)}};
-  if (scene == "cradle")
-    return {{"striker_vx_mps", bodies[0].velocity.x()}, {"last_vx_mps", bodies[4].velocity.x()}};
-  if (scene == "wedge")  // symmetric physics would give the two balls equal speeds
-    return {{"upper_speed_mps", bodies[1].velocity.norm()},
-            {"lower_speed_mps", bodies[2].velocity.norm()},
-            {"striker_vy_mps", bodies[0].velocity.y()}};
-  return {};
-}
-
-}  // namespace
 
 int program(int argc, char** argv) {
   std::string scenes = "all",
@@ -90,9 +38,7 @@ int program(int argc, char** argv) {
       "rigid_scenes",
       "The tutorial's 3D scenes resolved by penalty springs, game integration and event-driven impulses.",
       "results/rigid_scenes");
-  auto names = rigid_scene_names();
-  names.insert(names.begin(), "all");
-  app.add("--scene", scenes, "scenes, comma-separated or 'all'", cli::one_of(names, true));
+  app.add("--scene", scenes, "scenes, comma-separated or 'all'", cli::some_of(rigid_scene_names()));
   app.add("--method", methods, "methods, comma-separated", cli::one_of(kRigidMethods, true));
   app.add("--m", p.m, "mass of the moving ball [kg]", cli::positive());
   app.add("--radius", p.radius, "its radius [m]", cli::positive());
@@ -120,7 +66,7 @@ int program(int argc, char** argv) {
     Table runs({"scene", "method", "status", "contacts", "max_penetration_m", "energy_drift_rel", "rhs_evals",
                 "wall_time_s"});
     Table observables({"scene", "method", "quantity", "value"});
-    const auto scene_list = scenes == "all" ? rigid_scene_names() : cli::split_list(scenes);
+    const auto scene_list = cli::chosen(scenes, rigid_scene_names());
     const auto method_list = cli::split_list(methods);
     Progress progress("rigid_scenes", scene_list.size() * method_list.size());
     int failures = 0;
@@ -134,10 +80,8 @@ int program(int argc, char** argv) {
         mt.integrator.rtol = rtol;
         mt.integrator.atol = atol;
         const RunResult r = solve(scene, mt, {.t_end = info.t_end, .sample_dt = info.t_end});
-        if (!r.ok()) {
+        if (!report(r, fmt::format("rigid_scenes: {} {}", name, method))) {
           ++failures;
-          std::cerr << fmt::format("rigid_scenes: {} {} failed: {} at t = {:.9g} s: {}\n", name, method,
-                                   to_string(r.status), r.t_reached, r.message);
           continue;
         }
         const RunMetrics m = compute_metrics(r);

@@ -17,26 +17,18 @@
 // from 1/16 of a contact's duration (w dt = pi/16: 2.0e-3 s for the ball, 4.4e-5 s for the chain).
 // Outputs in --out (default results/work_precision): work_precision.{csv,md,tex},
 // {ball,chain}_{rhs,time}.{png,pdf,gp}, meta.json. Exit codes: 0, 1 solver failure, 2 bad input.
-#include "contact_ode/analysis/references.hpp"
 #include "contact_ode/analysis/table.hpp"
-#include "contact_ode/integrators/event_driven.hpp"
-#include "contact_ode/integrators/game_step.hpp"
-#include "contact_ode/integrators/penalty.hpp"
-#include "contact_ode/models/ball_chain.hpp"
-#include "contact_ode/models/ball_drop.hpp"
 #include "experiment.hpp"
 #include "figure.hpp"
-#include "output.hpp"
+#include "problems.hpp"
 #include "process.hpp"
 #include "progress.hpp"
 #include "sweep_setting.hpp"
 
 #include <fmt/format.h>
 
-#include <chrono>
+#include <algorithm>
 #include <cmath>
-#include <functional>
-#include <iostream>
 #include <map>
 
 using namespace contact;
@@ -46,10 +38,19 @@ namespace {
 constexpr double kFloor = 1e-16;
 
 struct Job {
-  std::string problem, paradigm, integrator, setting;
+  const Problem* problem;
+  std::string paradigm, integrator, setting;
   double value;
-  std::function<RunResult()> run;
+  Method method;
 };
+
+Method method_with(const std::string& method, const std::string& integrator, double value) {
+  Method m{.name = method};
+  m.integrator.method = integrator;
+  m.integrator.max_steps = 10000000;
+  m.integrator = with_setting(m.integrator, !integrator_info(integrator).adaptive, value);
+  return m;
+}
 
 }  // namespace
 
@@ -66,98 +67,39 @@ int program(int argc, char** argv) {
   app.add("--balls", balls, "balls in the chain", cli::integer_at_least(2));
   app.add("--halvings", halvings, "fixed steps: the largest halved this many times",
           cli::integer_at_least(0));
-  auto names = integrator_names();
-  names.insert(names.begin(), "all");
   app.add("--integrators", integrators, "penalty integrators, comma-separated or 'all'",
-          cli::one_of(names, true));
+          cli::some_of(integrator_names()));
   app.add("--problems", problems, "ball, chain or both, comma-separated",
           cli::one_of({"ball", "chain"}, true));
   return app.run(argc, argv, [&](OutputSet& files) {
-    const auto chosen = integrators == "all" ? integrator_names() : cli::split_list(integrators);
+    const auto chosen = cli::chosen(integrators, integrator_names());
     const auto problem_list = cli::split_list(problems);
     const std::vector<double> tols = {1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9};
 
-    // The two problems: the model, the time of measurement, the fixed steps, and each model's error.
-    const double g = 9.81, h0 = 1.0, V = std::sqrt(2 * g * h0), t_ball = 1.5;
-    const auto ball = std::make_shared<BallDrop>(BallDropParams{1.0, g, h0, 0.0, 1.0, Hooke{k}});
-    BallChainParams cp;
-    cp.n = static_cast<std::size_t>(balls);
-    cp.law = Hooke{chain_k};
-    const auto chain = std::make_shared<BallChain>(cp);
-    // Contact durations set the steps: the largest fixed step is 1/16 of a contact (w dt = pi/16),
-    // and the chain is measured once the pulse has had three pair contacts per ball to cross it.
-    const double ball_contact = hooke_contact(1.0, k, V, g).duration;
-    const double chain_contact = hooke_contact(cp.m / 2, chain_k, cp.v0, 0.0).duration;
-    const double t_chain = cp.approach / cp.v0 + 3.0 * static_cast<double>(cp.n) * chain_contact;
-    auto steps = [&](double largest) {
-      std::vector<double> dts;
-      for (long j = 0; j <= halvings; ++j) dts.push_back(largest / std::pow(2.0, static_cast<double>(j)));
-      return dts;
-    };
-    // Chain spring reference: CVODE BDF, tight, switches located.
-    Vector chain_spring_ref;
-    if (std::find(problem_list.begin(), problem_list.end(), "chain") != problem_list.end()) {
-      Method reference{.name = "penalty"};
-      reference.integrator.rtol = 1e-12;
-      reference.integrator.atol = 1e-14;
-      reference.integrator.max_steps = 10000000;
-      const RunResult r =
-          require(solve(*chain, reference, {.t_end = t_chain, .sample_dt = t_chain}), "chain reference");
-      chain_spring_ref = r.samples.back().y;
-    }
-    auto error = [&](const std::string& problem, bool rigid, const RunResult& r) {
-      const Vector& y = r.samples.back().y;
-      if (problem == "ball") {
-        const BallState ref =
-            rigid ? rigid_ball_state(h0, 0.0, g, 1.0, t_ball) : hooke_ball_state(1.0, k, h0, 0.0, g, t_ball);
-        return std::max(std::abs(y[0] - ref.x) / h0, std::abs(y[1] - ref.v) / V);
-      }
-      double err = 0;
-      for (std::size_t b = 0; b < cp.n; ++b) {
-        const auto i = static_cast<Eigen::Index>(2 * b + 1);
-        const double ref = rigid ? (b + 1 == cp.n ? cp.v0 : 0.0) : chain_spring_ref[i];
-        err = std::max(err, std::abs(y[i] - ref) / cp.v0);
-      }
-      return err;
-    };
-
+    std::vector<Problem> problems_run;
+    for (const auto& name : problem_list)
+      problems_run.push_back(name == "ball" ? ball_problem(k, 1.5) : chain_problem(balls, chain_k));
     std::vector<Job> jobs;
-    for (const auto& problem : problem_list) {
-      const MechanicalSystem& model =
-          problem == "ball" ? static_cast<const MechanicalSystem&>(*ball) : *chain;
-      const double t_end = problem == "ball" ? t_ball : t_chain;
-      const SolveOptions span{.t_end = t_end, .sample_dt = t_end};
-      const auto dts = steps((problem == "ball" ? ball_contact : chain_contact) / 16);
-      auto integrator_options = [](const std::string& name, double value) {
-        IntegratorOptions o;
-        o.method = name;
-        o.max_steps = 10000000;
-        return with_setting(o, !integrator_info(name).adaptive, value);
-      };
+    for (const Problem& pr : problems_run) {
+      // The largest fixed step is 1/16 of a contact (w dt = pi/16), halved --halvings times.
+      std::vector<double> dts;
+      for (long j = 0; j <= halvings; ++j)
+        dts.push_back(pr.contact_duration / 16 / std::pow(2.0, static_cast<double>(j)));
       for (const auto& name : chosen) {
         const bool adaptive = integrator_info(name).adaptive;
         for (double v : adaptive ? tols : dts)
-          jobs.push_back({problem, "penalty", name, adaptive ? "rtol" : "dt", v,
-                          [&model, span, o = integrator_options(name, v)] {
-                            return solve(model, {.name = "penalty", .integrator = o}, span);
-                          }});
+          jobs.push_back(
+              {&pr, "penalty", name, adaptive ? "rtol" : "dt", v, method_with("penalty", name, v)});
       }
-      for (const auto& [paradigm, method] :
-           {std::pair{std::string("game"), std::string("game-symplectic")},
-            std::pair{std::string("game-spring"), std::string("game-symplectic-spring")}})
+      for (const auto& [paradigm, method] : {std::pair<std::string, std::string>{"game", "game-symplectic"},
+                                             {"game-spring", "game-symplectic-spring"}})
         for (double dt : dts)
-          jobs.push_back({problem, paradigm, "semi-implicit-euler", "dt", dt, [&model, span, dt, method] {
-                            return solve(model, {.name = method, .dt = dt}, span);
-                          }});
+          jobs.push_back({&pr, paradigm, "semi-implicit-euler", "dt", dt, Method{.name = method, .dt = dt}});
       for (const std::string name : {"cvode-bdf", "gsl-rk8pd"})
         for (double tol : tols)
-          jobs.push_back(
-              {problem, "event", name, "rtol", tol, [&model, span, o = integrator_options(name, tol)] {
-                 return solve(model, {.name = "event-ode", .integrator = o}, span);
-               }});
-      if (problem == "ball")
-        jobs.push_back({problem, "event", "exact-flight", "exact", 0.0,
-                        [ball, span] { return solve(*ball, {.name = "event-exact"}, span); }});
+          jobs.push_back({&pr, "event", name, "rtol", tol, method_with("event-ode", name, tol)});
+      if (pr.name == "ball")
+        jobs.push_back({&pr, "event", "exact-flight", "exact", 0.0, Method{.name = "event-exact"}});
     }
 
     Table table(
@@ -166,15 +108,17 @@ int program(int argc, char** argv) {
         series;  // problem -> series label -> "cost,time,error" lines
     Progress progress("work_precision", jobs.size());
     for (const auto& job : jobs) {
-      progress.step(
-          fmt::format("{} {} {} {}={:g}", job.problem, job.paradigm, job.integrator, job.setting, job.value));
-      const RunResult r = require(job.run(), fmt::format("{} {} {} ({} = {:g})", job.problem, job.paradigm,
-                                                         job.integrator, job.setting, job.value));
+      progress.step(fmt::format("{} {} {} {}={:g}", job.problem->name, job.paradigm, job.integrator,
+                                job.setting, job.value));
+      const RunResult r = require(solve(*job.problem->model, job.method,
+                                        {.t_end = job.problem->t_end, .sample_dt = job.problem->t_end}),
+                                  fmt::format("{} {} {} ({} = {:g})", job.problem->name, job.paradigm,
+                                              job.integrator, job.setting, job.value));
       const bool rigid = job.paradigm == "game" || job.paradigm == "event";
-      const double err = error(job.problem, rigid, r);
-      table.add_row({job.problem, job.paradigm, job.integrator, job.setting, job.value, err,
+      const double err = job.problem->error(r, rigid);
+      table.add_row({job.problem->name, job.paradigm, job.integrator, job.setting, job.value, err,
                      r.stats.rhs_evals, r.stats.wall_time_s});
-      series[job.problem][job.paradigm + " " + job.integrator] +=
+      series[job.problem->name][job.paradigm + " " + job.integrator] +=
           fmt::format("{},{},{}\n", std::max(r.stats.rhs_evals, 1L), std::max(r.stats.wall_time_s, 1e-7),
                       std::max(err, kFloor));
     }
@@ -192,10 +136,7 @@ int program(int argc, char** argv) {
           ++i;
         }
         render({problem + "_" + cost, figure.data(),
-                fmt::format("set logscale xy\nset format x '10^{{%L}}'\nset format y '10^{{%L}}'\nset xlabel "
-                            "'{}'\nset ylabel 'error'\n"
-                            "set key outside right font ',8'\nset grid\nplot {}",
-                            label, figure.plot())},
+                loglog(label, "error") + "set key outside right font ',8'\nplot " + figure.plot()},
                files);
       }
     fmt::print("Work-precision: {} runs (ball k = {:g} N/m; chain of {} balls, k = {:g} N/m)\n\n{}",

@@ -26,6 +26,13 @@ const std::vector<MethodInfo>& method_registry() {
 
 std::vector<std::string> method_names() { return names_of(method_registry()); }
 
+std::vector<std::string> methods_for(const Dynamics& scene) {
+  std::vector<std::string> names;
+  for (const auto& m : method_registry())
+    if (m.can_run(scene)) names.push_back(m.name);
+  return names;
+}
+
 const MethodInfo& method_info(const std::string& name) {
   return find_named(method_registry(), name, "--method");
 }

@@ -35,8 +35,25 @@ TEST(PaperInputs, EveryInputIsADeclaredExperimentOutput) {
 }
 
 TEST(PaperInputs, PaperFolderHoldsOnlySources) {
-  const std::set<std::string> sources = {"paper.tex", "references.bib", "CMakeLists.txt"};
+  const std::set<std::string> sources = {"paper.tex", "references.bib", "numbers.json", "CMakeLists.txt"};
   for (const auto& entry : fs::directory_iterator(PAPER_DIR))
     EXPECT_TRUE(sources.count(entry.path().filename().string()))
         << entry.path() << " is not a source of the paper";
+}
+
+// paper_numbers reads the study's CSVs with read_csv: it gives back what Table::to_csv wrote,
+// quoted commas and quotes included, by column name.
+TEST(PaperInputs, CsvReadsBackWhatTablesWrite) {
+  contact::Table t({"name", "value"});
+  t.add_row({std::string("a, \"b\""), 1.5});
+  t.add_row({std::string("c"), 2L});
+  const fs::path file = fs::temp_directory_path() / ("contact_csv_" + std::to_string(::getpid()) + ".csv");
+  std::ofstream(file) << t.to_csv();
+  const auto rows = contact::read_csv(file);
+  fs::remove(file);
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0].at("name"), "a, \"b\"");
+  EXPECT_DOUBLE_EQ(std::stod(rows[0].at("value")), 1.5);
+  EXPECT_EQ(rows[1].at("value"), "2");
+  EXPECT_THROW(contact::read_csv(file), std::runtime_error);
 }

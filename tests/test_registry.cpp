@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <set>
@@ -117,4 +118,27 @@ TEST(Solve, ByNameGivesTheClosedForms) {
   const RunResult s = solve(*spring, penalty, {.t_end = period, .sample_dt = period / 8});
   ASSERT_TRUE(s.ok()) << s.message;
   for (const auto& smp : s.samples) EXPECT_NEAR(smp.y[0], 0.1 * std::cos(10.0 * smp.t), 1e-8) << smp.t;
+}
+
+TEST(Registries, MethodsForASceneAreThoseThatCanRunIt) {
+  const auto ball = make_scene("ball-drop");
+  const auto spring = make_scene("spring-mass");
+  EXPECT_EQ(methods_for(*ball), method_names());  // the ball drop runs every method
+  for (const auto& name : methods_for(*spring)) EXPECT_TRUE(method_info(name).can_run(*spring)) << name;
+  const auto for_spring = methods_for(*spring);
+  EXPECT_EQ(std::find(for_spring.begin(), for_spring.end(), "event-ode"), for_spring.end());
+}
+
+// The closed forms by law name: Hooke's contact time pi sqrt(m/k) without gravity, the clamped
+// Kelvin–Voigt law's exit speed e_clamped(zeta) V, and NaN for a law without one.
+TEST(Registries, LinearLawClosedFormsByName) {
+  const double m = 2.0, k = 1e4, V = 3.0, e = 0.5;
+  EXPECT_NEAR(linear_law_first_contact("hooke", m, k, e, V, 0.0).duration,
+              std::numbers::pi * std::sqrt(m / k), 1e-14);
+  const double zeta = damping_ratio_for_restitution(e);
+  const SpringContact clamped = linear_law_first_contact("kelvin-voigt-clamped", m, k, e, V, 0.0);
+  EXPECT_NEAR(clamped.exit_speed, clamped_kelvin_voigt_restitution(zeta) * V, 1e-14);
+  EXPECT_DOUBLE_EQ(clamped.max_penetration,
+                   linear_law_first_contact("kelvin-voigt", m, k, e, V, 0.0).max_penetration);
+  EXPECT_TRUE(std::isnan(linear_law_first_contact("hertz", m, k, e, V, 0.0).duration));
 }

@@ -4,6 +4,8 @@
 #include "cli_fixture.hpp"
 #include "study_manifest.hpp"
 
+#include <set>
+
 using namespace contact;
 
 namespace {
@@ -51,4 +53,20 @@ TEST_F(StudyCli, BadInputIsRefused) {
                                 {"--only ball_drop,moon", "--only", "'moon'", "ball_drop"},
                                 {"--manifest nowhere.json", "--manifest", "nowhere.json", "exist"},
                             });
+}
+
+// Each experiment is a recipe: the skeleton (experiment.hpp) and the libraries hold everything
+// shared, so that no experiment's file grows past 150 lines.
+TEST(StudyManifestTest, EveryExperimentIsAShortRecipe) {
+  const StudyManifest manifest = load_study_manifest(STUDY_MANIFEST);
+  const fs::path folder = fs::path(STUDY_MANIFEST).parent_path();
+  std::set<std::string> files = {"paper_numbers.cpp", "study.cpp"};
+  for (const auto& e : manifest.experiments) files.insert(e.exe + ".cpp");
+  for (const auto& file : files) {
+    std::ifstream in(folder / file);
+    ASSERT_TRUE(in) << file;
+    std::size_t lines = 0;
+    for (std::string line; std::getline(in, line);) ++lines;
+    EXPECT_LE(lines, 150u) << file;
+  }
 }

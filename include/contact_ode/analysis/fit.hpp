@@ -25,6 +25,15 @@ double observed_order(double h_prev, double err_prev, double h, double err);
 double fitted_order(const std::vector<double>& h, const std::vector<double>& err, double floor,
                     std::size_t rows);
 
+// One row of a convergence study, coarse to fine: the step (dt, rtol or 1/k), the error, the cost.
+struct ConvergencePoint {
+  double step;
+  double error;
+  long cost = 0;
+};
+// fitted_order over the points' steps and errors.
+double fitted_order(const std::vector<ConvergencePoint>& points, double floor, std::size_t rows);
+
 // Points from lo to hi (0 < lo <= hi), evenly spaced in log, per_decade >= 1 of them per decade
 // (rounded; at least the two ends), the ends exact: lo * (hi/lo)^(j/n). lo == hi gives one point.
 std::vector<double> log_grid(double lo, double hi, long per_decade);

@@ -3,6 +3,7 @@
 #include "contact_ode/integrators/run_result.hpp"
 
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace contact {
@@ -24,6 +25,18 @@ RunMetrics compute_metrics(const RunResult& run);
 
 // Relative energy drift (E0 - E - dissipated) / |E0| of each sample, in order.
 std::vector<double> energy_drifts(const RunResult& run);
+// The numerical energy error as a gain, gain(t) = (E + dissipated - E0) / |E0| = -drift, at each
+// sample: its final value and its least-squares slope against time (GSL) with that slope's
+// standard deviation. > 0: the method invents energy.
+struct EnergyGain {
+  std::vector<double> t, gain;
+  double final_gain = 0, rate = 0, rate_sd = 0;  // [1], [1/s], [1/s]
+  // "conserves" when |final_gain| < tolerance, else "gains" or "loses". The default is the
+  // study's: far above the round-off of the energy over a long run, far below any method's drift.
+  std::string verdict(double tolerance = 1e-10) const;
+};
+EnergyGain energy_gain(const RunResult& run);
+
 // Relative energy error at each apex, in order.
 std::vector<double> apex_energy_errors(const RunResult& run);
 // Effective restitution of each closed contact, in order.

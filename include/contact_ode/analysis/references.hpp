@@ -53,6 +53,7 @@
 // exactly this; Hunt–Crossley's agrees to first order in (1 - e); Flores' and Gonthier's, built
 // for low restitution, do not.
 #include <cstddef>
+#include <string>
 
 namespace contact {
 
@@ -79,6 +80,13 @@ SpringContact kelvin_voigt_contact(double m, double k, double zeta, double V);
 double clamped_kelvin_voigt_restitution(double zeta);
 // Undamped power-law contact: duration, maximum penetration, exit speed V.
 SpringContact power_law_contact(double m, double K, double n, double V);
+// The first contact of a linear law of the registry, tuned to restitution e, entered at speed V
+// under gravity g: "hooke" exactly; "kelvin-voigt" in its gravity-free limit (error O(g / (w V)));
+// "kelvin-voigt-clamped" likewise, with the unclamped penetration (the clamp acts only after the
+// deepest point) and the clamped duration (pi - 2 asin zeta) / w_d and exit speed. NaN for every
+// other law, and for e = 0 (critical damping: no bounce to compare).
+SpringContact linear_law_first_contact(const std::string& law, double m, double k, double e, double V,
+                                       double g);
 // B(1/(n+1), 1/2)/(n+1): the power-law contact time is 2 delta_max / V times this.
 double power_law_time_factor(double n);
 // Small-damping restitution loss 1 - e^2 of a Hunt–Crossley contact: (4/3) chi V.

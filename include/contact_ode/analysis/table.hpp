@@ -1,6 +1,8 @@
 #pragma once
 // A small table of results rendered as CSV (full precision, for machines), Markdown (for the
 // terminal and results/index.md) and LaTeX booktabs (for the paper).
+#include <filesystem>
+#include <map>
 #include <string>
 #include <variant>
 #include <vector>
@@ -29,5 +31,10 @@ class Table {
 
 // The cells of one line of Table::to_csv(): the inverse of its quoting ("a, b" and "" escapes).
 std::vector<std::string> split_csv_line(const std::string& line);
+
+// The rows of a CSV file written by Table::to_csv(), each a map from column name to cell.
+// Throws std::runtime_error naming the file when it cannot be read.
+using CsvRecord = std::map<std::string, std::string>;
+std::vector<CsvRecord> read_csv(const std::filesystem::path& path);
 
 }  // namespace contact

@@ -46,6 +46,8 @@ struct MethodInfo {
 
 const std::vector<MethodInfo>& method_registry();
 std::vector<std::string> method_names();
+// The methods that can run `scene`, in registry order.
+std::vector<std::string> methods_for(const Dynamics& scene);
 // Throws std::invalid_argument naming the accepted methods.
 const MethodInfo& method_info(const std::string& name);
 

@@ -1,0 +1,64 @@
+#include "ball_drop_setup.hpp"
+
+#include "contact_ode/models/ball_drop.hpp"
+#include "contact_ode/models/law_registry.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace contact {
+
+double scaled_atol(const BallDropOptions& o) {
+  if (o.atol > 0) return o.atol;
+  const double L = o.h0 + (o.g > 0 ? o.v0 * o.v0 / (2 * o.g) : 0.0);
+  return 1e-10 * L;
+}
+
+double impact_speed(const BallDropOptions& o) { return std::sqrt(o.v0 * o.v0 + 2 * o.g * o.h0); }
+
+ContactLaw law_for(const BallDropOptions& o, double k) {
+  const double V = impact_speed(o);
+  return make_law(o.law, {.k = k, .m = o.m, .e = o.e, .v = V > 0 ? V : 1.0});
+}
+
+Method method_for(const BallDropOptions& o, const std::string& name) {
+  Method m{.name = name, .dt = o.dt, .rest_speed = o.rest_speed};
+  m.integrator.method = o.integrator;
+  m.integrator.rtol = o.rtol;
+  m.integrator.atol = scaled_atol(o);
+  m.integrator.max_steps = o.max_steps;
+  m.integrator.jacobian = o.jacobian == "dq" ? JacobianMode::DifferenceQuotient : JacobianMode::Analytic;
+  m.integrator.linear_solver = parse_linear_solver(o.linear_solver);
+  // Fixed-step integrators run at --dt; adaptive ones control their own step.
+  m.integrator.dt = integrator_info(o.integrator).adaptive ? 0.0 : o.dt;
+  return m;
+}
+
+RunResult run_ball(const BallDropOptions& o, const std::string& method, double k) {
+  const BallDrop model({o.m, o.g, o.h0, o.v0, o.e, law_for(o, k)});
+  return solve(model, method_for(o, method),
+               {.t_end = o.t_end, .sample_dt = o.sample_dt, .limits = {.max_records = o.max_records}});
+}
+
+std::vector<std::string> ball_methods() { return methods_for(BallDrop({})); }
+
+SpringContact closed_form_contact(const BallDropOptions& o, double k) {
+  return linear_law_first_contact(o.law, o.m, k, o.e, impact_speed(o), o.g);
+}
+
+std::string ball_references(const BallDropOptions& o) {
+  std::string s;
+  if (o.g > 0) {
+    const RigidBounces rigid(o.h0, o.v0, o.g, o.e);
+    s += fmt::format(
+        "rigid (Newton, e = {:g}): first impact {:.6g} s, first apex e^2 h0 = {:.6g} m, Zeno time {:.6g} s\n",
+        o.e, rigid.T1, rigid.apex_height(1), rigid.zeno_time());
+  }
+  if (o.law == "hooke") s += "closed forms: Hooke spring with gravity (exact); restitution 1\n";
+  if (o.law == "kelvin-voigt" || o.law == "kelvin-voigt-clamped")
+    s += "closed forms: Kelvin–Voigt without gravity (error O(g / (omega V))); restitution e\n";
+  return s;
+}
+
+}  // namespace contact
