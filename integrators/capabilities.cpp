@@ -37,4 +37,15 @@ const ImpulseMap& impulse_map(const Dynamics& scene, std::string_view method) {
       "method '{}' resolves contacts by impulses, and scene '{}' has no impulse map", method, scene.name()));
 }
 
+bool has_normal_impulses(const Dynamics& scene) {
+  return dynamic_cast<const NormalImpulses*>(&scene) != nullptr &&
+         dynamic_cast<const ContactGeometry*>(&scene);
+}
+
+const NormalImpulses& normal_impulses(const Dynamics& scene, std::string_view method) {
+  if (const auto* m = dynamic_cast<const NormalImpulses*>(&scene)) return *m;
+  throw std::invalid_argument(fmt::format(
+      "method '{}' solves for normal impulses, and scene '{}' offers none", method, scene.name()));
+}
+
 }  // namespace contact

@@ -2,8 +2,6 @@
 
 #include "contact_ode/models/registry.hpp"
 
-#include "contact_ode/models/registry.hpp"
-
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -15,7 +13,9 @@ namespace contact {
 const std::vector<MethodInfo>& method_registry() {
   static const std::vector<MethodInfo> all = [] {
     std::vector<MethodInfo> methods;
-    for (auto family : {penalty_methods, game_methods, event_methods}) {  // one entry per family
+    for (auto family : {penalty_methods, game_methods, event_methods,  // one entry per family
+                        implicit_spring_methods, sequential_impulses_methods, soft_step_methods, xpbd_methods,
+                        moreau_jean_methods}) {
       auto entries = family();
       methods.insert(methods.end(), entries.begin(), entries.end());
     }

@@ -103,6 +103,16 @@ void BallChain::apply_impulse(std::size_t i, double e, VectorRef y) const {
   y[static_cast<Eigen::Index>(2 * i + 3)] += J * inv_m;
 }
 
+void BallChain::apply_normal_impulse(std::size_t i, double lambda, VectorRef y) const {
+  y[static_cast<Eigen::Index>(2 * i + 1)] -= lambda / p_.m;
+  y[static_cast<Eigen::Index>(2 * i + 3)] += lambda / p_.m;
+}
+
+void BallChain::apply_normal_displacement(std::size_t i, double dlambda, VectorRef y) const {
+  y[static_cast<Eigen::Index>(2 * i)] -= dlambda / p_.m;
+  y[static_cast<Eigen::Index>(2 * i + 2)] += dlambda / p_.m;
+}
+
 void BallChain::settle(std::size_t i, VectorRef y) const {
   // Both balls take their common velocity: no relative normal motion left. (Without gravity
   // nothing holds them together afterwards: the chain's dynamics treat Resting as Free.)

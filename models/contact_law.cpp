@@ -16,6 +16,14 @@ KelvinVoigt kelvin_voigt_for_restitution(double k, double m, double e, bool no_p
   return KelvinVoigt{k, 2.0 * damping_ratio_for_restitution(e) * std::sqrt(k * m), no_pull};
 }
 
+LinearLaw linear_law(const ContactLaw& law) {
+  if (const auto* h = std::get_if<Hooke>(&law)) return {h->k, 0.0};
+  if (const auto* kv = std::get_if<KelvinVoigt>(&law)) return {kv->k, kv->c};
+  const auto& hc = std::get<HuntCrossley>(law);
+  if (hc.n == 1.0 && hc.chi == 0.0) return {hc.k, 0.0};
+  return {std::nan(""), std::nan("")};
+}
+
 double force(const ContactLaw& law, double d, double dd) {
   return std::visit([&](const auto& l) { return l.force(d, dd); }, law);
 }

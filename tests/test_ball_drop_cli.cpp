@@ -112,10 +112,11 @@ TEST_F(BallDropCli, SweepPrintsOneRowPerStiffnessAndMethod) {
   const Outcome r = run("--sweep --k-min 1e2 --k-max 1e4 --t-end 1 --out sweep");
   ASSERT_EQ(r.code, 0) << r.err;
   const std::string csv = slurp(dir_ / "sweep" / "sweep.csv");
-  // 3 stiffnesses x 4 stiffness-dependent methods (penalty, penalty-dq, game-euler-spring,
-  // game-symplectic-spring) + 6 independent ones (game-euler, game-symplectic,
-  // game-symplectic-projection, event-ode, event-ode-reversed, event-exact), plus the header.
-  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 3 * 4 + 6 + 1) << csv;
+  // 3 stiffnesses x 6 stiffness-dependent methods (penalty, penalty-dq, game-euler-spring,
+  // game-symplectic-spring, game-implicit-spring, xpbd) + 9 independent ones (game-euler,
+  // game-symplectic, game-symplectic-projection, event-ode, event-ode-reversed, event-exact,
+  // sequential-impulses, soft-step, moreau-jean), plus the header.
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 3 * 6 + 9 + 1) << csv;
   EXPECT_EQ(csv.rfind("k_N_per_m,method,omega_dt,closed_form_penetration_m,closed_form_duration_s,status", 0),
             0u);
 }

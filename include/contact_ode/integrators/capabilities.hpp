@@ -16,5 +16,9 @@ const ContactGeometry& contact_geometry(const Dynamics& scene);
 bool has_impulse_map(const Dynamics& scene);
 // Its impulse map; throws std::invalid_argument naming `method` and the scene when it has none.
 const ImpulseMap& impulse_map(const Dynamics& scene, std::string_view method);
+// Whether the scene offers normal impulses of any size (time-stepping solvers).
+bool has_normal_impulses(const Dynamics& scene);
+// Its normal impulses; throws std::invalid_argument naming `method` and the scene when it has none.
+const NormalImpulses& normal_impulses(const Dynamics& scene, std::string_view method);
 
 }  // namespace contact

@@ -16,6 +16,7 @@
 #include "contact_ode/models/mechanical_system.hpp"
 
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,19 @@ struct Method {
   double min_event_spacing = 0;  // [s]
   long max_events = 1'000'000;
   int persistence = 1;  // game notifications: frames a pair stays listed
+  // Time-stepping solvers (sequential impulses, soft step, XPBD, Moreau–Jean):
+  int iterations = 10;         // sequential impulses: Gauss–Seidel sweeps per step (Bullet's default)
+  int substeps = 4;            // soft step and XPBD: sub-steps per step (Box2D v3's default)
+  bool warm_start = true;      // sequential impulses and soft step: start from the last step's impulses
+  double erp = 0.2;            // sequential impulses: Baumgarte error reduction per step (Bullet, ODE)
+  bool split_impulse = false;  // sequential impulses: push-out by pseudo-velocities, off the real ones
+  // Below this approach speed a contact does not bounce [m/s]; NaN: the method's own default
+  // (sequential impulses 0, soft step 1 m/s as Box2D v3).
+  double restitution_threshold = std::numeric_limits<double>::quiet_NaN();
+  double contact_hertz = 30;          // soft step: contact stiffness as a frequency [Hz] (Box2D v3)
+  double contact_damping_ratio = 10;  // soft step: its damping ratio (Box2D v3)
+  double push_max = 3;                // soft step: fastest push-out of an overlap [m/s] (Box2D v3)
+  double theta = 0.5;                 // Moreau–Jean: the theta of its position update (Siconos)
   std::function<void(const std::vector<CollisionEvent>&)> on_notifications;  // game loop, per step
 };
 
@@ -60,5 +74,10 @@ RunResult solve(const Dynamics& scene, const Method& method, const SolveOptions&
 std::vector<MethodInfo> penalty_methods();
 std::vector<MethodInfo> game_methods();
 std::vector<MethodInfo> event_methods();
+std::vector<MethodInfo> sequential_impulses_methods();
+std::vector<MethodInfo> soft_step_methods();
+std::vector<MethodInfo> xpbd_methods();
+std::vector<MethodInfo> moreau_jean_methods();
+std::vector<MethodInfo> implicit_spring_methods();
 
 }  // namespace contact

@@ -30,7 +30,7 @@ struct BallChainParams {
   ContactLaw law = Hooke{1e6};
 };
 
-class BallChain final : public MechanicalSystem {
+class BallChain final : public MechanicalSystem, public NormalImpulses {
  public:
   explicit BallChain(BallChainParams p);
   const BallChainParams& params() const { return p_; }
@@ -65,6 +65,12 @@ class BallChain final : public MechanicalSystem {
   void project(std::size_t i, VectorRef y) const override;
   void apply_impulse(std::size_t i, double e, VectorRef y) const override;
   void settle(std::size_t i, VectorRef y) const override;
+
+  // Ball i and i+1 take -lambda/m and +lambda/m: w = 2/m.
+  double inverse_mass(std::size_t, ConstVectorRef) const override { return 2.0 / p_.m; }
+  void apply_normal_impulse(std::size_t i, double lambda, VectorRef y) const override;
+  void apply_normal_displacement(std::size_t i, double dlambda, VectorRef y) const override;
+  LinearLaw linear_law(std::size_t) const override { return contact::linear_law(p_.law); }
 
  private:
   static double u(ConstVectorRef y, std::size_t b) { return y[static_cast<Eigen::Index>(2 * b)]; }

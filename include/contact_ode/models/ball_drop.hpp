@@ -25,7 +25,7 @@ struct BallDropParams {
   ContactLaw law = Hooke{1e5};
 };
 
-class BallDrop final : public MechanicalSystem, public AnalyticFlight {
+class BallDrop final : public MechanicalSystem, public AnalyticFlight, public NormalImpulses {
  public:
   explicit BallDrop(BallDropParams p) : p_(std::move(p)) {}
   const BallDropParams& params() const { return p_; }
@@ -55,6 +55,13 @@ class BallDrop final : public MechanicalSystem, public AnalyticFlight {
   void project(std::size_t i, VectorRef y) const override;
   void apply_impulse(std::size_t i, double e, VectorRef y) const override;
   void settle(std::size_t, VectorRef y) const override { y << 0.0, 0.0; }
+
+  double inverse_mass(std::size_t, ConstVectorRef) const override { return 1.0 / p_.m; }
+  void apply_normal_impulse(std::size_t, double lambda, VectorRef y) const override { y[1] += lambda / p_.m; }
+  void apply_normal_displacement(std::size_t, double dlambda, VectorRef y) const override {
+    y[0] += dlambda / p_.m;
+  }
+  LinearLaw linear_law(std::size_t) const override { return contact::linear_law(p_.law); }
 
   void propagate(ConstVectorRef y0, double dt, VectorRef y) const override;
   double time_to_impact(std::size_t i, ConstVectorRef y0) const override;

@@ -81,6 +81,14 @@ struct HuntCrossley {
 
 using ContactLaw = std::variant<Hooke, KelvinVoigt, HuntCrossley>;
 
+// A law's spring and dashpot when it is linear, F = k delta + c delta' (Hooke, Kelvin–Voigt, and
+// Hunt–Crossley with n = 1 and no damping); NaN in both otherwise.
+struct LinearLaw {
+  double k;  // stiffness [N/m]
+  double c;  // dashpot [N s/m]
+};
+LinearLaw linear_law(const ContactLaw& law);
+
 // Rules that set the Hunt–Crossley damping factor from a target restitution e and the impact
 // speed v (> 0); each was derived for a particular range of e, and the study measures how far
 // each misses its target elsewhere:

@@ -14,6 +14,7 @@
 //   Resting  held on the surface: the normal motion is frozen (event-driven rest after Zeno).
 // Integrators that locate the switching roots pass the modes they hold; others use
 // modes_from_state(), which reads them off the sign of each switching function.
+#include "contact_ode/models/contact_law.hpp"
 #include "contact_ode/models/linear_algebra.hpp"
 
 #include <cstddef>
@@ -126,6 +127,25 @@ class MechanicalSystem : public Dynamics, public ContactGeometry, public Impulse
   double engaged_elastic_energy(ConstVectorRef y) const {
     return ContactGeometry::engaged_elastic_energy(contact_count(), y);
   }
+};
+
+// Optional capability: normal impulses of any size, and the same along the positions. What the
+// time-stepping solvers engines use (sequential impulses, soft step, XPBD, Moreau–Jean) need
+// beside the geometry: with J_i the row that maps velocities to contact i's gap rate and M the
+// mass matrix, w_i = J_i M^-1 J_i^T, and an impulse lambda changes the velocities by
+// M^-1 J_i^T lambda (so contact i's gap rate by w_i lambda).
+class NormalImpulses {
+ public:
+  virtual ~NormalImpulses() = default;
+  // w_i [1/kg]: the change of contact i's gap rate per unit impulse along its normal.
+  virtual double inverse_mass(std::size_t i, ConstVectorRef y) const = 0;
+  // Velocities += M^-1 J_i^T lambda [N s]; lambda > 0 pushes the bodies apart.
+  virtual void apply_normal_impulse(std::size_t i, double lambda, VectorRef y) const = 0;
+  // Positions += M^-1 J_i^T dlambda [kg m]: the same map applied to a position correction (XPBD).
+  virtual void apply_normal_displacement(std::size_t i, double dlambda, VectorRef y) const = 0;
+  // Contact i's penalty law when it is linear (F = k delta + c delta'), else NaN in both: the
+  // spring a compliant constraint (XPBD) matches.
+  virtual LinearLaw linear_law(std::size_t i) const = 0;
 };
 
 // Optional capability: free flight known in closed form (e.g. a point mass under uniform

@@ -1,0 +1,84 @@
+// Sequential impulses: the projected Gauss–Seidel contact solver of Bullet, ODE and PhysX. Each
+// step: gravity and the other forces update the velocities; every overlapping contact gets a
+// target gap rate (-e times its approach speed above the restitution threshold, else 0) plus a
+// Baumgarte push-out erp * overlap / dt; `iterations` Gauss–Seidel sweeps then solve for the
+// normal impulses, each accumulated impulse clamped at >= 0 (contacts push, never pull), the
+// first sweep started from the last step's impulses (warm starting); the positions then move
+// with the new velocities (semi-implicit Euler). With split_impulse the push-out is solved
+// apart, as pseudo-velocities that move the positions and are then forgotten (Bullet's split
+// impulses): the overlap is corrected without the energy Baumgarte's bias feeds the bounce.
+// With one contact, no warm start and erp = 0 a single sweep is the exact impulse of Newton's
+// law: v+ = -e v- (tests/test_time_stepping.cpp).
+#include "contact_ode/integrators/capabilities.hpp"
+#include "contact_ode/integrators/method_registry.hpp"
+#include "time_stepping.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace contact {
+
+namespace {
+
+RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) {
+  const ContactGeometry& geo = contact_geometry(scene);
+  const NormalImpulses& normal = normal_impulses(scene, m.name);
+  const ImpulseMap& law = impulse_map(scene, m.name);
+  const std::size_t nc = scene.contact_count();
+  const double threshold = std::isnan(m.restitution_threshold) ? 0.0 : m.restitution_threshold;
+  std::vector<double> lambda(nc, 0.0), target(nc), bias(nc), push(nc), pseudo(nc);
+  std::vector<bool> active(nc);
+  Vector scratch, ghost;
+  auto step = [&](double t, double h, Vector& y, StepReport& report, SolverStats& stats) {
+    stats.rhs_evals += add_free_velocity(scene, t, h, y, scratch);
+    const double before = scene.energy(y);
+    for (std::size_t i = 0; i < nc; ++i) {
+      const bool was = active[i];
+      active[i] = geo.gap(i, y) <= 0;
+      if (!active[i] || !was || !m.warm_start) lambda[i] = 0;
+      if (!active[i]) continue;
+      const double approach = geo.gap_rate(i, y);
+      target[i] = approach < -threshold ? -law.restitution(i) * approach : 0.0;
+      const double correction = m.erp / h * std::max(-geo.gap(i, y), 0.0);
+      bias[i] = m.split_impulse ? 0.0 : correction;
+      push[i] = m.split_impulse ? correction : 0.0;
+      normal.apply_normal_impulse(i, lambda[i], y);  // warm start
+    }
+    for (int sweep = 0; sweep < m.iterations; ++sweep)
+      for (std::size_t i = 0; i < nc; ++i) {
+        if (!active[i]) continue;
+        accumulate_impulse(normal, i, (target[i] + bias[i] - geo.gap_rate(i, y)) / normal.inverse_mass(i, y),
+                           lambda[i], y);
+      }
+    stats.newton_iters += m.iterations;  // the solver's sweeps
+    report.dissipated += before - scene.energy(y);
+    for (std::size_t i = 0; i < nc; ++i) report.impulse[i] = active[i] ? lambda[i] : 0.0;
+    stats.rhs_evals += advance_positions(scene, t, h, y, scratch);
+    if (m.split_impulse) {
+      // The push-out as pseudo-velocities: solved on a copy with zero velocities, which then
+      // moves the positions by h times what it gained.
+      ghost = scene.position_mask().select(y, Vector::Zero(y.size()));
+      std::fill(pseudo.begin(), pseudo.end(), 0.0);
+      for (int sweep = 0; sweep < m.iterations; ++sweep)
+        for (std::size_t i = 0; i < nc; ++i) {
+          if (!active[i]) continue;
+          accumulate_impulse(normal, i, (push[i] - geo.gap_rate(i, ghost)) / normal.inverse_mass(i, ghost),
+                             pseudo[i], ghost);
+        }
+      stats.rhs_evals += advance_positions(scene, t, h, ghost, scratch);
+      y = scene.position_mask().select(ghost, y);
+    }
+  };
+  return run_time_stepping(scene, m.name, m.dt, step, span);
+}
+
+}  // namespace
+
+std::vector<MethodInfo> sequential_impulses_methods() {
+  return {impulse_stepping_method("sequential-impulses",
+                                  "projected Gauss-Seidel impulses with warm starting and Baumgarte push-out "
+                                  "(Bullet, ODE, PhysX)",
+                                  run)};
+}
+
+}  // namespace contact

@@ -1,0 +1,99 @@
+#include "time_stepping.hpp"
+
+#include "contact_ode/integrators/capabilities.hpp"
+#include "contact_ode/integrators/status.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+
+namespace contact {
+
+long add_free_velocity(const Dynamics& model, double t, double h, Vector& y, Vector& scratch) {
+  scratch.resize(y.size());
+  model.rhs(t, y, model.all_modes(ContactMode::Free), scratch);
+  y = model.position_mask().select(y, y + h * scratch);
+  return 1;
+}
+
+long advance_positions(const Dynamics& model, double t, double h, Vector& y, Vector& scratch) {
+  scratch.resize(y.size());
+  // The position rows of the right-hand side are Q(q) v: they read the velocities only.
+  model.rhs(t, y, model.all_modes(ContactMode::Free), scratch);
+  y = model.position_mask().select(y + h * scratch, y);
+  model.normalize(y);
+  return 1;
+}
+
+double accumulate_impulse(const NormalImpulses& normal, std::size_t i, double d, double& lambda, Vector& y) {
+  const double updated = std::max(lambda + d, 0.0), change = updated - lambda;
+  normal.apply_normal_impulse(i, change, y);
+  lambda = updated;
+  return change;
+}
+
+MethodInfo impulse_stepping_method(
+    std::string name, std::string description,
+    std::function<RunResult(const Dynamics&, const Method&, const SolveOptions&)> run) {
+  return {.name = std::move(name),
+          .description = std::move(description),
+          .family = "time-stepping",
+          .fixed_step = true,
+          .uses_contact_law = false,
+          .needs = "dynamics, contact geometry, an impulse map and normal impulses",
+          .can_run = [](const Dynamics& s) { return has_impulse_map(s) && has_normal_impulses(s); },
+          .run = std::move(run)};
+}
+
+RunResult run_time_stepping(const Dynamics& model, const std::string& method, double dt,
+                            const StepFunction& step, const SolveOptions& span) {
+  const std::size_t nc = model.contact_count();
+  const ContactGeometry& geo = contact_geometry(model);
+  RunRecorder rec(model, method, span);
+  Vector y = model.initial_state(), y_prev = y;
+  StepReport report{0.0, std::vector<double>(nc, 0.0)};
+  SolverStats stats;
+  double t = 0.0;
+  try {
+    rec.sample(0.0, y);
+    for (std::size_t i = 0; i < nc; ++i)
+      if (geo.gap(i, y) < 0) rec.contact_begin(i, 0.0, geo.gap_rate(i, y));
+    // Counted in floating point: t_end / dt can exceed every integer type.
+    const double steps_needed = std::ceil(span.t_end / dt - 1e-9);
+    rec.check_steps(steps_needed < 9e18 ? static_cast<long>(steps_needed) : std::numeric_limits<long>::max(),
+                    0.0);
+    const auto n_steps = static_cast<long>(steps_needed);
+    for (long n = 1; n <= n_steps; ++n) {
+      const double t0 = t, h = std::min(dt, span.t_end - t0);
+      t = n == n_steps ? span.t_end : static_cast<double>(n) * dt;
+      y_prev = y;
+      report.dissipated = 0;
+      std::fill(report.impulse.begin(), report.impulse.end(), 0.0);
+      step(t0, h, y, report, stats);
+      stats.steps += 1;
+      if (!y.allFinite())
+        throw SolverFailure(Status::NonFiniteState, t,
+                            fmt::format("state is not finite after step {} (dt = {:g} s)", n, h));
+      rec.add_dissipated(report.dissipated);
+      for (std::size_t i = 0; i < nc; ++i) {
+        const bool touching = report.impulse[i] > 0 || geo.gap(i, y) < 0;
+        const double r0 = geo.gap_rate(i, y_prev), r1 = geo.gap_rate(i, y);
+        if (!touching && !rec.contact_open(i) && r0 > 0 && r1 <= 0) {
+          const double s = r0 / (r0 - r1);
+          const Vector ya = y_prev + s * (y - y_prev);
+          rec.apex(i, t0 + s * h, geo.gap(i, y_prev) + 0.5 * r0 * s * h, model.energy(ya));
+        }
+        if (touching && !rec.contact_open(i)) rec.contact_begin(i, t0, r0);
+        if (touching) rec.observe_penetration(i, -geo.gap(i, y));
+        if (!touching && rec.contact_open(i)) rec.contact_end(i, t0, r1);
+      }
+      if (t >= rec.next_sample_time() * (1 - 1e-12)) rec.sample(t, y);
+    }
+  } catch (const SolverFailure& failure) {
+    return rec.fail(failure, stats);
+  }
+  return rec.finish(stats, t);
+}
+
+}  // namespace contact

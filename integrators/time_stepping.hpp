@@ -1,0 +1,48 @@
+#pragma once
+// The loop every time-stepping method shares (sequential impulses, soft step, XPBD, Moreau–Jean,
+// the implicit Euler spring): fixed steps of dt, each taken by the method's own step function,
+// with what the run records done here once: contacts (begin when a contact carries an impulse
+// or overlaps, end when it does neither), penetration, apexes in free flight, the energy ledger
+// (the step books what its contact solve or dashpot removes; the rest is drift), samples, and
+// a typed failure on a non-finite state.
+#include "contact_ode/integrators/method_registry.hpp"
+#include "contact_ode/integrators/run_recorder.hpp"
+#include "contact_ode/integrators/run_result.hpp"
+#include "contact_ode/models/mechanical_system.hpp"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace contact {
+
+struct StepReport {
+  double dissipated = 0;        // energy the contact model removed during the step [J]
+  std::vector<double> impulse;  // normal impulse each contact carried during the step [N s]
+};
+
+// Advances y by one step h; counts its work in stats; throws SolverFailure when it cannot.
+using StepFunction =
+    std::function<void(double t, double h, Vector& y, StepReport& report, SolverStats& stats)>;
+
+RunResult run_time_stepping(const Dynamics& model, const std::string& method, double dt,
+                            const StepFunction& step, const SolveOptions& span);
+
+// Adds d to contact i's accumulated impulse `lambda`, clamped at >= 0 (a contact pushes, never
+// pulls), and applies what changed to the velocities. Returns the change [N s].
+double accumulate_impulse(const NormalImpulses& normal, std::size_t i, double d, double& lambda, Vector& y);
+
+// The entry of a time-stepping method that resolves contacts by impulses with Newton's
+// restitution (sequential impulses, soft step, Moreau–Jean): fixed step, needs normal impulses
+// and an impulse map (for e).
+MethodInfo impulse_stepping_method(
+    std::string name, std::string description,
+    std::function<RunResult(const Dynamics&, const Method&, const SolveOptions&)> run);
+
+// The unconstrained acceleration part of a step: v += h a(q, v) with every contact free (gravity and
+// the scene's other forces), leaving the positions. Returns the right-hand-side evaluations used.
+long add_free_velocity(const Dynamics& model, double t, double h, Vector& y, Vector& scratch);
+// q += h v for the positions (mask), using the velocities in y.
+long advance_positions(const Dynamics& model, double t, double h, Vector& y, Vector& scratch);
+
+}  // namespace contact

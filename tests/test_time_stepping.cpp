@@ -1,0 +1,132 @@
+// The time-stepping methods engines use, against what can be derived for them exactly:
+// sequential impulses on one contact are Newton's impulse, Moreau–Jean's impact law holds at the
+// step, the soft constraint is implicit Euler on a spring-damper, XPBD with n sub-steps is the
+// implicit Euler spring at dt / n, and implicit Euler shrinks an undamped spring's energy by
+// exactly 1 / (1 + w^2 h^2) per step.
+#include "contact_ode/integrators/method_registry.hpp"
+#include "contact_ode/integrators/soft_step.hpp"
+#include "contact_ode/models/ball_drop.hpp"
+#include "contact_ode/models/scene_registry.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+using namespace contact;
+
+namespace {
+
+constexpr double kG = 9.81, kDt = 1e-3;
+
+// The first step after which the ball moves up, having moved down: (v before, v after).
+std::pair<double, double> first_bounce(const RunResult& r) {
+  for (std::size_t n = 1; n < r.samples.size(); ++n)
+    if (r.samples[n - 1].y[1] < 0 && r.samples[n].y[1] > 0) return {r.samples[n - 1].y[1], r.samples[n].y[1]};
+  ADD_FAILURE() << r.method << ": no bounce";
+  return {0, 0};
+}
+
+RunResult drop(const Method& m, double e = 0.8, double t_end = 0.6) {
+  const BallDrop ball({.m = 2.0, .g = kG, .h0 = 1.0, .v0 = 0.0, .e = e, .law = Hooke{1e4}});
+  RunResult r = solve(ball, m, {.t_end = t_end, .sample_dt = m.dt});
+  EXPECT_TRUE(r.ok()) << r.message;
+  return r;
+}
+
+}  // namespace
+
+// One contact, one sweep, no warm start and no Baumgarte: the sweep's impulse is
+// -(1 + e) v / w, after gravity's velocity step: v+ = -e (v- - g dt), to rounding.
+TEST(SequentialImpulses, OneContactIsNewtonsImpulse) {
+  const auto [before, after] = first_bounce(
+      drop({.name = "sequential-impulses", .dt = kDt, .iterations = 1, .warm_start = false, .erp = 0}));
+  EXPECT_NEAR(after, -0.8 * (before - kG * kDt), 1e-12);
+}
+
+// Baumgarte's bias feeds the bounce (the overlap of one step, V dt, pushed out at erp / dt);
+// split impulses move the positions instead, and the bounce is Newton's again.
+TEST(SequentialImpulses, SplitImpulsesKeepThePushOutOutOfTheBounce) {
+  const auto [b1, a1] = first_bounce(drop({.name = "sequential-impulses", .dt = kDt}));
+  EXPECT_GT(a1, -0.8 * (b1 - kG * kDt) + 0.1);
+  const auto [b2, a2] = first_bounce(drop({.name = "sequential-impulses", .dt = kDt, .split_impulse = true}));
+  EXPECT_NEAR(a2, -0.8 * (b2 - kG * kDt), 1e-12);
+}
+
+// Newton's law is imposed on the step's velocities: u+ = -e u, with u the gap rate before the
+// step (gravity's increment taken up by the impulse), for any step.
+TEST(MoreauJean, ImpactLawHoldsExactlyAtTheStep) {
+  for (double dt : {1e-2, 1e-3}) {
+    const auto [before, after] = first_bounce(drop({.name = "moreau-jean", .dt = dt}));
+    EXPECT_NEAR(after, -0.8 * before, 1e-12 * std::abs(before)) << dt;
+  }
+}
+
+// A ball resting on the floor stays there: the LCP's impulse is m g dt at every step.
+TEST(MoreauJean, RestingBallNeitherSinksNorJumps) {
+  const BallDrop ball({.m = 2.0, .g = kG, .h0 = 0.0, .v0 = 0.0, .e = 0.8, .law = Hooke{1e4}});
+  const RunResult r = solve(ball, {.name = "moreau-jean", .dt = kDt}, {.t_end = 1.0, .sample_dt = 0.1});
+  ASSERT_TRUE(r.ok()) << r.message;
+  for (const auto& s : r.samples) {
+    EXPECT_NEAR(s.y[0], 0.0, 1e-15);
+    EXPECT_NEAR(s.y[1], 0.0, 1e-15);
+  }
+}
+
+// The soft constraint from rest (no impulse yet) is implicit Euler on u' = -w^2 s - 2 zeta w u
+// with s moved by h u': u+ (1 + 2 zeta w h + w^2 h^2) = u - h w^2 s.
+TEST(SoftStep, SoftConstraintIsImplicitEulerOnASpringDamper) {
+  const double hertz = 30, zeta = 0.7, h = 1.0 / 240, w_n = 0.5, u = -2.0, s = -1e-3;
+  const double w = 2 * std::numbers::pi * hertz;
+  const SoftConstraint c = soft_constraint(hertz, zeta, h);
+  const double u_plus = u + w_n * soft_impulse(c, w_n, u, s, 0.0);
+  EXPECT_NEAR(u_plus * (1 + 2 * zeta * w * h + w * w * h * h), u - h * w * w * s, 1e-13);
+  // And with the impulse so far L it solves for the total: the increment removes impulse_scale L.
+  EXPECT_NEAR(soft_impulse(c, w_n, u, s, 1.0) - soft_impulse(c, w_n, u, s, 0.0), -c.impulse_scale, 1e-15);
+}
+
+// Box2D's restitution pass: an impact faster than the threshold leaves at -e times the approach
+// speed the step began with, exactly; slower ones do not bounce.
+TEST(SoftStep, BouncesAtTheRestitutionAboveTheThresholdOnly) {
+  const auto [before, after] = first_bounce(drop({.name = "soft-step", .dt = 1.0 / 60}));
+  EXPECT_NEAR(after, -0.8 * before, 1e-12);
+  const RunResult slow = drop({.name = "soft-step", .dt = 1.0 / 60, .restitution_threshold = 10.0});
+  EXPECT_LT(slow.samples.back().y[0], 1e-3);  // no bounce: it stays on the floor
+}
+
+// XPBD's compliant update on one Hooke contact is implicit Euler on the spring at the sub-step,
+// and its prediction is implicit Euler's free flight: the two trajectories are one.
+TEST(Xpbd, SubstepsAreTheImplicitEulerSpringAtTheSubstep) {
+  const RunResult x = drop({.name = "xpbd", .dt = kDt, .substeps = 4}, 0.8, 1.6);
+  const RunResult ie =
+      solve(BallDrop({.m = 2.0, .g = kG, .h0 = 1.0, .v0 = 0.0, .e = 0.8, .law = Hooke{1e4}}),
+            {.name = "game-implicit-spring", .dt = kDt / 4}, {.t_end = 1.6, .sample_dt = kDt});
+  ASSERT_TRUE(ie.ok()) << ie.message;
+  ASSERT_EQ(x.samples.size(), ie.samples.size());
+  ASSERT_GE(x.contacts.size(), 2u);  // two bounces in the comparison
+  for (std::size_t n = 0; n < x.samples.size(); ++n) {
+    EXPECT_NEAR(x.samples[n].y[0], ie.samples[n].y[0], 1e-9) << x.samples[n].t;
+    EXPECT_NEAR(x.samples[n].y[1], ie.samples[n].y[1], 1e-7) << x.samples[n].t;
+  }
+}
+
+// Implicit Euler on x'' = -w^2 x: each step maps (x, v) by a matrix whose energy gain is
+// exactly 1 / (1 + w^2 h^2), the mirror of explicit Euler's 1 + w^2 h^2.
+TEST(ImplicitSpring, UndampedSpringLosesEnergyByExactlyOnePlusWSquaredHSquared) {
+  const auto spring = make_scene("spring-mass", {{"m", 1.0}, {"k", 1e4}});
+  const double h = 1e-3, w = 100.0;
+  const RunResult r =
+      solve(*spring, {.name = "game-implicit-spring", .dt = h}, {.t_end = 0.1, .sample_dt = h});
+  ASSERT_TRUE(r.ok()) << r.message;
+  for (std::size_t n = 0; n < r.samples.size(); n += 10)
+    EXPECT_NEAR(r.samples[n].energy / r.energy0, std::pow(1 + w * w * h * h, -static_cast<double>(n)), 1e-12)
+        << n;
+}
+
+// Every new method refuses what it cannot run, by name: XPBD needs a linear law.
+TEST(TimeStepping, XpbdRefusesANonlinearLaw) {
+  const auto hertz = make_scene("ball-drop", {}, "hertz");
+  EXPECT_FALSE(method_info("xpbd").can_run(*hertz));
+  EXPECT_THROW(solve(*hertz, {.name = "xpbd"}), std::invalid_argument);
+  EXPECT_TRUE(method_info("game-implicit-spring").can_run(*hertz));
+}
