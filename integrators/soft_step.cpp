@@ -48,7 +48,7 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
       // Speculative contact: overlapping, or closing the gap within this step.
       const double g = geo.gap(i, y), u = geo.gap_rate(i, y);
       const bool was = active[i];
-      active[i] = g + dt * std::min(u, 0.0) <= 0;
+      active[i] = g + dt * std::min(u, 0.0) <= kContactMargin;
       if (!active[i] || !was || !m.warm_start) lambda[i] = 0;
       approach[i] = u;
       max_lambda[i] = 0;

@@ -16,6 +16,11 @@
 
 namespace contact {
 
+// Contacts whose gap is within this of closing count as closed [m]: a resting column's positions
+// carry rounding of 1e-17 m, which must not open its contacts for a step (the ball above would
+// fall freely for that step and land with an impact).
+inline constexpr double kContactMargin = 1e-9;
+
 struct StepReport {
   double dissipated = 0;        // energy the contact model removed during the step [J]
   std::vector<double> impulse;  // normal impulse each contact carried during the step [N s]

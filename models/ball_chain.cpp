@@ -10,16 +10,12 @@
 
 namespace contact {
 
-BallChain::BallChain(BallChainParams p) : p_(std::move(p)) {
+BallChain::BallChain(BallChainParams p) : OneLawSystem(p.law), p_(std::move(p)) {
   if (p_.n < 2)
     throw std::invalid_argument(fmt::format("ball chain: n = {} balls; accepted range [2, inf)", p_.n));
 }
 
-Mask BallChain::position_mask() const {
-  Mask m(static_cast<Eigen::Index>(2 * p_.n));
-  for (Eigen::Index k = 0; k < m.size(); ++k) m[k] = k % 2 == 0;
-  return m;
-}
+Mask BallChain::position_mask() const { return interleaved_positions(p_.n); }
 
 Vector BallChain::initial_state() const {
   // Everything at rest at its rest position but the striker, displaced so that its gap to
@@ -30,14 +26,7 @@ Vector BallChain::initial_state() const {
   return y;
 }
 
-std::vector<std::string> BallChain::state_labels() const {
-  std::vector<std::string> labels;
-  for (std::size_t b = 0; b < p_.n; ++b) {
-    labels.push_back(fmt::format("u{}_m", b));
-    labels.push_back(fmt::format("v{}_mps", b));
-  }
-  return labels;
-}
+std::vector<std::string> BallChain::state_labels() const { return interleaved_labels(p_.n); }
 
 void BallChain::rhs(double, ConstVectorRef y, const ContactModes& modes, VectorRef ydot) const {
   for (std::size_t b = 0; b < p_.n; ++b) {

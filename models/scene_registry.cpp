@@ -11,7 +11,8 @@ namespace contact {
 
 const std::vector<SceneEntry>& scene_registry() {
   static const std::vector<SceneEntry> all = [] {
-    std::vector<SceneEntry> scenes = {ball_drop_scene(), ball_chain_scene(), spring_mass_scene()};
+    std::vector<SceneEntry> scenes = {ball_drop_scene(), ball_chain_scene(), spring_mass_scene(),
+                                      ball_stack_scene()};
     for (auto& s : rigid_scene_entries()) scenes.push_back(std::move(s));
     return scenes;
   }();

@@ -6,6 +6,7 @@
 // only rounding remains; the Hertz force K delta^{3/2} (1 + chi delta_dot) / m has
 // |d^3/d delta^3| = (3/8) K delta^{-3/2} |1 + chi delta_dot| / m in the position column.
 #include "contact_ode/models/ball_drop.hpp"
+#include "contact_ode/models/ball_stack.hpp"
 #include "contact_ode/models/spring_mass.hpp"
 
 #include <gtest/gtest.h>
@@ -91,4 +92,18 @@ TEST(Jacobian, BallDropMatchesCentralDifferencesForEveryLawAndMode) {
 TEST(Jacobian, SpringMassMatchesCentralDifferences) {
   const SpringMass spring(0.5, 2e3, 0.1, -0.2);
   expect_jacobian_matches(spring, spring.initial_state(), {}, {0.0, 0.0});
+}
+
+// The stack couples each ball to the contacts below and above it; Kelvin–Voigt is affine in every
+// entry within a mode, so only rounding remains. Mixed modes, overlapping and open contacts.
+TEST(Jacobian, BallStackMatchesCentralDifferencesInMixedModes) {
+  const BallStack stack({.n = 3, .m = 0.2, .law = KelvinVoigt{1e5, 30.0, false}});
+  // Contacts: overlap, overlap, open. Overlaps of 1e-5 m keep the rounding of y +- h (eps |y| / h
+  // times k / m) below the rounding the tolerance allows for.
+  const Vector y{{-1e-5, -0.3, -3e-5, 0.2, 1e-4, -0.1}};
+  using M = ContactMode;
+  for (const ContactModes& modes :
+       {ContactModes{M::Penalty, M::Penalty, M::Penalty}, ContactModes{M::Penalty, M::Free, M::Penalty},
+        ContactModes{M::Resting, M::Penalty, M::Free}})
+    expect_jacobian_matches(stack, y, modes, std::vector<double>(6, 0.0));
 }

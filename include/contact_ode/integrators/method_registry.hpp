@@ -32,13 +32,15 @@ struct Method {
   long max_events = 1'000'000;
   int persistence = 1;  // game notifications: frames a pair stays listed
   // Time-stepping solvers (sequential impulses, soft step, XPBD, Moreau–Jean):
-  int iterations = 10;         // sequential impulses: Gauss–Seidel sweeps per step (Bullet's default)
-  int substeps = 4;            // soft step and XPBD: sub-steps per step (Box2D v3's default)
-  bool warm_start = true;      // sequential impulses and soft step: start from the last step's impulses
-  double erp = 0.2;            // sequential impulses: Baumgarte error reduction per step (Bullet, ODE)
-  bool split_impulse = false;  // sequential impulses: push-out by pseudo-velocities, off the real ones
+  int iterations = 10;     // sequential impulses: Gauss–Seidel sweeps per step (Bullet's default)
+  int substeps = 4;        // soft step and XPBD: sub-steps per step (Box2D v3's default)
+  bool warm_start = true;  // sequential impulses and soft step: start from the last step's impulses
+  double erp = 0.2;        // sequential impulses: the share of an overlap pushed out per step (Bullet, ODE)
+  // Sequential impulses: push out by pseudo-velocities, off the real ones (Bullet's split
+  // impulses); false: Baumgarte's bias in the velocities, which feeds bounces and shakes stacks.
+  bool split_impulse = true;
   // Below this approach speed a contact does not bounce [m/s]; NaN: the method's own default
-  // (sequential impulses 0, soft step 1 m/s as Box2D v3).
+  // (sequential impulses 0.2 m/s, soft step 1 m/s as Box2D v3).
   double restitution_threshold = std::numeric_limits<double>::quiet_NaN();
   double contact_hertz = 30;          // soft step: contact stiffness as a frequency [Hz] (Box2D v3)
   double contact_damping_ratio = 10;  // soft step: its damping ratio (Box2D v3)

@@ -30,7 +30,7 @@ struct BallChainParams {
   ContactLaw law = Hooke{1e6};
 };
 
-class BallChain final : public MechanicalSystem, public NormalImpulses {
+class BallChain final : public OneLawSystem, public NormalImpulses {
  public:
   explicit BallChain(BallChainParams p);
   const BallChainParams& params() const { return p_; }
@@ -51,16 +51,6 @@ class BallChain final : public MechanicalSystem, public NormalImpulses {
   std::size_t contact_count() const override { return p_.n - 1; }
   double gap(std::size_t i, ConstVectorRef y) const override { return p_.spacing + (u(y, i + 1) - u(y, i)); }
   double gap_rate(std::size_t i, ConstVectorRef y) const override { return v(y, i + 1) - v(y, i); }
-  double switching(std::size_t i, ConstVectorRef y) const override {
-    return contact::switching(p_.law, -gap(i, y), -gap_rate(i, y));
-  }
-
-  double dissipated_power(std::size_t i, ConstVectorRef y) const override {
-    return contact::dissipated_power(p_.law, -gap(i, y), -gap_rate(i, y));
-  }
-  double elastic_energy(std::size_t i, ConstVectorRef y) const override {
-    return stored_energy(p_.law, -gap(i, y));
-  }
   double restitution(std::size_t) const override { return p_.e; }
   void project(std::size_t i, VectorRef y) const override;
   void apply_impulse(std::size_t i, double e, VectorRef y) const override;

@@ -129,6 +129,30 @@ class MechanicalSystem : public Dynamics, public ContactGeometry, public Impulse
   }
 };
 
+// The state of n bodies moving along one line, interleaved (u0, v0, u1, v1, ...): its position
+// mask and its labels "u<b>_m", "v<b>_mps".
+Mask interleaved_positions(std::size_t n);
+std::vector<std::string> interleaved_labels(std::size_t n);
+
+// A scene whose contacts all follow one penalty law of their gap: the law's switching function,
+// dissipated power and stored energy at overlap -gap and overlap rate -gap_rate.
+class OneLawSystem : public MechanicalSystem {
+ public:
+  explicit OneLawSystem(const ContactLaw& law) : law_(law) {}
+  double switching(std::size_t i, ConstVectorRef y) const override {
+    return contact::switching(law_, -gap(i, y), -gap_rate(i, y));
+  }
+  double dissipated_power(std::size_t i, ConstVectorRef y) const override {
+    return contact::dissipated_power(law_, -gap(i, y), -gap_rate(i, y));
+  }
+  double elastic_energy(std::size_t i, ConstVectorRef y) const override {
+    return stored_energy(law_, -gap(i, y));
+  }
+
+ private:
+  ContactLaw law_;
+};
+
 // Optional capability: normal impulses of any size, and the same along the positions. What the
 // time-stepping solvers engines use (sequential impulses, soft step, XPBD, Moreau–Jean) need
 // beside the geometry: with J_i the row that maps velocities to contact i's gap rate and M the

@@ -37,6 +37,7 @@ std::unique_ptr<Dynamics> make_scene(const std::string& name, const ParameterVal
 SceneEntry ball_drop_scene();
 SceneEntry ball_chain_scene();
 SceneEntry spring_mass_scene();
+SceneEntry ball_stack_scene();
 std::vector<SceneEntry> rigid_scene_entries();
 
 }  // namespace contact
