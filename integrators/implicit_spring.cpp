@@ -77,7 +77,7 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
         report.impulse[i] = 1.0;  // the law acts: the contact is engaged
       }
   };
-  return run_time_stepping(scene, m.name, m.dt, step, span);
+  return run_time_stepping(scene, m.name, m.dt, step, span, true);
 }
 
 }  // namespace

@@ -31,7 +31,7 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
   const ImpulseMap& law = impulse_map(scene, m.name);
   const std::size_t nc = scene.contact_count();
   std::vector<double> P(nc), u0(nc);
-  std::vector<bool> active(nc);
+  std::vector<bool> active(nc), fresh(nc);
   Vector scratch, v_old, blended;
   auto step = [&](double t, double h, Vector& y, StepReport& report, SolverStats& stats) {
     for (std::size_t i = 0; i < nc; ++i) {
@@ -39,10 +39,10 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
       const bool was = active[i];
       active[i] = geo.gap(i, y) + 0.5 * h * u0[i] <= kContactMargin;
       if (!active[i] || !was) P[i] = 0;
+      fresh[i] = active[i] && !was;
     }
     v_old = y;
     stats.rhs_evals += add_free_velocity(scene, t, h, y, scratch);
-    const double before = scene.energy(y);
     double scale = 0;
     for (std::size_t i = 0; i < nc; ++i) {
       if (!active[i]) continue;
@@ -67,14 +67,16 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
                         "(last change {:g} m/s)",
                         kMaxSweeps, change));
     }
-    report.dissipated += before - scene.energy(y);
-    for (std::size_t i = 0; i < nc; ++i) report.impulse[i] = active[i] ? P[i] : 0.0;
+    for (std::size_t i = 0; i < nc; ++i) {
+      report.impulse[i] = active[i] ? P[i] : 0.0;
+      if (fresh[i]) report.dissipated += newton_loss(u0[i], law.restitution(i), normal.inverse_mass(i, y));
+    }
     // q+ = q + h ((1 - theta) v + theta v+): the positions advanced with the blended velocities.
     blended = (1 - m.theta) * v_old + m.theta * y;
     stats.rhs_evals += advance_positions(scene, t, h, blended, scratch);
     y = scene.position_mask().select(blended, y);
   };
-  return run_time_stepping(scene, m.name, m.dt, step, span);
+  return run_time_stepping(scene, m.name, m.dt, step, span, false);
 }
 
 }  // namespace

@@ -45,7 +45,7 @@ void RunRecorder::sample(double t, ConstVectorRef y, double dissipated) {
         fmt::format("t_end / sample_dt = {:.3g} output samples; at most {} are kept: raise the "
                     "sample spacing",
                     grid, limits_.max_samples));
-  result_.samples.push_back({t, y, model_.energy(y), dissipated});
+  result_.samples.push_back({t, y, energy(y), dissipated});
   // Fixed-step methods sample at step ends: skip every grid time this sample stands for, in one
   // jump (a step may stand for many grid times).
   if (next_sample_ < 0) return;
@@ -99,6 +99,11 @@ void RunRecorder::observe_penetration(std::size_t i, double penetration) {
   if (open_[i] < 0) return;
   auto& c = result_.contacts[static_cast<std::size_t>(open_[i])];
   c.max_penetration = std::max(c.max_penetration, penetration);
+}
+
+void RunRecorder::use_energy(std::function<double(ConstVectorRef)> energy) {
+  energy_ = std::move(energy);
+  result_.energy0 = energy_(model_.initial_state());
 }
 
 void RunRecorder::apex(std::size_t i, double t, double gap, double energy) {

@@ -47,10 +47,12 @@ MethodInfo impulse_stepping_method(
 }
 
 RunResult run_time_stepping(const Dynamics& model, const std::string& method, double dt,
-                            const StepFunction& step, const SolveOptions& span) {
+                            const StepFunction& step, const SolveOptions& span, bool springs) {
   const std::size_t nc = model.contact_count();
   const ContactGeometry& geo = contact_geometry(model);
   RunRecorder rec(model, method, span);
+  if (!springs)
+    rec.use_energy([&](ConstVectorRef y) { return model.energy(y) - geo.engaged_elastic_energy(nc, y); });
   Vector y = model.initial_state(), y_prev = y;
   StepReport report{0.0, std::vector<double>(nc, 0.0)};
   SolverStats stats;
@@ -82,7 +84,7 @@ RunResult run_time_stepping(const Dynamics& model, const std::string& method, do
         if (!touching && !rec.contact_open(i) && r0 > 0 && r1 <= 0) {
           const double s = r0 / (r0 - r1);
           const Vector ya = y_prev + s * (y - y_prev);
-          rec.apex(i, t0 + s * h, geo.gap(i, y_prev) + 0.5 * r0 * s * h, model.energy(ya));
+          rec.apex(i, t0 + s * h, geo.gap(i, y_prev) + 0.5 * r0 * s * h, rec.energy(ya));
         }
         if (touching && !rec.contact_open(i)) rec.contact_begin(i, t0, r0);
         if (touching) rec.observe_penetration(i, -geo.gap(i, y));

@@ -22,16 +22,29 @@ namespace contact {
 inline constexpr double kContactMargin = 1e-9;
 
 struct StepReport {
-  double dissipated = 0;        // energy the contact model removed during the step [J]
+  // Energy the contact model removed during the step [J]: for impulses, Newton's loss
+  // (newton_loss) for the approach speed at the step's start; for springs, the dashpot's work.
+  double dissipated = 0;
   std::vector<double> impulse;  // normal impulse each contact carried during the step [N s]
 };
+
+// What Newton's law with restitution e removes from a contact of effective inverse mass w
+// approaching at u < 0: (1 - e^2) u^2 / (2 w) [J]; 0 when it does not approach. Booked once per
+// impact, at the step a contact closes, on the gap rate the step began with: Newton's law acts at
+// the impact; what a closed contact does afterwards (the g dt each step adds and its impulse
+// removes, a soft contact's sinking) is the method's own, and shows as its drift.
+inline double newton_loss(double u, double e, double w) {
+  return u < 0 ? 0.5 * (1 - e * e) * u * u / w : 0.0;
+}
 
 // Advances y by one step h; counts its work in stats; throws SolverFailure when it cannot.
 using StepFunction =
     std::function<void(double t, double h, Vector& y, StepReport& report, SolverStats& stats)>;
 
+// `springs`: whether the method's contacts are the scene's penalty springs (their elastic energy
+// counts); impulse methods pass false, and an overlap they leave holds no energy.
 RunResult run_time_stepping(const Dynamics& model, const std::string& method, double dt,
-                            const StepFunction& step, const SolveOptions& span);
+                            const StepFunction& step, const SolveOptions& span, bool springs);
 
 // Adds d to contact i's accumulated impulse `lambda`, clamped at >= 0 (a contact pushes, never
 // pulls), and applies what changed to the velocities. Returns the change [N s].

@@ -56,7 +56,7 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
       stats.newton_iters += 1;
     }
   };
-  return run_time_stepping(scene, m.name, m.dt, step, span);
+  return run_time_stepping(scene, m.name, m.dt, step, span, true);
 }
 
 }  // namespace

@@ -31,6 +31,11 @@ class RunRecorder {
  public:
   RunRecorder(const Dynamics& model, std::string method, const SolveOptions& span);
 
+  // Measures energy with `energy` instead of the model's (from E0 on): a method whose contacts
+  // are not the scene's springs must not count their elastic energy at an overlap.
+  void use_energy(std::function<double(ConstVectorRef)> energy);
+  double energy(ConstVectorRef y) const { return energy_ ? energy_(y) : model_.energy(y); }
+
   // The next output time still to be recorded (t_end included); +inf when all are done.
   double next_sample_time() const;
   // Records the state at t and moves past every output time up to t, with the dissipated energy
@@ -65,6 +70,7 @@ class RunRecorder {
   void check_records(double t) const;
 
   const Dynamics& model_;
+  std::function<double(ConstVectorRef)> energy_;
   RunResult result_;
   RunLimits limits_;
   double sample_dt_, t_end_;  // output grid t_j = j sample_dt, closed by t_end (computed, not stored)

@@ -1,0 +1,66 @@
+// method_orders and stack, run as a user runs them: the orders time stepping with impacts can
+// reach, and the resting column's exact limits.
+#include "cli_fixture.hpp"
+
+#include <cmath>
+#include <map>
+
+namespace {
+class TimeSteppingCli : public CliTest {
+ protected:
+  // The rows of a CSV as maps from column to cell.
+  std::vector<std::map<std::string, std::string>> table(const fs::path& file) const {
+    const auto rows = csv_rows(slurp(file));
+    std::vector<std::map<std::string, std::string>> out;
+    for (std::size_t r = 1; r < rows.size(); ++r) {
+      std::map<std::string, std::string> row;
+      for (std::size_t c = 0; c < rows[0].size() && c < rows[r].size(); ++c) row[rows[0][c]] = rows[r][c];
+      out.push_back(row);
+    }
+    return out;
+  }
+};
+}  // namespace
+
+// Every method here is first order in its smooth part (the Euler family), so no method exceeds
+// order 1 by more than the fit's spread over four rows (0.2); the spring methods, which resolve
+// the contact in time, reach order 1 (within 0.2) at steps well below the contact time. An
+// impulse method resolves each impact inside a step, an O(dt) error in its timing: order <= 1.
+TEST_F(TimeSteppingCli, NoTimeSteppingMethodBeatsOrderOneThroughImpacts) {
+  const Outcome r = run(
+      METHOD_ORDERS_EXE,
+      "--methods game-euler,sequential-impulses,soft-step,moreau-jean,xpbd,game-implicit-spring --out mo");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto orders = table(dir_ / "mo" / "orders.csv");
+  ASSERT_EQ(orders.size(), 6u);
+  for (const auto& row : orders) {
+    const double p = std::stod(row.at("fitted_order"));
+    EXPECT_LE(p, 1.2) << row.at("method");
+    if (row.at("reference") == "spring") {
+      EXPECT_NEAR(p, 1.0, 0.2) << row.at("method");
+    }
+  }
+}
+
+// Penalty settles to the static squeeze m g n (n + 1) / (2k) (Kelvin–Voigt damps it within the
+// 2 s); Moreau–Jean holds the column still; event-driven impulses refuse it with a typed status.
+TEST_F(TimeSteppingCli, StackReachesItsExactLimits) {
+  const Outcome r = run(STACK_EXE, "--balls 1,4 --methods penalty,moreau-jean,event-ode --out st");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto rows = table(dir_ / "st" / "stack.csv");
+  ASSERT_EQ(rows.size(), 6u);
+  for (const auto& row : rows) {
+    const std::string& method = row.at("method");
+    if (method == "event-ode") {
+      EXPECT_EQ(row.at("status"), "unresolved");
+      continue;
+    }
+    ASSERT_EQ(row.at("status"), "success") << method;
+    const double sink = std::stod(row.at("top_sink_m")), exact = std::stod(row.at("closed_form_sink_m"));
+    if (method == "penalty")
+      EXPECT_NEAR(sink, exact, 1e-6 * exact) << row.at("balls");
+    else
+      EXPECT_LE(std::abs(sink), 1e-12) << method << " " << row.at("balls");
+  }
+  EXPECT_NE(r.err.find("stack: 4 balls, event-ode: unresolved"), std::string::npos) << r.err;
+}
