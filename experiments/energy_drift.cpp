@@ -63,19 +63,18 @@ int program(int argc, char** argv) {
           cli::some_of(rigid::rigid_scene_names(), true));
   return app.run(argc, argv, [&](OutputSet& files) {
     const double m = 1.0, g = 9.81, h0 = 1.0, t0 = std::sqrt(2 * h0 / g);
-
     std::vector<Job> jobs;
     auto ball = std::make_shared<BallDrop>(BallDropParams{m, g, h0, 0.0, 1.0, Hooke{k}});
     const double t_ball = 2.0 * static_cast<double>(bounces) * t0;  // the n-th rigid impact is at (2n - 1) t0
     const SolveOptions ball_span{.t_end = t_ball, .sample_dt = t_ball / 2000};
     auto ball_job = [&](const std::string& method, const std::string& setting, double value) {
-      Method mt{.name = method};
-      mt.integrator.max_steps = 10000000;
+      Method mt{.name = method, .integrator = {.max_steps = 10000000}};
       jobs.push_back({"ball", method, setting, value, ball, setting == "exact" ? mt : with_setting(mt, value),
                       ball_span});
     };
-    for (const std::string method : {"game-euler", "game-symplectic", "game-euler-spring",
-                                     "game-symplectic-spring", "penalty", "event-ode"}) {
+    for (const std::string method :
+         {"game-euler", "game-symplectic", "game-euler-spring", "game-symplectic-spring", "penalty",
+          "event-ode", "game-implicit-spring", "sequential-impulses", "soft-step", "xpbd", "moreau-jean"}) {
       const bool fixed = method_info(method).fixed_step;
       for (double v : fixed ? dts : rtols) ball_job(method, fixed ? "dt" : "rtol", v);
     }

@@ -30,7 +30,9 @@ using namespace contact::rigid;
 
 int program(int argc, char** argv) {
   std::string scenes = "all",
-              methods = "penalty,game-symplectic,game-symplectic-projection,event-ode,event-ode-reversed";
+              methods =
+                  "penalty,game-symplectic,game-symplectic-projection,event-ode,event-ode-reversed,"
+                  "game-implicit-spring,sequential-impulses,soft-step,xpbd,moreau-jean";
   SceneParams p;
   double dt = 1e-4, rtol = 1e-8, atol = 1e-10;
   std::vector<double> half{p.half_extents.x(), p.half_extents.y(), p.half_extents.z()}, quat{1, 0, 0, 0};
@@ -39,7 +41,8 @@ int program(int argc, char** argv) {
       "The tutorial's 3D scenes resolved by penalty springs, game integration and event-driven impulses.",
       "results/rigid_scenes");
   app.add("--scene", scenes, "scenes, comma-separated or 'all'", cli::some_of(rigid_scene_names()));
-  app.add("--method", methods, "methods, comma-separated", cli::one_of(kRigidMethods, true));
+  app.add("--method", methods, "methods, comma-separated",
+          cli::one_of(methods_for(rigid_scene("snooker").make(p)), true));
   app.add("--m", p.m, "mass of the moving ball [kg]", cli::positive());
   app.add("--radius", p.radius, "its radius [m]", cli::positive());
   app.add("--elasticity", p.elasticity, "its elasticity (restitution = product of the pair's)",

@@ -178,6 +178,23 @@ void RigidScene::apply_impulse(std::size_t i, double e, VectorRef y) const {
   store(bodies, y);
 }
 
+double RigidScene::inverse_mass(std::size_t i, ConstVectorRef y) const {
+  const auto bodies = bodies_at(y);
+  return normal_inverse_mass(bodies, contact(i, bodies));
+}
+
+void RigidScene::apply_normal_impulse(std::size_t i, double lambda, VectorRef y) const {
+  auto bodies = bodies_at(y);
+  rigid::apply_normal_impulse(bodies, contact(i, bodies), lambda);
+  store(bodies, y);
+}
+
+void RigidScene::apply_normal_displacement(std::size_t i, double dlambda, VectorRef y) const {
+  auto bodies = bodies_at(y);
+  rigid::apply_normal_displacement(bodies, contact(i, bodies), dlambda);
+  store(bodies, y);
+}
+
 void RigidScene::settle(std::size_t i, VectorRef y) const {
   // A perfectly inelastic impulse removes the approach; projection removes the overlap.
   auto bodies = bodies_at(y);

@@ -23,7 +23,7 @@
 
 namespace contact::rigid {
 
-class RigidScene final : public MechanicalSystem {
+class RigidScene final : public MechanicalSystem, public NormalImpulses {
  public:
   // Each pair's penalty law comes from `law_for(e, m_eff)`: its restitution (the product of
   // elasticities) and effective mass 1 / (m_a^-1 + m_b^-1).
@@ -64,6 +64,11 @@ class RigidScene final : public MechanicalSystem {
   void project(std::size_t i, VectorRef y) const override;
   void apply_impulse(std::size_t i, double e, VectorRef y) const override;
   void settle(std::size_t i, VectorRef y) const override;
+
+  double inverse_mass(std::size_t i, ConstVectorRef y) const override;
+  void apply_normal_impulse(std::size_t i, double lambda, VectorRef y) const override;
+  void apply_normal_displacement(std::size_t i, double dlambda, VectorRef y) const override;
+  LinearLaw linear_law(std::size_t i) const override { return contact::linear_law(candidates_[i].law); }
 
   RigidContact contact(std::size_t i, ConstVectorRef y) const;
   RigidContact contact(std::size_t i, const std::vector<RigidBody>& bodies) const;
