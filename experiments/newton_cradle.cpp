@@ -54,7 +54,9 @@ int program(int argc, char** argv) {
   return app.run(argc, argv, [&](OutputSet& files) {
     const double m = 0.1, radius = 0.0145, v0 = 1.0, approach = 0.01;
     const double hertz_k = hertz_stiffness(radius / 2, effective_modulus(200e9, 0.3, 200e9, 0.3));
-    const std::vector<std::string> methods = {"event", "game", "penalty-linear", "penalty-hertz"};
+    const std::vector<std::string> methods = {"event",         "game",        "penalty-linear",
+                                              "penalty-hertz", "moreau-jean", "sequential-impulses",
+                                              "soft-step",     "xpbd",        "game-implicit-spring"};
     const auto n = static_cast<std::size_t>(balls);
     // The longest binary contact (effective mass m/2, at the striker's speed): the pulse needs a few
     // of them per ball to cross the row, so 10 per ball leaves every contact open again at the end.
@@ -82,9 +84,10 @@ int program(int argc, char** argv) {
         const double t_end =
             (approach + static_cast<double>(n) * spacing) / v0 + 10.0 * static_cast<double>(n) * contact_time;
         // The rows' labels name the law for the penalty runs; the registry's methods run them.
-        Method mt{.name = method == "event"  ? "event-ode"
-                          : method == "game" ? "game-symplectic"
-                                             : "penalty",
+        Method mt{.name = method == "event"                ? "event-ode"
+                          : method == "game"               ? "game-symplectic"
+                          : method.starts_with("penalty-") ? "penalty"
+                                                           : method,
                   .dt = dt};
         if (mt.name == "penalty") {
           mt.integrator.rtol = 1e-10;
@@ -93,8 +96,10 @@ int program(int argc, char** argv) {
         }
         const RunResult r = require(solve(chain, mt, {.t_end = t_end, .sample_dt = t_end}),
                                     fmt::format("{} (spacing {:g} m)", method, spacing));
-        // The velocities are final only once every contact has opened again.
-        if (std::any_of(r.contacts.begin(), r.contacts.end(),
+        // The velocities are final only once every contact has opened again; a time-stepping
+        // method may end with balls clumped together, touching at one velocity, which is final too.
+        if (method_info(mt.name).family != "time-stepping" &&
+            std::any_of(r.contacts.begin(), r.contacts.end(),
                         [](const ContactRecord& c) { return !c.closed(); })) {
           throw std::runtime_error(fmt::format("{} (spacing {:g} m): a contact is still open at t = {:g} s",
                                                method, spacing, t_end));

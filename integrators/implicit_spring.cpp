@@ -79,7 +79,7 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
     for (std::size_t i = 0; i < nc; ++i)
       if (modes[i] == ContactMode::Penalty) {
         report.dissipated += h * geo.dissipated_power(i, y);
-        report.impulse[i] = 1.0;  // the law acts: the contact is engaged
+        report.push[i] = 1.0;  // the law acts: the contact is engaged
       }
   };
   return run_time_stepping(scene, m.name, m.dt, step, span, true);

@@ -68,7 +68,7 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
                         kMaxSweeps, change));
     }
     for (std::size_t i = 0; i < nc; ++i) {
-      report.impulse[i] = active[i] ? P[i] : 0.0;
+      report.push[i] = active[i] ? P[i] * normal.inverse_mass(i, y) : 0.0;
       if (fresh[i]) report.dissipated += newton_loss(u0[i], law.restitution(i), normal.inverse_mass(i, y));
     }
     // q+ = q + h ((1 - theta) v + theta v+): the positions advanced with the blended velocities.

@@ -57,7 +57,8 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
                            lambda[i], y);
       }
     stats.newton_iters += m.iterations;  // the solver's sweeps
-    for (std::size_t i = 0; i < nc; ++i) report.impulse[i] = active[i] ? lambda[i] : 0.0;
+    for (std::size_t i = 0; i < nc; ++i)
+      report.push[i] = active[i] ? lambda[i] * normal.inverse_mass(i, y) : 0.0;
     stats.rhs_evals += advance_positions(scene, t, h, y, scratch);
     if (m.split_impulse) {
       // The push-out as pseudo-velocities: solved on a copy with zero velocities, which then

@@ -85,7 +85,7 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
     // the pass bounces the contact and at 0 (inelastic) where it does not. What the soft push-out
     // adds or removes besides is the method's drift.
     for (std::size_t i = 0; i < nc; ++i) {
-      report.impulse[i] = active[i] ? max_lambda[i] : 0.0;
+      report.push[i] = active[i] ? max_lambda[i] * normal.inverse_mass(i, y) : 0.0;
       if (!active[i] || max_lambda[i] == 0) continue;
       const bool bounce = approach[i] < -threshold;
       if (fresh[i])

@@ -60,7 +60,7 @@ RunResult run_time_stepping(const Dynamics& model, const std::string& method, do
   try {
     rec.sample(0.0, y);
     for (std::size_t i = 0; i < nc; ++i)
-      if (geo.gap(i, y) < 0) rec.contact_begin(i, 0.0, geo.gap_rate(i, y));
+      if (geo.gap(i, y) < -kContactMargin) rec.contact_begin(i, 0.0, geo.gap_rate(i, y));
     // Counted in floating point: t_end / dt can exceed every integer type.
     const double steps_needed = std::ceil(span.t_end / dt - 1e-9);
     rec.check_steps(steps_needed < 9e18 ? static_cast<long>(steps_needed) : std::numeric_limits<long>::max(),
@@ -71,7 +71,7 @@ RunResult run_time_stepping(const Dynamics& model, const std::string& method, do
       t = n == n_steps ? span.t_end : static_cast<double>(n) * dt;
       y_prev = y;
       report.dissipated = 0;
-      std::fill(report.impulse.begin(), report.impulse.end(), 0.0);
+      std::fill(report.push.begin(), report.push.end(), 0.0);
       step(t0, h, y, report, stats);
       stats.steps += 1;
       if (!y.allFinite())
@@ -79,7 +79,7 @@ RunResult run_time_stepping(const Dynamics& model, const std::string& method, do
                             fmt::format("state is not finite after step {} (dt = {:g} s)", n, h));
       rec.add_dissipated(report.dissipated);
       for (std::size_t i = 0; i < nc; ++i) {
-        const bool touching = report.impulse[i] > 0 || geo.gap(i, y) < 0;
+        const bool touching = report.push[i] > kPushNoise || geo.gap(i, y) < -kContactMargin;
         const double r0 = geo.gap_rate(i, y_prev), r1 = geo.gap_rate(i, y);
         if (!touching && !rec.contact_open(i) && r0 > 0 && r1 <= 0) {
           const double s = r0 / (r0 - r1);

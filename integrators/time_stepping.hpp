@@ -21,11 +21,18 @@ namespace contact {
 // fall freely for that step and land with an impact).
 inline constexpr double kContactMargin = 1e-9;
 
+// Below this a contact's push is the rounding of its solver (Moreau-Jean's LCP is solved to
+// 1e-12 of its velocity scale) [m/s].
+inline constexpr double kPushNoise = 1e-9;
+
 struct StepReport {
   // Energy the contact model removed during the step [J]: for impulses, Newton's loss
   // (newton_loss) for the approach speed at the step's start; for springs, the dashpot's work.
   double dissipated = 0;
-  std::vector<double> impulse;  // normal impulse each contact carried during the step [N s]
+  // How much each contact pushed during the step: the change of its gap rate its impulse made,
+  // w lambda [m/s] (a spring method: 1 while its law acts). A contact is closed during a step in
+  // which it pushes by more than kPushNoise, or overlaps by more than kContactMargin.
+  std::vector<double> push;
 };
 
 // What Newton's law with restitution e removes from a contact of effective inverse mass w

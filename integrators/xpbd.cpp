@@ -48,7 +48,7 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
         const double dlambda = std::max((-C - gamma * (C - gap_before[i])) / ((1 + gamma) * w + alpha), 0.0);
         normal.apply_normal_displacement(i, dlambda, y);
         normal.apply_normal_impulse(i, dlambda / h, y);
-        report.impulse[i] += dlambda / h;
+        report.push[i] += w * dlambda / h;
         // The dashpot's loss over the sub-step at the corrected rate (the rectangle rule of implicit Euler).
         const double rate = geo.gap_rate(i, y);
         report.dissipated += h * law.c * rate * rate;
