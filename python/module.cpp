@@ -1,0 +1,335 @@
+// contact_ode for Python: the registries, solve() and the closed forms, on the C++ library itself.
+//   import contact_ode as co
+//   r = co.solve("ball-drop", "event-exact", h0=2.0, e=0.8, t_end=3.0)
+//   r.t, r.y, r.energy            NumPy arrays, one row per sample
+//   r.contacts["max_penetration"] one NumPy array per column of the contact log
+// Keyword options are the scene's parameters (co.scenes()), the method's settings (dt, rtol,
+// atol, integrator, iterations, ...) and the span (t_end, sample_dt); any other name, and any
+// value out of range, raises ValueError naming it. A run that fails raises co.SolverError with
+// .status, .t_reached, .solver_message and the partial .result.
+#include "contact_ode/analysis/contact_advisor.hpp"
+#include "contact_ode/analysis/references.hpp"
+#include "contact_ode/integrators/method_registry.hpp"
+#include "contact_ode/models/law_registry.hpp"
+#include "contact_ode/models/scene_registry.hpp"
+
+#include <fmt/format.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <functional>
+#include <map>
+
+namespace py = pybind11;
+using namespace contact;
+
+namespace {
+
+py::list parameters(const std::vector<ParameterInfo>& list) {
+  py::list out;
+  for (const auto& p : list)
+    out.append(py::dict(py::arg("name") = p.name, py::arg("unit") = p.unit,
+                        py::arg("default") = p.default_value, py::arg("description") = p.description));
+  return out;
+}
+
+template <class Row>
+py::array_t<double> column(const std::vector<Row>& rows, const std::function<double(const Row&)>& get) {
+  py::array_t<double> a(static_cast<py::ssize_t>(rows.size()));
+  auto v = a.mutable_unchecked<1>();
+  for (std::size_t i = 0; i < rows.size(); ++i) v(static_cast<py::ssize_t>(i)) = get(rows[i]);
+  return a;
+}
+
+// The method settings a keyword can set, each with how it is read.
+using Setter = std::function<void(Method&, const py::handle&)>;
+const std::map<std::string, Setter>& method_settings() {
+  static const std::map<std::string, Setter> settings = {
+      {"dt", [](Method& m, const py::handle& v) { m.dt = v.cast<double>(); }},
+      {"rtol", [](Method& m, const py::handle& v) { m.integrator.rtol = v.cast<double>(); }},
+      {"atol", [](Method& m, const py::handle& v) { m.integrator.atol = v.cast<double>(); }},
+      {"integrator", [](Method& m, const py::handle& v) { m.integrator.method = v.cast<std::string>(); }},
+      {"max_steps", [](Method& m, const py::handle& v) { m.integrator.max_steps = v.cast<long>(); }},
+      {"rest_speed", [](Method& m, const py::handle& v) { m.rest_speed = v.cast<double>(); }},
+      {"iterations", [](Method& m, const py::handle& v) { m.iterations = v.cast<int>(); }},
+      {"substeps", [](Method& m, const py::handle& v) { m.substeps = v.cast<int>(); }},
+      {"warm_start", [](Method& m, const py::handle& v) { m.warm_start = v.cast<bool>(); }},
+      {"erp", [](Method& m, const py::handle& v) { m.erp = v.cast<double>(); }},
+      {"split_impulse", [](Method& m, const py::handle& v) { m.split_impulse = v.cast<bool>(); }},
+      {"restitution_threshold",
+       [](Method& m, const py::handle& v) { m.restitution_threshold = v.cast<double>(); }},
+      {"contact_hertz", [](Method& m, const py::handle& v) { m.contact_hertz = v.cast<double>(); }},
+      {"contact_damping_ratio",
+       [](Method& m, const py::handle& v) { m.contact_damping_ratio = v.cast<double>(); }},
+      {"push_max", [](Method& m, const py::handle& v) { m.push_max = v.cast<double>(); }},
+      {"theta", [](Method& m, const py::handle& v) { m.theta = v.cast<double>(); }},
+  };
+  return settings;
+}
+
+// Positive integer settings are checked here (the C++ side takes any int).
+void check_counts(const Method& m) {
+  for (const auto& [name, value] : {std::pair{"iterations", m.iterations}, std::pair{"substeps", m.substeps}})
+    if (value < 1)
+      throw std::invalid_argument(
+          fmt::format("{}: value '{}' is out of range; accepted range [1, inf)", name, value));
+  if (!(m.integrator.rtol > 0 && m.integrator.rtol < 1))
+    throw std::invalid_argument(
+        fmt::format("rtol: value '{}' is out of range; accepted range (0, 1)", m.integrator.rtol));
+  if (!(m.integrator.atol > 0))
+    throw std::invalid_argument(
+        fmt::format("atol: value '{}' is out of range; accepted range (0, inf)", m.integrator.atol));
+  integrator_info(m.integrator.method);  // throws naming the accepted integrators
+}
+
+RunResult run(const std::string& scene, const std::string& method, const std::string& law,
+              const py::kwargs& options, const py::object& error_type) {
+  const SceneEntry& entry = scene_entry(scene);
+  ParameterValues values;
+  Method m{.name = method};
+  SolveOptions span{.t_end = entry.t_end, .sample_dt = entry.t_end / 200};
+  for (const auto& [key, value] : options) {
+    const auto name = key.cast<std::string>();
+    const bool is_parameter = std::any_of(entry.parameters.begin(), entry.parameters.end(),
+                                          [&](const ParameterInfo& p) { return p.name == name; });
+    if (is_parameter)
+      values[name] = value.cast<double>();
+    else if (const auto it = method_settings().find(name); it != method_settings().end())
+      it->second(m, value);
+    else if (name == "t_end")
+      span.t_end = value.cast<double>();
+    else if (name == "sample_dt")
+      span.sample_dt = value.cast<double>();
+    else {
+      std::string accepted = "t_end, sample_dt";
+      for (const auto& p : entry.parameters) accepted += ", " + p.name;
+      for (const auto& s : method_settings()) accepted += ", " + s.first;
+      throw std::invalid_argument(
+          fmt::format("{}: not an option of scene '{}' or of a method; accepted: {}", name, scene, accepted));
+    }
+  }
+  check_counts(m);
+  const auto model = make_scene(scene, values, law);
+  RunResult r = solve(*model, m, span);
+  if (!r.ok()) {
+    py::object err = error_type(fmt::format("{} on {}: {} at t = {:.9g} s: {}", method, scene,
+                                            to_string(r.status), r.t_reached, r.message));
+    err.attr("status") = r.status;
+    err.attr("t_reached") = r.t_reached;
+    err.attr("solver_message") = r.message;
+    err.attr("result") = py::cast(r);
+    PyErr_SetObject(error_type.ptr(), err.ptr());
+    throw py::error_already_set();
+  }
+  return r;
+}
+
+// The library names options as the command line does ("--t-end: value ..."); Python callers
+// know them as keywords ("t_end: value ...").
+std::string python_names(std::string message) {
+  if (message.rfind("--", 0) != 0) return message;
+  message.erase(0, 2);
+  for (char& c : message) {
+    if (c == ':' || c == ' ') break;
+    if (c == '-') c = '_';
+  }
+  return message;
+}
+
+py::dict spring_contact(const SpringContact& c) {
+  return py::dict(py::arg("duration") = c.duration, py::arg("max_penetration") = c.max_penetration,
+                  py::arg("exit_speed") = c.exit_speed);
+}
+
+}  // namespace
+
+PYBIND11_MODULE(contact_ode, mod) {
+  mod.doc() = "contact-ode: contact resolution as ODEs (penalty, game, time-stepping, event-driven)";
+
+  py::enum_<Status>(mod, "Status")
+      .value("success", Status::Success)
+      .value("max_steps", Status::MaxSteps)
+      .value("convergence_failure", Status::ConvergenceFailure)
+      .value("error_test_failure", Status::ErrorTestFailure)
+      .value("non_finite_state", Status::NonFiniteState)
+      .value("zeno_limit", Status::ZenoLimit)
+      .value("unresolved", Status::Unresolved)
+      .value("no_progress", Status::NoProgress)
+      .value("work_limit", Status::WorkLimit)
+      .value("solver_error", Status::SolverError);
+  static py::exception<SolverFailure> solver_error(mod, "SolverError", PyExc_RuntimeError);
+  solver_error.doc() = "a run that failed: .status, .t_reached, .solver_message and the partial .result";
+
+  py::class_<RunResult>(mod, "Result")
+      .def_readonly("method", &RunResult::method)
+      .def_readonly("state_labels", &RunResult::state_labels)
+      .def_readonly("status", &RunResult::status)
+      .def_readonly("t_reached", &RunResult::t_reached)
+      .def_readonly("message", &RunResult::message)
+      .def_readonly("energy0", &RunResult::energy0)
+      .def_property_readonly(
+          "t",
+          [](const RunResult& r) { return column<Sample>(r.samples, [](const Sample& s) { return s.t; }); })
+      .def_property_readonly("energy",
+                             [](const RunResult& r) {
+                               return column<Sample>(r.samples, [](const Sample& s) { return s.energy; });
+                             })
+      .def_property_readonly("dissipated",
+                             [](const RunResult& r) {
+                               return column<Sample>(r.samples, [](const Sample& s) { return s.dissipated; });
+                             })
+      .def_property_readonly("y",
+                             [](const RunResult& r) {
+                               const auto n = static_cast<py::ssize_t>(r.samples.size());
+                               const auto d = static_cast<py::ssize_t>(r.state_labels.size());
+                               py::array_t<double> a({n, d});
+                               auto v = a.mutable_unchecked<2>();
+                               for (py::ssize_t i = 0; i < n; ++i)
+                                 for (py::ssize_t j = 0; j < d; ++j)
+                                   v(i, j) = r.samples[static_cast<std::size_t>(i)].y[j];
+                               return a;
+                             })
+      .def_property_readonly(
+          "contacts",
+          [](const RunResult& r) {
+            using C = ContactRecord;
+            return py::dict(py::arg("contact") = column<C>(
+                                r.contacts, [](const C& c) { return static_cast<double>(c.contact); }),
+                            py::arg("t_begin") = column<C>(r.contacts, [](const C& c) { return c.t_begin; }),
+                            py::arg("t_end") = column<C>(r.contacts, [](const C& c) { return c.t_end; }),
+                            py::arg("max_penetration") =
+                                column<C>(r.contacts, [](const C& c) { return c.max_penetration; }),
+                            py::arg("v_in") = column<C>(r.contacts, [](const C& c) { return c.v_in; }),
+                            py::arg("v_out") = column<C>(r.contacts, [](const C& c) { return c.v_out; }));
+          })
+      .def_property_readonly(
+          "apexes",
+          [](const RunResult& r) {
+            return py::dict(
+                py::arg("t") = column<Apex>(r.apexes, [](const Apex& a) { return a.t; }),
+                py::arg("gap") = column<Apex>(r.apexes, [](const Apex& a) { return a.gap; }),
+                py::arg("energy") = column<Apex>(r.apexes, [](const Apex& a) { return a.energy; }));
+          })
+      .def_property_readonly("stats", [](const RunResult& r) {
+        const SolverStats& s = r.stats;
+        return py::dict(py::arg("steps") = s.steps, py::arg("failed_steps") = s.failed_steps,
+                        py::arg("rhs_evals") = s.rhs_evals, py::arg("jac_evals") = s.jac_evals,
+                        py::arg("newton_iters") = s.newton_iters, py::arg("linear_setups") = s.linear_setups,
+                        py::arg("root_evals") = s.root_evals, py::arg("events") = s.events,
+                        py::arg("restarts") = s.restarts, py::arg("wall_time_s") = s.wall_time_s);
+      });
+
+  mod.def(
+      "solve",
+      [](const std::string& scene, const std::string& method, const std::string& law,
+         const py::kwargs& options) {
+        try {
+          return run(scene, method, law, options, solver_error);
+        } catch (const std::invalid_argument& e) {
+          throw py::value_error(python_names(e.what()));
+        }
+      },
+      py::arg("scene"), py::arg("method"), py::arg("law") = "",
+      "Runs `method` on `scene` (with contact law `law` where the scene takes one). Keywords: the scene's "
+      "parameters, the method's settings, t_end and sample_dt.");
+
+  mod.def("scenes", [] {
+    py::list out;
+    for (const auto& s : scene_registry())
+      out.append(py::dict(py::arg("name") = s.name, py::arg("description") = s.description,
+                          py::arg("parameters") = parameters(s.parameters),
+                          py::arg("takes_law") = s.takes_law, py::arg("observables") = s.observables,
+                          py::arg("exact") = s.exact, py::arg("t_end") = s.t_end));
+    return out;
+  });
+  mod.def("laws", [] {
+    py::list out;
+    for (const auto& l : law_registry())
+      out.append(py::dict(py::arg("name") = l.name, py::arg("description") = l.description,
+                          py::arg("exponent") = l.exponent, py::arg("damped") = l.damped,
+                          py::arg("closed_forms") = l.closed_forms,
+                          py::arg("parameters") = parameters(l.parameters)));
+    return out;
+  });
+  mod.def("methods", [] {
+    py::list out;
+    for (const auto& m : method_registry())
+      out.append(py::dict(py::arg("name") = m.name, py::arg("description") = m.description,
+                          py::arg("family") = m.family, py::arg("fixed_step") = m.fixed_step,
+                          py::arg("uses_contact_law") = m.uses_contact_law, py::arg("needs") = m.needs));
+    return out;
+  });
+  mod.def("integrators", [] {
+    py::list out;
+    for (const auto& i : integrator_catalog())
+      out.append(py::dict(py::arg("name") = i.name, py::arg("family") = i.family, py::arg("order") = i.order,
+                          py::arg("adaptive") = i.adaptive, py::arg("implicit") = i.implicit,
+                          py::arg("description") = i.description));
+    return out;
+  });
+  mod.def(
+      "methods_for",
+      [](const std::string& scene, const std::string& law) {
+        return methods_for(*make_scene(scene, {}, law));
+      },
+      py::arg("scene"), py::arg("law") = "", "The methods that can run `scene`.");
+
+  auto refs = mod.def_submodule("references", "Closed forms (analysis/references.hpp)");
+  refs.def(
+      "hooke_contact",
+      [](double m, double k, double V, double g) { return spring_contact(hooke_contact(m, k, V, g)); },
+      py::arg("m"), py::arg("k"), py::arg("V"), py::arg("g") = 0.0);
+  refs.def(
+      "kelvin_voigt_contact",
+      [](double m, double k, double zeta, double V) {
+        return spring_contact(kelvin_voigt_contact(m, k, zeta, V));
+      },
+      py::arg("m"), py::arg("k"), py::arg("zeta"), py::arg("V"));
+  refs.def(
+      "linear_law_first_contact",
+      [](const std::string& law, double m, double k, double e, double V, double g) {
+        law_info(law);  // an unknown law is a ValueError, not NaN
+        return spring_contact(linear_law_first_contact(law, m, k, e, V, g));
+      },
+      py::arg("law"), py::arg("m"), py::arg("k"), py::arg("e"), py::arg("V"), py::arg("g") = 0.0);
+  refs.def("hunt_crossley_restitution", &hunt_crossley_restitution, py::arg("chi_v"));
+  refs.def("damping_ratio_for_restitution", &damping_ratio_for_restitution, py::arg("e"));
+  refs.def(
+      "rigid_apex_height",
+      [](double h0, double v0, double g, double e, std::size_t n) {
+        return RigidBounces(h0, v0, g, e).apex_height(n);
+      },
+      py::arg("h0"), py::arg("v0"), py::arg("g"), py::arg("e"), py::arg("n"));
+  refs.def(
+      "rigid_impact_time",
+      [](double h0, double v0, double g, double e, std::size_t n) {
+        return RigidBounces(h0, v0, g, e).impact_time(n);
+      },
+      py::arg("h0"), py::arg("v0"), py::arg("g"), py::arg("e"), py::arg("n"));
+  refs.def(
+      "zeno_time",
+      [](double h0, double v0, double g, double e) { return RigidBounces(h0, v0, g, e).zeno_time(); },
+      py::arg("h0"), py::arg("v0"), py::arg("g"), py::arg("e"));
+
+  mod.def(
+      "advise",
+      [](double m, double v, double e, std::optional<double> max_penetration, std::optional<double> duration,
+         const std::string& law) {
+        ContactRequest q{
+            .m = m, .v = v, .e = e, .max_penetration = max_penetration, .duration = duration, .law = law};
+        validate(q);
+        const ContactAdvice a = advise(q);
+        return py::dict(py::arg("k_lin") = a.k_lin, py::arg("c_lin") = a.c_lin, py::arg("omega") = a.omega,
+                        py::arg("zeta") = a.zeta, py::arg("frequency_hz") = a.frequency_hz,
+                        py::arg("euler_max_dt") = a.euler_max_dt,
+                        py::arg("symplectic_max_dt") = a.symplectic_max_dt, py::arg("game_dt") = a.game_dt,
+                        py::arg("achieved_penetration") = a.achieved_penetration,
+                        py::arg("achieved_duration") = a.achieved_duration,
+                        py::arg("achieved_restitution") = a.achieved_restitution);
+      },
+      py::arg("m"), py::arg("v"), py::arg("e"), py::arg("max_penetration") = py::none(),
+      py::arg("duration") = py::none(), py::arg("law") = "kelvin-voigt",
+      "The stiffness advisor: a law, its linearisation and stable steps for a budget.");
+}

@@ -1,0 +1,101 @@
+"""contact_ode from Python: the registries, solve() against the C++ executables and the closed
+forms, and the error paths. Run by CTest (tests/CMakeLists.txt) with the module on PYTHONPATH."""
+import csv
+import math
+import os
+import pathlib
+import runpy
+import subprocess
+
+import numpy as np
+import pytest
+
+import contact_ode as co
+
+EXPERIMENTS = pathlib.Path(os.environ.get("CONTACT_ODE_EXPERIMENTS_DIR", "build/experiments"))
+EXAMPLES = pathlib.Path(__file__).resolve().parents[2] / "examples"
+
+
+def test_registries_list_every_entry_with_units():
+    methods = {m["name"]: m for m in co.methods()}
+    for name in ["penalty", "game-symplectic", "event-exact", "sequential-impulses", "moreau-jean"]:
+        assert name in methods
+    assert methods["moreau-jean"]["family"] == "time-stepping"
+    scenes = {s["name"]: s for s in co.scenes()}
+    h0 = next(p for p in scenes["ball-drop"]["parameters"] if p["name"] == "h0")
+    assert h0["unit"] == "m" and h0["default"] > 0
+    assert {law["name"] for law in co.laws()} >= {"hooke", "kelvin-voigt", "hertz"}
+    assert "cvode-bdf" in {i["name"] for i in co.integrators()}
+    assert "event-ode" not in co.methods_for("spring-mass")
+
+
+@pytest.mark.parametrize("method", ["penalty", "game-symplectic", "event-ode", "moreau-jean"])
+def test_ball_drop_reproduces_the_cpp_executable(tmp_path, method):
+    """One paradigm each: the module's samples are the ball_drop executable's, to the CSV's
+    printed precision (both run the same solve() with the same settings)."""
+    out = tmp_path / "bd"
+    subprocess.run([str(EXPERIMENTS / "ball_drop"), "--method", method, "--out", str(out)],
+                   check=True, capture_output=True)
+    with open(out / "samples.csv") as f:
+        rows = [r for r in csv.DictReader(f) if r["method"] == method]
+    r = co.solve("ball-drop", method, law="kelvin-voigt", t_end=3.0, sample_dt=0.01)
+    assert len(rows) == len(r.t)
+    expected = np.array([[float(x["t_s"]), float(x["y_m"]), float(x["v_mps"])] for x in rows])
+    got = np.column_stack([r.t, r.y[:, 0], r.y[:, 1]])
+    np.testing.assert_allclose(got, expected, rtol=1e-12, atol=1e-15)
+
+
+def test_exact_bounces_give_the_closed_forms():
+    """Apex n of a rigid bounce is e^(2n) h0, and the Zeno time t0 (1 + e) / (1 - e)."""
+    h0, e = 2.0, 0.8
+    r = co.solve("ball-drop", "event-exact", h0=h0, e=e, t_end=3.0)
+    apexes = r.apexes["gap"][:3]
+    np.testing.assert_allclose(apexes, [e ** (2 * n) * h0 for n in (1, 2, 3)], rtol=1e-12)
+    for n in (1, 2, 3):
+        assert co.references.rigid_apex_height(h0, 0.0, 9.81, e, n) == pytest.approx(e ** (2 * n) * h0, rel=1e-14)
+    t0 = math.sqrt(2 * h0 / 9.81)
+    assert co.references.zeno_time(h0, 0.0, 9.81, e) == pytest.approx(t0 * (1 + e) / (1 - e), rel=1e-14)
+
+
+def test_spring_contact_closed_forms():
+    """Without gravity a Hooke contact lasts pi sqrt(m/k) and sinks V sqrt(m/k)."""
+    m, k, V = 2.0, 1e4, 3.0
+    c = co.references.hooke_contact(m, k, V)
+    assert c["duration"] == pytest.approx(math.pi * math.sqrt(m / k), rel=1e-14)
+    assert c["max_penetration"] == pytest.approx(V * math.sqrt(m / k), rel=1e-14)
+    assert math.isnan(co.references.linear_law_first_contact("hertz", m, k, 0.8, V)["duration"])
+
+
+def test_advisor_meets_its_budget():
+    a = co.advise(m=1.0, v=5.0, e=0.8, max_penetration=1e-3)
+    assert a["achieved_penetration"] == pytest.approx(1e-3, rel=1e-3)
+    assert a["achieved_restitution"] == pytest.approx(0.8, abs=1e-3)
+
+
+def test_bad_arguments_raise_value_error_naming_them():
+    with pytest.raises(ValueError, match="height: not an option of scene 'ball-drop'"):
+        co.solve("ball-drop", "penalty", height=1.0)
+    with pytest.raises(ValueError, match="rtol: value '2' is out of range"):
+        co.solve("ball-drop", "penalty", rtol=2.0)
+    with pytest.raises(ValueError, match="t_end: value '-1' is out of range"):
+        co.solve("ball-drop", "penalty", t_end=-1.0)
+    with pytest.raises(ValueError, match="method: value 'nope' is not one of"):
+        co.solve("ball-drop", "nope")
+    with pytest.raises(ValueError, match="cannot run scene"):
+        co.solve("spring-mass", "event-ode")
+
+
+def test_solver_failure_raises_with_status_time_and_message():
+    with pytest.raises(co.SolverError) as info:
+        co.solve("ball-drop", "penalty", max_steps=5, t_end=1.0)
+    err = info.value
+    assert err.status == co.Status.max_steps
+    assert 0 < err.t_reached < 1.0
+    assert "CV_TOO_MUCH_WORK" in err.solver_message
+    assert err.result.t[-1] <= err.t_reached
+
+
+def test_example_reproduces_the_heights_figure(tmp_path):
+    out = tmp_path / "heights.png"
+    runpy.run_path(str(EXAMPLES / "ball_drop_heights.py"))["main"](str(out))
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
