@@ -1,11 +1,14 @@
 // study — runs every experiment of the study (experiments/study.json) into one results folder,
 // checks that each left every output it declares (CSV columns included), and writes index.md
 // (a link and a sentence per table and figure) and study.json (what ran, how long it took).
-// --tiny runs the smoke-test arguments instead of the defaults.
+// --tiny runs the smoke-test arguments instead of the defaults. Started by mpirun (or srun) it
+// deals the experiments out over the ranks, experiment j to rank j mod size; each writes its own
+// folders, and rank 0 gathers what ran and writes index.md and study.json, as a serial run does.
 // Exit codes: 0, 1 an experiment failed or left an output missing, 2 bad input.
 #include "cli.hpp"
 #include "output.hpp"
 #include "process.hpp"
+#include "ranks.hpp"
 #include "study_manifest.hpp"
 
 #include <fmt/format.h>
@@ -21,6 +24,7 @@ using namespace contact;
 namespace fs = std::filesystem;
 
 int program(int argc, char** argv) {
+  const Ranks ranks(argc, argv);
   std::string out = "results", manifest_path = CONTACT_ODE_STUDY_MANIFEST, only;
   bool tiny = false;
   cli::Options app("study", "Runs every experiment of the study into one folder and writes its index.md.");
@@ -55,10 +59,13 @@ int program(int argc, char** argv) {
   const fs::path bin = fs::read_symlink("/proc/self/exe").parent_path();
   const auto start = std::chrono::steady_clock::now();
   nlohmann::json record = {{"tiny", tiny}, {"experiments", nlohmann::json::array()}};
-  int failures = 0;
-  for (const auto& e : manifest.experiments) {
+  nlohmann::json mine = nlohmann::json::array();  // this rank's runs: {"index", "record", "ok"}
+  std::size_t dealt = 0;
+  for (std::size_t index = 0; index < manifest.experiments.size(); ++index) {
+    const auto& e = manifest.experiments[index];
     if (!only_list.empty() && std::find(only_list.begin(), only_list.end(), e.name) == only_list.end())
       continue;
+    if (static_cast<int>(dealt++ % static_cast<std::size_t>(ranks.size())) != ranks.rank()) continue;
     // The experiment replaces its folder only if it succeeds: earlier results stay until then.
     const fs::path dir = fs::path(out) / e.name;
     std::vector<std::string> cmd{(bin / e.exe).string()};
@@ -72,15 +79,29 @@ int program(int argc, char** argv) {
     std::vector<std::string> problems =
         code == 0 ? check_outputs(e, dir) : std::vector<std::string>{fmt::format("exit code {}", code)};
     for (const auto& p : problems) std::cerr << fmt::format("study: {}: {}\n", e.name, p);
-    failures += problems.empty() ? 0 : 1;
-    record["experiments"].push_back({{"name", e.name},
-                                     {"command", fmt::format("{}", fmt::join(cmd, " "))},
-                                     {"wall_time_s", seconds},
-                                     {"ok", problems.empty()}});
+    mine.push_back({{"index", index},
+                    {"record",
+                     {{"name", e.name},
+                      {"command", fmt::format("{}", fmt::join(cmd, " "))},
+                      {"wall_time_s", seconds},
+                      {"ok", problems.empty()}}}});
+  }
+  // Rank 0 gathers every rank's runs and lists them in the manifest's order.
+  const auto gathered = ranks.gather(mine.dump());
+  if (ranks.rank() != 0) return 0;
+  std::vector<nlohmann::json> runs;
+  for (const auto& part : gathered)
+    for (auto& run : nlohmann::json::parse(part)) runs.push_back(std::move(run));
+  std::sort(runs.begin(), runs.end(), [](const auto& a, const auto& b) { return a["index"] < b["index"]; });
+  int failures = 0;
+  for (const auto& run : runs) {
+    failures += run["record"]["ok"].get<bool>() ? 0 : 1;
+    record["experiments"].push_back(run["record"]);
   }
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   record["wall_time_s"] = total;
   record["cores"] = std::thread::hardware_concurrency();
+  record["ranks"] = ranks.size();
   if (failures > 0) {
     std::cerr << fmt::format("study: {} experiment(s) failed; index.md not written\n", failures);
     return cli::kExitFailure;

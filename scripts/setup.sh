@@ -16,6 +16,7 @@ packages=(
   nlohmann-json3-dev   # meta.json
   libfmt-dev           # formatting of tables and messages
   gnuplot-nox          # figures (PNG and PDF, cairo terminals)
+  libopenmpi-dev openmpi-bin  # the study's sweeps over MPI ranks (mpirun)
   pybind11-dev python3-pybind11 python3-numpy  # the Python module contact_ode (python/)
   python3-pytest python3-matplotlib            # its tests and the example (tests/python, examples/)
   latexmk texlive-latex-base texlive-latex-recommended texlive-fonts-recommended  # the paper
