@@ -41,6 +41,25 @@ void BallChain::rhs(double, ConstVectorRef y, const ContactModes& modes, VectorR
   }
 }
 
+void BallChain::range_rhs(double, std::size_t first, std::size_t count, ConstVectorRef window,
+                          VectorRef ydot) const {
+  const std::size_t w0 = first > 0 ? first - 1 : 0;  // the window's first ball
+  for (std::size_t b = first; b < first + count; ++b) {
+    ydot[static_cast<Eigen::Index>(2 * (b - first))] = v(window, b - w0);
+    ydot[static_cast<Eigen::Index>(2 * (b - first) + 1)] = 0.0;
+  }
+  // Contact i joins balls i and i + 1: those touching the range are first - 1 ... first + count - 1.
+  for (std::size_t i = w0; i + 1 < p_.n && i < first + count; ++i) {
+    const double gap = p_.spacing + u(window, i + 1 - w0) - u(window, i - w0);
+    const double rate = v(window, i + 1 - w0) - v(window, i - w0);
+    if (!(contact::switching(p_.law, -gap, -rate) > 0)) continue;
+    const double F = force(p_.law, -gap, -rate) / p_.m;
+    if (i >= first) ydot[static_cast<Eigen::Index>(2 * (i - first) + 1)] -= F;
+    if (i + 1 >= first && i + 1 < first + count)
+      ydot[static_cast<Eigen::Index>(2 * (i + 1 - first) + 1)] += F;
+  }
+}
+
 void BallChain::jacobian(double, ConstVectorRef y, const ContactModes& modes, SparseMatrix& J) const {
   // u_b' = v_b; contact i couples (u_i, v_i, u_{i+1}, v_{i+1}) into v_i' and v_{i+1}'. With
   // delta = u_i - u_{i+1} - spacing and delta_dot = v_i - v_{i+1}:

@@ -17,6 +17,7 @@
 // 2 above): band and sparse solvers scale linearly in N.
 #include "contact_ode/models/contact_law.hpp"
 #include "contact_ode/models/mechanical_system.hpp"
+#include "contact_ode/models/neighbour_dynamics.hpp"
 
 namespace contact {
 
@@ -30,7 +31,7 @@ struct BallChainParams {
   ContactLaw law = Hooke{1e6};
 };
 
-class BallChain final : public OneLawSystem, public NormalImpulses {
+class BallChain final : public OneLawSystem, public NormalImpulses, public NeighbourDynamics {
  public:
   explicit BallChain(BallChainParams p);
   const BallChainParams& params() const { return p_; }
@@ -61,6 +62,11 @@ class BallChain final : public OneLawSystem, public NormalImpulses {
   void apply_normal_impulse(std::size_t i, double lambda, VectorRef y) const override;
   void apply_normal_displacement(std::size_t i, double dlambda, VectorRef y) const override;
   LinearLaw linear_law(std::size_t) const override { return contact::linear_law(p_.law); }
+
+  std::size_t bodies() const override { return p_.n; }
+  std::size_t body_stride() const override { return 2; }
+  void range_rhs(double t, std::size_t first, std::size_t count, ConstVectorRef window,
+                 VectorRef ydot) const override;
 
  private:
   static double u(ConstVectorRef y, std::size_t b) { return y[static_cast<Eigen::Index>(2 * b)]; }
