@@ -37,6 +37,31 @@ const MethodInfo& method_info(const std::string& name) {
   return find_named(method_registry(), name, "--method");
 }
 
+namespace {
+
+// The time-stepping methods' settings, each in its range (whatever method reads them, so that a
+// wrong value never waits for the method that uses it).
+void check_time_stepping_settings(const Method& m) {
+  auto refuse = [](const char* name, double value, const char* range) {
+    throw std::invalid_argument(
+        fmt::format("--{}: value '{}' is out of range; accepted range {}", name, value, range));
+  };
+  if (m.iterations < 1) refuse("iterations", m.iterations, "[1, inf)");
+  if (m.substeps < 1) refuse("substeps", m.substeps, "[1, inf)");
+  if (!(m.erp >= 0 && m.erp <= 1)) refuse("erp", m.erp, "[0, 1]");
+  if (!(m.theta >= 0 && m.theta <= 1)) refuse("theta", m.theta, "[0, 1]");
+  if (!std::isnan(m.restitution_threshold) &&
+      !(m.restitution_threshold >= 0 && std::isfinite(m.restitution_threshold)))
+    refuse("restitution-threshold", m.restitution_threshold, "[0, inf) or NaN (the method's default)");
+  if (!(m.contact_hertz >= 0 && std::isfinite(m.contact_hertz)))
+    refuse("contact-hertz", m.contact_hertz, "[0, inf)");
+  if (!(m.contact_damping_ratio >= 0 && std::isfinite(m.contact_damping_ratio)))
+    refuse("contact-damping-ratio", m.contact_damping_ratio, "[0, inf)");
+  if (!(m.push_max > 0 && std::isfinite(m.push_max))) refuse("push-max", m.push_max, "(0, inf)");
+}
+
+}  // namespace
+
 RunResult solve(const Dynamics& scene, const Method& method, const SolveOptions& options) {
   const MethodInfo& info = method_info(method.name);
   if (!info.can_run(scene))
@@ -51,6 +76,7 @@ RunResult solve(const Dynamics& scene, const Method& method, const SolveOptions&
   if (info.fixed_step && !(std::isfinite(method.dt) && method.dt > 0))
     throw std::invalid_argument(
         fmt::format("--dt: value '{}' is out of range; accepted range (0, inf)", method.dt));
+  check_time_stepping_settings(method);
   RunResult r = info.run(scene, method, options);
   r.method = info.name;
   return r;

@@ -32,7 +32,8 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
   const std::size_t nc = scene.contact_count();
   std::vector<double> P(nc), u0(nc);
   std::vector<bool> active(nc), fresh(nc);
-  Vector scratch, v_old, blended;
+  FreeMotion motion(scene);
+  Vector v_old, blended;
   auto step = [&](double t, double h, Vector& y, StepReport& report, SolverStats& stats) {
     for (std::size_t i = 0; i < nc; ++i) {
       u0[i] = geo.gap_rate(i, y);
@@ -42,7 +43,7 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
       fresh[i] = active[i] && !was;
     }
     v_old = y;
-    stats.rhs_evals += add_free_velocity(scene, t, h, y, scratch);
+    stats.rhs_evals += motion.add_velocity(t, h, y);
     double scale = 0;
     for (std::size_t i = 0; i < nc; ++i) {
       if (!active[i]) continue;
@@ -73,8 +74,8 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
     }
     // q+ = q + h ((1 - theta) v + theta v+): the positions advanced with the blended velocities.
     blended = (1 - m.theta) * v_old + m.theta * y;
-    stats.rhs_evals += advance_positions(scene, t, h, blended, scratch);
-    y = scene.position_mask().select(blended, y);
+    stats.rhs_evals += motion.advance_positions(t, h, blended);
+    motion.copy_positions(blended, y);
   };
   return run_time_stepping(scene, m.name, m.dt, step, span, false);
 }

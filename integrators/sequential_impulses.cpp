@@ -29,10 +29,11 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
   const double threshold = std::isnan(m.restitution_threshold) ? 0.2 : m.restitution_threshold;
   std::vector<double> lambda(nc, 0.0), target(nc), bias(nc), push(nc), pseudo(nc), start(nc);
   std::vector<bool> active(nc);
-  Vector scratch, ghost;
+  FreeMotion motion(scene);
+  Vector ghost = Vector::Zero(static_cast<Eigen::Index>(scene.state_size()));
   auto step = [&](double t, double h, Vector& y, StepReport& report, SolverStats& stats) {
     for (std::size_t i = 0; i < nc; ++i) start[i] = geo.gap_rate(i, y);
-    stats.rhs_evals += add_free_velocity(scene, t, h, y, scratch);
+    stats.rhs_evals += motion.add_velocity(t, h, y);
     // Targets from the velocities before any impulse: a warm start of the contact below must not
     // count as an approach of the one above.
     for (std::size_t i = 0; i < nc; ++i) {
@@ -59,11 +60,12 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
     stats.newton_iters += m.iterations;  // the solver's sweeps
     for (std::size_t i = 0; i < nc; ++i)
       report.push[i] = active[i] ? lambda[i] * normal.inverse_mass(i, y) : 0.0;
-    stats.rhs_evals += advance_positions(scene, t, h, y, scratch);
+    stats.rhs_evals += motion.advance_positions(t, h, y);
     if (m.split_impulse) {
       // The push-out as pseudo-velocities: solved on a copy with zero velocities, which then
       // moves the positions by h times what it gained.
-      ghost = scene.position_mask().select(y, Vector::Zero(y.size()));
+      ghost.setZero();
+      motion.copy_positions(y, ghost);
       std::fill(pseudo.begin(), pseudo.end(), 0.0);
       for (int sweep = 0; sweep < m.iterations; ++sweep)
         for (std::size_t i = 0; i < nc; ++i) {
@@ -71,8 +73,8 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
           accumulate_impulse(normal, i, (push[i] - geo.gap_rate(i, ghost)) / normal.inverse_mass(i, ghost),
                              pseudo[i], ghost);
         }
-      stats.rhs_evals += advance_positions(scene, t, h, ghost, scratch);
-      y = scene.position_mask().select(ghost, y);
+      stats.rhs_evals += motion.advance_positions(t, h, ghost);
+      motion.copy_positions(ghost, y);
     }
   };
   return run_time_stepping(scene, m.name, m.dt, step, span, false);

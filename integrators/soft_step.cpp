@@ -37,9 +37,9 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
   const double threshold = std::isnan(m.restitution_threshold) ? 1.0 : m.restitution_threshold;
   std::vector<double> lambda(nc, 0.0), max_lambda(nc), approach(nc);
   std::vector<bool> active(nc), fresh(nc);
-  Vector scratch;
+  FreeMotion motion(scene);
   auto step = [&](double t, double dt, Vector& y, StepReport& report, SolverStats& stats) {
-    const int n = std::max(m.substeps, 1);
+    const int n = m.substeps;  // >= 1: solve() checks it
     const double h = dt / n;
     const SoftConstraint soft =
         soft_constraint(std::min(m.contact_hertz, 0.25 / h), m.contact_damping_ratio, h);
@@ -63,8 +63,8 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
         double d;
         if (s > 0)
           d = -(u + s / h) / w;  // speculative: approach no faster than the gap closes in h
-        else if (use_bias)
-          d = soft_impulse(soft, w, u, std::max(s, -m.push_max / std::max(soft.bias_rate, 1e-300)),
+        else if (use_bias)       // the push-out velocity bias_rate s capped at push_max, as Box2D does
+          d = soft_impulse(soft, w, u, soft.bias_rate > 0 ? std::max(s, -m.push_max / soft.bias_rate) : s,
                            lambda[i]);
         else
           d = soft_impulse(rigid, w, u, 0.0, lambda[i]);
@@ -73,11 +73,11 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
       }
     };
     for (int k = 0; k < n; ++k) {
-      stats.rhs_evals += add_free_velocity(scene, t + k * h, h, y, scratch);
+      stats.rhs_evals += motion.add_velocity(t + k * h, h, y);
       for (std::size_t i = 0; i < nc; ++i)
         if (active[i]) normal.apply_normal_impulse(i, lambda[i], y);  // warm start
       solve(true);
-      stats.rhs_evals += advance_positions(scene, t + k * h, h, y, scratch);
+      stats.rhs_evals += motion.advance_positions(t + k * h, h, y);
       solve(false);
       stats.newton_iters += 2;
     }

@@ -10,20 +10,30 @@
 
 namespace contact {
 
-long add_free_velocity(const Dynamics& model, double t, double h, Vector& y, Vector& scratch) {
-  scratch.resize(y.size());
-  model.rhs(t, y, model.all_modes(ContactMode::Free), scratch);
-  y = model.position_mask().select(y, y + h * scratch);
+FreeMotion::FreeMotion(const Dynamics& model)
+    : model_(model),
+      positions_(model.position_mask()),
+      free_(model.all_modes(ContactMode::Free)),
+      rate_(static_cast<Eigen::Index>(model.state_size())) {}
+
+long FreeMotion::add_velocity(double t, double h, Vector& y) {
+  model_.rhs(t, y, free_, rate_);
+  for (Eigen::Index j = 0; j < y.size(); ++j)
+    if (!positions_[j]) y[j] += h * rate_[j];
   return 1;
 }
 
-long advance_positions(const Dynamics& model, double t, double h, Vector& y, Vector& scratch) {
-  scratch.resize(y.size());
-  // The position rows of the right-hand side are Q(q) v: they read the velocities only.
-  model.rhs(t, y, model.all_modes(ContactMode::Free), scratch);
-  y = model.position_mask().select(y + h * scratch, y);
-  model.normalize(y);
+long FreeMotion::advance_positions(double t, double h, Vector& y) {
+  model_.rhs(t, y, free_, rate_);
+  for (Eigen::Index j = 0; j < y.size(); ++j)
+    if (positions_[j]) y[j] += h * rate_[j];
+  model_.normalize(y);
   return 1;
+}
+
+void FreeMotion::copy_positions(const Vector& src, Vector& dst) const {
+  for (Eigen::Index j = 0; j < dst.size(); ++j)
+    if (positions_[j]) dst[j] = src[j];
 }
 
 double accumulate_impulse(const NormalImpulses& normal, std::size_t i, double d, double& lambda, Vector& y) {

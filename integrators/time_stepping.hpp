@@ -64,10 +64,26 @@ MethodInfo impulse_stepping_method(
     std::string name, std::string description,
     std::function<RunResult(const Dynamics&, const Method&, const SolveOptions&)> run);
 
-// The unconstrained acceleration part of a step: v += h a(q, v) with every contact free (gravity and
-// the scene's other forces), leaving the positions. Returns the right-hand-side evaluations used.
-long add_free_velocity(const Dynamics& model, double t, double h, Vector& y, Vector& scratch);
-// q += h v for the positions (mask), using the velocities in y.
-long advance_positions(const Dynamics& model, double t, double h, Vector& y, Vector& scratch);
+// The smooth part of a step, every contact free (gravity and the scene's other forces). It keeps
+// the scene's position mask, the all-free modes and a scratch rate, so that a step allocates
+// nothing. Each call evaluates the right-hand side once and returns 1 (for the statistics).
+class FreeMotion {
+ public:
+  explicit FreeMotion(const Dynamics& model);
+  // v += h a(q, v), the positions left as they are.
+  long add_velocity(double t, double h, Vector& y);
+  // q += h Q(q) v with the velocities in y (the position rows of the right-hand side read only
+  // the velocities), then the scene's invariants restored.
+  long advance_positions(double t, double h, Vector& y);
+  // dst's positions := src's, its velocities untouched.
+  void copy_positions(const Vector& src, Vector& dst) const;
+  const Mask& positions() const { return positions_; }
+
+ private:
+  const Dynamics& model_;
+  Mask positions_;
+  ContactModes free_;
+  Vector rate_;
+};
 
 }  // namespace contact

@@ -32,14 +32,14 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
   const NormalImpulses& normal = normal_impulses(scene, m.name);
   const std::size_t nc = scene.contact_count();
   std::vector<double> gap_before(nc);
-  Vector scratch;
+  FreeMotion motion(scene);
   auto step = [&](double t, double dt, Vector& y, StepReport& report, SolverStats& stats) {
-    const int n = std::max(m.substeps, 1);
+    const int n = m.substeps;  // >= 1: solve() checks it
     const double h = dt / n;
     for (int s = 0; s < n; ++s) {
       for (std::size_t i = 0; i < nc; ++i) gap_before[i] = geo.gap(i, y);
-      stats.rhs_evals += add_free_velocity(scene, t + s * h, h, y, scratch);
-      stats.rhs_evals += advance_positions(scene, t + s * h, h, y, scratch);
+      stats.rhs_evals += motion.add_velocity(t + s * h, h, y);
+      stats.rhs_evals += motion.advance_positions(t + s * h, h, y);
       for (std::size_t i = 0; i < nc; ++i) {
         const double C = geo.gap(i, y);
         if (C >= 0) continue;

@@ -69,12 +69,9 @@ const std::map<std::string, Setter>& method_settings() {
   return settings;
 }
 
-// Positive integer settings are checked here (the C++ side takes any int).
-void check_counts(const Method& m) {
-  for (const auto& [name, value] : {std::pair{"iterations", m.iterations}, std::pair{"substeps", m.substeps}})
-    if (value < 1)
-      throw std::invalid_argument(
-          fmt::format("{}: value '{}' is out of range; accepted range [1, inf)", name, value));
+// The tolerances and integrator up front, whether or not the method builds an integrator (solve()
+// checks the other settings).
+void check_integrator(const Method& m) {
   if (!(m.integrator.rtol > 0 && m.integrator.rtol < 1))
     throw std::invalid_argument(
         fmt::format("rtol: value '{}' is out of range; accepted range (0, 1)", m.integrator.rtol));
@@ -94,23 +91,28 @@ RunResult run(const std::string& scene, const std::string& method, const std::st
     const auto name = key.cast<std::string>();
     const bool is_parameter = std::any_of(entry.parameters.begin(), entry.parameters.end(),
                                           [&](const ParameterInfo& p) { return p.name == name; });
-    if (is_parameter)
-      values[name] = value.cast<double>();
-    else if (const auto it = method_settings().find(name); it != method_settings().end())
-      it->second(m, value);
-    else if (name == "t_end")
-      span.t_end = value.cast<double>();
-    else if (name == "sample_dt")
-      span.sample_dt = value.cast<double>();
-    else {
+    if (!is_parameter && !method_settings().count(name) && name != "t_end" && name != "sample_dt") {
       std::string accepted = "t_end, sample_dt";
       for (const auto& p : entry.parameters) accepted += ", " + p.name;
       for (const auto& s : method_settings()) accepted += ", " + s.first;
       throw std::invalid_argument(
           fmt::format("{}: not an option of scene '{}' or of a method; accepted: {}", name, scene, accepted));
     }
+    try {  // a value of the wrong type is named like one out of range
+      if (is_parameter)
+        values[name] = value.cast<double>();
+      else if (name == "t_end")
+        span.t_end = value.cast<double>();
+      else if (name == "sample_dt")
+        span.sample_dt = value.cast<double>();
+      else
+        method_settings().at(name)(m, value);
+    } catch (const py::cast_error&) {
+      throw std::invalid_argument(
+          fmt::format("{}: value '{}' has the wrong type", name, py::str(value).cast<std::string>()));
+    }
   }
-  check_counts(m);
+  check_integrator(m);
   const auto model = make_scene(scene, values, law);
   RunResult r = solve(*model, m, span);
   if (!r.ok()) {

@@ -92,7 +92,9 @@ TEST(SoftStep, BouncesAtTheRestitutionAboveTheThresholdOnly) {
   const auto [before, after] = first_bounce(drop({.name = "soft-step", .dt = 1.0 / 60}));
   EXPECT_NEAR(after, -0.8 * before, 1e-12);
   const RunResult slow = drop({.name = "soft-step", .dt = 1.0 / 60, .restitution_threshold = 10.0});
-  EXPECT_LT(slow.samples.back().y[0], 1e-3);  // no bounce: it stays on the floor
+  // No bounce: 0.15 s after the impact (0.45 s) a bounce at e V = 3.5 m/s would be 0.4 m up; the
+  // ball stays within the soft contact's overlap of the floor (under a millimetre at 30 Hz).
+  EXPECT_LT(slow.samples.back().y[0], 1e-3);
 }
 
 // XPBD's compliant update on one Hooke contact is implicit Euler on the spring at the sub-step,
@@ -105,10 +107,16 @@ TEST(Xpbd, SubstepsAreTheImplicitEulerSpringAtTheSubstep) {
   ASSERT_TRUE(ie.ok()) << ie.message;
   ASSERT_EQ(x.samples.size(), ie.samples.size());
   ASSERT_GE(x.contacts.size(), 2u);  // two bounces in the comparison
+  double dx = 0, dv = 0;
   for (std::size_t n = 0; n < x.samples.size(); ++n) {
-    EXPECT_NEAR(x.samples[n].y[0], ie.samples[n].y[0], 1e-9) << x.samples[n].t;
-    EXPECT_NEAR(x.samples[n].y[1], ie.samples[n].y[1], 1e-7) << x.samples[n].t;
+    dx = std::max(dx, std::abs(x.samples[n].y[0] - ie.samples[n].y[0]));
+    dv = std::max(dv, std::abs(x.samples[n].y[1] - ie.samples[n].y[1]));
   }
+  // Rounding only: both compute the same linear update in different orders. 6400 sub-steps of
+  // eps |state| (|x| <= 1 m, |v| <= 4.4 m/s) accumulate at most ~1e-12 m and ~6e-12 m/s; the
+  // bounds leave a factor 10 (measured: 5e-15 m, 3e-13 m/s).
+  EXPECT_LE(dx, 1e-11);
+  EXPECT_LE(dv, 1e-10);
 }
 
 // Implicit Euler on x'' = -w^2 x: each step maps (x, v) by a matrix whose energy gain is
@@ -130,4 +138,24 @@ TEST(TimeStepping, XpbdRefusesANonlinearLaw) {
   EXPECT_FALSE(method_info("xpbd").can_run(*hertz));
   EXPECT_THROW(solve(*hertz, {.name = "xpbd"}), std::invalid_argument);
   EXPECT_TRUE(method_info("game-implicit-spring").can_run(*hertz));
+}
+
+// The time-stepping settings are checked by solve(), by name, whatever method reads them.
+TEST(TimeStepping, SettingsOutOfRangeAreRefusedByName) {
+  const auto ball = make_scene("ball-drop");
+  auto refusal = [&](const Method& m) {
+    try {
+      solve(*ball, m, {.t_end = 0.01});
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(refusal({.name = "soft-step", .substeps = 0}).rfind("--substeps: value '0'", 0), 0u);
+  EXPECT_EQ(refusal({.name = "sequential-impulses", .iterations = -3}).rfind("--iterations: value '-3'", 0),
+            0u);
+  EXPECT_EQ(refusal({.name = "moreau-jean", .theta = 1.5}).rfind("--theta: value '1.5'", 0), 0u);
+  EXPECT_EQ(refusal({.name = "sequential-impulses", .erp = -0.1}).rfind("--erp: value '-0.1'", 0), 0u);
+  EXPECT_EQ(refusal({.name = "soft-step", .push_max = 0}).rfind("--push-max: value '0'", 0), 0u);
+  EXPECT_EQ(refusal({.name = "soft-step"}), "accepted");
 }

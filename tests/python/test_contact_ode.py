@@ -99,3 +99,12 @@ def test_example_reproduces_the_heights_figure(tmp_path):
     out = tmp_path / "heights.png"
     runpy.run_path(str(EXAMPLES / "ball_drop_heights.py"))["main"](str(out))
     assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_time_stepping_settings_and_types_are_checked():
+    with pytest.raises(ValueError, match="substeps: value '0' is out of range; accepted range \\[1, inf\\)"):
+        co.solve("ball-drop", "soft-step", substeps=0)
+    with pytest.raises(ValueError, match="theta: value '2' is out of range"):
+        co.solve("ball-drop", "moreau-jean", theta=2.0)
+    with pytest.raises(ValueError, match="iterations: value 'many' has the wrong type"):
+        co.solve("ball-drop", "sequential-impulses", iterations="many")

@@ -68,7 +68,8 @@ std::vector<std::string> methods_for(const Dynamics& scene);
 const MethodInfo& method_info(const std::string& name);
 
 // Runs `method` on `scene` over options' span. Throws std::invalid_argument for an unknown
-// method, a scene the method cannot run (naming what it lacks) or a setting out of range; a
+// method, a scene the method cannot run (naming what it lacks) or a setting out of range (the
+// time step, span and the time-stepping settings here; the integrator's when it is built); a
 // solver failure is a RunResult with its status, the time reached and the solver's message.
 RunResult solve(const Dynamics& scene, const Method& method, const SolveOptions& options = {});
 
