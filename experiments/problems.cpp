@@ -5,6 +5,7 @@
 #include "contact_ode/models/ball_chain.hpp"
 #include "contact_ode/models/ball_drop.hpp"
 #include "experiment.hpp"
+#include "sweep_setting.hpp"
 
 #include <cmath>
 
@@ -46,6 +47,94 @@ Problem chain_problem(long balls, double k) {
     return err;
   };
   return {"chain", chain, t_end, contact, error};
+}
+
+namespace {
+
+Method method_with(const std::string& method, const std::string& integrator, double value) {
+  Method m{.name = method};
+  m.integrator.method = integrator;
+  m.integrator.max_steps = 10000000;
+  m.integrator = with_setting(m.integrator, !integrator_info(integrator).adaptive, value);
+  return m;
+}
+
+}  // namespace
+
+std::vector<WorkJob> work_precision_jobs(const std::vector<Problem>& problems,
+                                         const std::vector<std::string>& integrators,
+                                         const std::vector<double>& tols, long halvings) {
+  std::vector<WorkJob> jobs;
+  for (const Problem& pr : problems) {
+    // The largest fixed step is 1/16 of a contact (w dt = pi/16), halved `halvings` times.
+    std::vector<double> dts;
+    for (long j = 0; j <= halvings; ++j)
+      dts.push_back(pr.contact_duration / 16 / std::pow(2.0, static_cast<double>(j)));
+    for (const auto& name : integrators) {
+      const bool adaptive = integrator_info(name).adaptive;
+      for (double v : adaptive ? tols : dts)
+        jobs.push_back({&pr, "penalty", name, adaptive ? "rtol" : "dt", v, method_with("penalty", name, v)});
+    }
+    for (const auto& [paradigm, method] : {std::pair<std::string, std::string>{"game", "game-symplectic"},
+                                           {"game-spring", "game-symplectic-spring"}})
+      for (double dt : dts)
+        jobs.push_back({&pr, paradigm, "semi-implicit-euler", "dt", dt, Method{.name = method, .dt = dt}});
+    for (const std::string name : {"cvode-bdf", "gsl-rk8pd"})
+      for (double tol : tols)
+        jobs.push_back({&pr, "event", name, "rtol", tol, method_with("event-ode", name, tol)});
+    if (pr.name == "ball")
+      jobs.push_back({&pr, "event", "exact-flight", "exact", 0.0, Method{.name = "event-exact"}});
+  }
+  return jobs;
+}
+
+std::vector<ScoredScene> engine_scenes(double k) {
+  auto velocities = [](std::function<double(Eigen::Index, Eigen::Index)> exact) {
+    return [exact](const RunResult& r, bool) {
+      const Vector& y = r.samples.back().y;
+      const Eigen::Index n = y.size() / 2;
+      double err = 0;
+      for (Eigen::Index b = 0; b < n; ++b) err = std::max(err, std::abs(y[2 * b + 1] - exact(b, n)));
+      return err;
+    };
+  };
+  const auto last_ball = velocities([](Eigen::Index b, Eigen::Index n) { return b + 1 == n ? 1.0 : 0.0; });
+  const double m = 0.1, g = 9.81, n = 4;
+  return {{"drop",
+           "ball-drop",
+           "|first apex - e^2 h0| [m]",
+           {{"e", 0.8}, {"k", k}},
+           3.0,
+           [](const RunResult& r, bool) {
+             return r.apexes.empty() ? NAN : std::abs(r.apexes.front().gap - 0.64);
+           }},
+          {"head-on",
+           "ball-chain",
+           "max |v - exact| [m/s]",
+           {{"n", 2}, {"e", 0.8}, {"approach", 1e-3}, {"k", k}},
+           0.05,
+           velocities([](Eigen::Index b, Eigen::Index) { return b == 0 ? 0.1 : 0.9; })},
+          {"cradle-1mm",
+           "ball-chain",
+           "max |v - sequential| [m/s]",
+           {{"n", 5}, {"e", 1}, {"spacing", 1e-3}, {"k", k}},
+           0.05,
+           last_ball},
+          {"cradle-0",
+           "ball-chain",
+           "max |v - sequential| [m/s]",
+           {{"n", 5}, {"e", 1}, {"spacing", 0}, {"k", k}},
+           0.05,
+           last_ball},
+          {"stack",
+           "ball-stack",
+           "|top sink - exact| [m]",
+           {{"n", n}, {"e", 0.5}, {"m", m}, {"g", g}, {"k", k}},
+           2.0,
+           [=](const RunResult& r, bool springs) {
+             const Vector& y = r.samples.back().y;
+             return std::abs(-y[y.size() - 2] - (springs ? m * g * n * (n + 1) / (2 * k) : 0.0));
+           }}};
 }
 
 }  // namespace contact

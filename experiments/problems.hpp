@@ -3,12 +3,15 @@
 // measured at, the duration of one contact (which sets the fixed steps), and the error of a run's
 // final state, scaled to 1 for an error the size of the motion, against either the spring
 // solution (penalty methods) or the rigid limit (impulses).
+#include "contact_ode/integrators/method_registry.hpp"
 #include "contact_ode/integrators/run_result.hpp"
 #include "contact_ode/models/mechanical_system.hpp"
+#include "contact_ode/models/parameters.hpp"
 
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace contact {
 
@@ -29,5 +32,37 @@ Problem ball_problem(double k, double t_end);
 // rtol 1e-12 with the switches located (computed here; a failure throws); rigid reference: the
 // last ball leaves at v0 and the others rest. Error: the largest velocity error over v0.
 Problem chain_problem(long balls, double k);
+
+// One run of the work-precision study: a problem, a paradigm and its integrator at one setting.
+struct WorkJob {
+  const Problem* problem;
+  std::string paradigm, integrator, setting;
+  double value;
+  Method method;
+};
+// Every run of the study on `problems`: the penalty paradigm under each of `integrators` (the
+// adaptive ones at `tols`, the fixed-step ones at 1/16 of a contact halved `halvings` times), the
+// game loops (impulses and springs, semi-implicit Euler) at those steps, event-driven impulses
+// with CVODE BDF and GSL RK8PD at `tols`, and the exact flight on the ball.
+std::vector<WorkJob> work_precision_jobs(const std::vector<Problem>& problems,
+                                         const std::vector<std::string>& integrators,
+                                         const std::vector<double>& tols, long halvings);
+
+// The scenes the engines are compared on (experiments/engines.cpp), each scored against its
+// exact rigid answer:
+//   drop       ball-drop, 1 kg from 1 m, e = 0.8: the first apex against e^2 h0;
+//   head-on    two 0.1 kg balls at 1 m/s, e = 0.8: final velocities against (1 -+ e) v0 / 2;
+//   cradle-1mm five balls 1 mm apart, e = 1: against the last ball alone leaving at v0;
+//   cradle-0   five touching balls, e = 1: against the same sequential answer (a real cradle's);
+//   stack      four balls resting on the floor: the top ball's sink against 0 (impulses) or
+//              the penalty column's static sink m g n (n + 1) / (2k) (springs).
+struct ScoredScene {
+  std::string name, scene, scored_as;
+  ParameterValues params;  // for make_scene, "k" added by the caller
+  double t_end;            // [s]
+  // The error of a successful run; `springs`: the method models the penalty law.
+  std::function<double(const RunResult& r, bool springs)> error;
+};
+std::vector<ScoredScene> engine_scenes(double k);
 
 }  // namespace contact

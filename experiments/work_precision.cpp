@@ -12,18 +12,21 @@
 //     the striker's speed, the rest stand still).
 // Error norm: ball max(|x - x*| / h0, |v - v*| / V); chain max_i |v_i - v_i*| / v0. Errors are
 // floored at 1e-16 for the log plots (event-driven chain impulses are exact).
-// Cost: right-hand-side evaluations (fixed-step and game methods: one per stage) and wall time.
+// Cost: right-hand-side evaluations (fixed-step and game methods: one per stage), wall time and
+// CPU time of the solve. The SciPy peer (scipy_peer.hpp: solve_ivp BDF, Radau, LSODA, RK45 with
+// restarts at the switches and the analytic Jacobian) runs the ball at the same tolerances.
 // Settings: adaptive rtol = 1e-3 .. 1e-9 (atol = rtol / 100); fixed dt halved --halvings times
 // from 1/16 of a contact's duration (w dt = pi/16: 2.0e-3 s for the ball, 4.4e-5 s for the chain).
 // Outputs in --out (default results/work_precision): work_precision.{csv,md,tex},
 // {ball,chain}_{rhs,time}.{png,pdf,gp}, meta.json. Exit codes: 0, 1 solver failure, 2 bad input.
+#include "contact_ode/analysis/cpu_time.hpp"
 #include "contact_ode/analysis/table.hpp"
 #include "experiment.hpp"
 #include "figure.hpp"
 #include "problems.hpp"
 #include "process.hpp"
 #include "progress.hpp"
-#include "sweep_setting.hpp"
+#include "scipy_peer.hpp"
 
 #include <fmt/format.h>
 
@@ -36,21 +39,6 @@ using namespace contact;
 namespace {
 
 constexpr double kFloor = 1e-16;
-
-struct Job {
-  const Problem* problem;
-  std::string paradigm, integrator, setting;
-  double value;
-  Method method;
-};
-
-Method method_with(const std::string& method, const std::string& integrator, double value) {
-  Method m{.name = method};
-  m.integrator.method = integrator;
-  m.integrator.max_steps = 10000000;
-  m.integrator = with_setting(m.integrator, !integrator_info(integrator).adaptive, value);
-  return m;
-}
 
 }  // namespace
 
@@ -79,55 +67,44 @@ int program(int argc, char** argv) {
     std::vector<Problem> problems_run;
     for (const auto& name : problem_list)
       problems_run.push_back(name == "ball" ? ball_problem(k, 1.5) : chain_problem(balls, chain_k));
-    std::vector<Job> jobs;
-    for (const Problem& pr : problems_run) {
-      // The largest fixed step is 1/16 of a contact (w dt = pi/16), halved --halvings times.
-      std::vector<double> dts;
-      for (long j = 0; j <= halvings; ++j)
-        dts.push_back(pr.contact_duration / 16 / std::pow(2.0, static_cast<double>(j)));
-      for (const auto& name : chosen) {
-        const bool adaptive = integrator_info(name).adaptive;
-        for (double v : adaptive ? tols : dts)
-          jobs.push_back(
-              {&pr, "penalty", name, adaptive ? "rtol" : "dt", v, method_with("penalty", name, v)});
-      }
-      for (const auto& [paradigm, method] : {std::pair<std::string, std::string>{"game", "game-symplectic"},
-                                             {"game-spring", "game-symplectic-spring"}})
-        for (double dt : dts)
-          jobs.push_back({&pr, paradigm, "semi-implicit-euler", "dt", dt, Method{.name = method, .dt = dt}});
-      for (const std::string name : {"cvode-bdf", "gsl-rk8pd"})
-        for (double tol : tols)
-          jobs.push_back({&pr, "event", name, "rtol", tol, method_with("event-ode", name, tol)});
-      if (pr.name == "ball")
-        jobs.push_back({&pr, "event", "exact-flight", "exact", 0.0, Method{.name = "event-exact"}});
-    }
+    const std::vector<WorkJob> jobs = work_precision_jobs(problems_run, chosen, tols, halvings);
 
-    Table table(
-        {"problem", "paradigm", "integrator", "setting", "value", "error", "rhs_evals", "wall_time_s"});
+    Table table({"problem", "paradigm", "integrator", "setting", "value", "error", "rhs_evals", "wall_time_s",
+                 "cpu_time_s"});
     std::map<std::string, std::map<std::string, std::string>>
         series;  // problem -> series label -> "cost,time,error" lines
     Progress progress("work_precision", jobs.size());
     for (const auto& job : jobs) {
       progress.step(fmt::format("{} {} {} {}={:g}", job.problem->name, job.paradigm, job.integrator,
                                 job.setting, job.value));
+      const double cpu0 = cpu_seconds();
       const RunResult r = require(solve(*job.problem->model, job.method,
                                         {.t_end = job.problem->t_end, .sample_dt = job.problem->t_end}),
                                   fmt::format("{} {} {} ({} = {:g})", job.problem->name, job.paradigm,
                                               job.integrator, job.setting, job.value));
+      const double cpu = cpu_seconds() - cpu0;
       const bool rigid = job.paradigm == "game" || job.paradigm == "event";
       const double err = job.problem->error(r, rigid);
       table.add_row({job.problem->name, job.paradigm, job.integrator, job.setting, job.value, err,
-                     r.stats.rhs_evals, r.stats.wall_time_s});
-      series[job.problem->name][job.paradigm + " " + job.integrator] +=
-          fmt::format("{},{},{}\n", std::max(r.stats.rhs_evals, 1L), std::max(r.stats.wall_time_s, 1e-7),
-                      std::max(err, kFloor));
+                     r.stats.rhs_evals, r.stats.wall_time_s, cpu});
+      series[job.problem->name][job.paradigm + " " + job.integrator] += fmt::format(
+          "{},{},{}\n", std::max(r.stats.rhs_evals, 1L), std::max(cpu, 1e-7), std::max(err, kFloor));
     }
-
+    const std::string missing = scipy_peer_missing();
+    if (!missing.empty())
+      fmt::print(stderr, "work_precision: the SciPy peer is skipped: missing {}\n", missing);
+    for (const Problem& ball : problems_run)
+      for (const auto& [p, err] : ball.name == "ball" && missing.empty() ? scipy_on_ball(ball, k, tols)
+                                                                         : std::vector<ScoredScipyRun>{}) {
+        table.add_row({"ball", "scipy", p.method, "rtol", p.rtol, err, p.nfev, std::nan(""), p.cpu_s});
+        series["ball"]["scipy " + p.method] +=
+            fmt::format("{},{},{}\n", p.nfev, p.cpu_s, std::max(err, kFloor));
+      }
     files.add_table("work_precision", table);
     for (const auto& [problem, lines] : series)
       for (const auto& [cost, column, label] :
            {std::tuple{std::string("rhs"), 1, std::string("right-hand-side evaluations")},
-            std::tuple{std::string("time"), 2, std::string("wall time [s]")}}) {
+            std::tuple{std::string("time"), 2, std::string("CPU time per solve [s]")}}) {
         Series figure;
         int i = 0;  // colours and point types cycle at different periods, so no two series look alike
         for (const auto& [name, rows] : lines) {

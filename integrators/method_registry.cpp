@@ -15,7 +15,7 @@ const std::vector<MethodInfo>& method_registry() {
     std::vector<MethodInfo> methods;
     for (auto family : {penalty_methods, game_methods, event_methods,  // one entry per family
                         implicit_spring_methods, sequential_impulses_methods, soft_step_methods, xpbd_methods,
-                        moreau_jean_methods}) {
+                        moreau_jean_methods, engine_methods}) {
       auto entries = family();
       methods.insert(methods.end(), entries.begin(), entries.end());
     }

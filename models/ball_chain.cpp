@@ -160,4 +160,14 @@ SceneEntry ball_chain_scene() {
           }};
 }
 
+SphereLineLayout BallChain::sphere_line() const {
+  constexpr double r = 0.025;
+  SphereLineLayout l{.radius = r, .vertical = false, .g = 0, .floor = false, .mass = {}, .rest_centre = {}};
+  for (std::size_t b = 0; b < p_.n; ++b) {
+    l.mass.push_back(p_.m);
+    l.rest_centre.push_back(static_cast<double>(b) * (2 * r + p_.spacing));
+  }
+  return l;
+}
+
 }  // namespace contact

@@ -104,4 +104,9 @@ SceneEntry ball_drop_scene() {
           }};
 }
 
+SphereLineLayout BallDrop::sphere_line() const {
+  constexpr double r = 0.1;
+  return {.radius = r, .vertical = true, .g = p_.g, .floor = true, .mass = {p_.m}, .rest_centre = {r}};
+}
+
 }  // namespace contact

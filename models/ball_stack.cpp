@@ -148,4 +148,14 @@ SceneEntry ball_stack_scene() {
           }};
 }
 
+SphereLineLayout BallStack::sphere_line() const {
+  SphereLineLayout l{
+      .radius = p_.radius, .vertical = true, .g = p_.g, .floor = true, .mass = {}, .rest_centre = {}};
+  for (std::size_t b = 0; b < p_.n; ++b) {
+    l.mass.push_back(p_.m);
+    l.rest_centre.push_back(static_cast<double>(2 * b + 1) * p_.radius);
+  }
+  return l;
+}
+
 }  // namespace contact

@@ -19,6 +19,8 @@ packages=(
   libopenmpi-dev openmpi-bin  # the study's sweeps over MPI ranks (mpirun)
   pybind11-dev python3-pybind11 python3-numpy  # the Python module contact_ode (python/)
   python3-pytest python3-matplotlib            # its tests and the example (tests/python, examples/)
+  libmujoco-dev libqhull-dev libbullet-dev libode-dev  # the peer engines (integrators/engines)
+  python3-scipy        # the SciPy peer of the work-precision study and the benchmarks
   latexmk texlive-latex-base texlive-latex-recommended texlive-fonts-recommended  # the paper
 )
 

@@ -1,6 +1,7 @@
 // The ball_drop executable's contract: bad input -> one line naming the option, the value and
 // the accepted range, exit code 2, no output; success -> every declared file with its columns.
 #include "cli_fixture.hpp"
+#include "contact_ode/integrators/method_registry.hpp"
 
 #include <regex>
 
@@ -112,11 +113,13 @@ TEST_F(BallDropCli, SweepPrintsOneRowPerStiffnessAndMethod) {
   const Outcome r = run("--sweep --k-min 1e2 --k-max 1e4 --t-end 1 --out sweep");
   ASSERT_EQ(r.code, 0) << r.err;
   const std::string csv = slurp(dir_ / "sweep" / "sweep.csv");
-  // 3 stiffnesses x 6 stiffness-dependent methods (penalty, penalty-dq, game-euler-spring,
-  // game-symplectic-spring, game-implicit-spring, xpbd) + 9 independent ones (game-euler,
-  // game-symplectic, game-symplectic-projection, event-ode, event-ode-reversed, event-exact,
-  // sequential-impulses, soft-step, moreau-jean), plus the header.
-  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 3 * 6 + 9 + 1) << csv;
+  // 3 stiffnesses x the methods the penalty law affects (penalty, penalty-dq, the spring game
+  // loops, xpbd, the engines' spring settings) + one row for each of the others, plus the header.
+  long dependent = 0, independent = 0;
+  for (const auto& m : contact::method_registry()) (m.uses_contact_law ? dependent : independent) += 1;
+  EXPECT_GE(dependent, 6);
+  EXPECT_GE(independent, 9);
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 3 * dependent + independent + 1) << csv;
   EXPECT_EQ(csv.rfind("k_N_per_m,method,omega_dt,closed_form_penetration_m,closed_form_duration_s,status", 0),
             0u);
 }

@@ -50,6 +50,15 @@ TEST_F(WorkPrecisionCli, ParadigmsReachTheirExactLimits) {
   const auto rk4 = points("chain", "penalty", "rk4");
   ASSERT_GE(rk4.size(), 2u);
   EXPECT_NEAR(observed_order(rk4[0].value, rk4[0].error, rk4[1].value, rk4[1].error), 4.0, 0.5);
+  // The SciPy peer on the same ball, scored against the same closed form: every method meets
+  // its tolerance as CVODE does (within 1000 rtol at the tightest), and tightening the tolerance
+  // from 1e-3 to 1e-9 gains at least three orders.
+  for (const char* method : {"BDF", "Radau", "LSODA", "RK45"}) {
+    const auto peer = points("ball", "scipy", method);
+    ASSERT_EQ(peer.size(), 7u) << method;
+    EXPECT_LT(peer.back().error, 1000 * peer.back().value) << method;
+    EXPECT_LT(peer.back().error, 1e-3 * peer.front().error) << method;
+  }
   for (const char* f : {"ball_rhs.png", "ball_time.pdf", "chain_rhs.pdf", "chain_time.png"})
     EXPECT_TRUE(fs::exists(dir_ / "wp" / f)) << f;
 }

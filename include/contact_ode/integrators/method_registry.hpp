@@ -82,5 +82,9 @@ std::vector<MethodInfo> soft_step_methods();
 std::vector<MethodInfo> xpbd_methods();
 std::vector<MethodInfo> moreau_jean_methods();
 std::vector<MethodInfo> implicit_spring_methods();
+// The external engines this build links (integrators/engines), and those it was configured
+// without ("" when none is missing).
+std::vector<MethodInfo> engine_methods();
+std::string engines_missing();
 
 }  // namespace contact

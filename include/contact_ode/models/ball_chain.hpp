@@ -31,7 +31,10 @@ struct BallChainParams {
   ContactLaw law = Hooke{1e6};
 };
 
-class BallChain final : public OneLawSystem, public NormalImpulses, public NeighbourDynamics {
+class BallChain final : public OneLawSystem,
+                        public NormalImpulses,
+                        public NeighbourDynamics,
+                        public SphereLine {
  public:
   explicit BallChain(BallChainParams p);
   const BallChainParams& params() const { return p_; }
@@ -61,6 +64,8 @@ class BallChain final : public OneLawSystem, public NormalImpulses, public Neigh
   double inverse_mass(std::size_t, ConstVectorRef) const override { return 2.0 / p_.m; }
   void apply_normal_impulse(std::size_t i, double lambda, VectorRef y) const override;
   void apply_normal_displacement(std::size_t i, double dlambda, VectorRef y) const override;
+  // Spheres of radius 0.025 m (the dynamics never see it) on a horizontal line, no floor.
+  SphereLineLayout sphere_line() const override;
   LinearLaw linear_law(std::size_t) const override { return contact::linear_law(p_.law); }
 
   std::size_t bodies() const override { return p_.n; }

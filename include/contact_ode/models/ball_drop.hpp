@@ -25,7 +25,10 @@ struct BallDropParams {
   ContactLaw law = Hooke{1e5};
 };
 
-class BallDrop final : public MechanicalSystem, public AnalyticFlight, public NormalImpulses {
+class BallDrop final : public MechanicalSystem,
+                       public AnalyticFlight,
+                       public NormalImpulses,
+                       public SphereLine {
  public:
   explicit BallDrop(BallDropParams p) : p_(std::move(p)) {}
   const BallDropParams& params() const { return p_; }
@@ -63,6 +66,8 @@ class BallDrop final : public MechanicalSystem, public AnalyticFlight, public No
   }
   LinearLaw linear_law(std::size_t) const override { return contact::linear_law(p_.law); }
 
+  // A sphere of radius 0.1 m (the point mass has none; rotation never enters) on the floor plane.
+  SphereLineLayout sphere_line() const override;
   void propagate(ConstVectorRef y0, double dt, VectorRef y) const override;
   double time_to_impact(std::size_t i, ConstVectorRef y0) const override;
   double time_to_apex(std::size_t i, ConstVectorRef y0) const override;

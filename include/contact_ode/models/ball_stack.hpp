@@ -23,7 +23,7 @@ struct BallStackParams {
   ContactLaw law = Hooke{1e5};  // every contact's penalty law
 };
 
-class BallStack final : public OneLawSystem, public NormalImpulses {
+class BallStack final : public OneLawSystem, public NormalImpulses, public SphereLine {
  public:
   explicit BallStack(BallStackParams p);
   const BallStackParams& params() const { return p_; }
@@ -54,6 +54,7 @@ class BallStack final : public OneLawSystem, public NormalImpulses {
   void apply_normal_impulse(std::size_t i, double lambda, VectorRef y) const override;
   void apply_normal_displacement(std::size_t i, double dlambda, VectorRef y) const override;
   LinearLaw linear_law(std::size_t) const override { return contact::linear_law(p_.law); }
+  SphereLineLayout sphere_line() const override;
 
  private:
   static double u(ConstVectorRef y, std::size_t b) { return y[static_cast<Eigen::Index>(2 * b)]; }

@@ -172,6 +172,25 @@ class NormalImpulses {
   virtual LinearLaw linear_law(std::size_t i) const = 0;
 };
 
+// Optional capability: the scene as equal spheres whose centres move along one axis, what an
+// external physics engine (integrators/engines) is given to build its own world. The state must
+// be interleaved (u_0, v_0, u_1, v_1, ...): sphere b's centre is rest_centre[b] + u_b along the
+// axis, its velocity v_b. Contacts join neighbours: with a floor, contact 0 is floor - sphere 0
+// and contact c > 0 joins spheres c-1 and c; without one, contact c joins spheres c and c+1.
+struct SphereLineLayout {
+  double radius = 0.05;  // every sphere's [m]; a point-mass scene picks one (rotation never enters)
+  bool vertical = true;  // the axis is vertical (gravity g acts along -axis) or horizontal (none along it)
+  double g = 0;          // [m/s^2]
+  bool floor = false;    // a fixed plane at coordinate 0, normal +axis, below sphere 0
+  std::vector<double> mass;         // per sphere [kg]
+  std::vector<double> rest_centre;  // sphere b's centre coordinate when u_b = 0 [m]
+};
+class SphereLine {
+ public:
+  virtual ~SphereLine() = default;
+  virtual SphereLineLayout sphere_line() const = 0;
+};
+
 // Optional capability: free flight known in closed form (e.g. a point mass under uniform
 // gravity). Event-driven resolution uses it as the exact reference flight.
 class AnalyticFlight {

@@ -1,0 +1,100 @@
+#include "scipy_peer.hpp"
+
+#include "process.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <nlohmann/json.hpp>
+
+#include <unistd.h>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace contact {
+
+namespace {
+
+std::string read_all(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// The scratch log of one child run, removed when done.
+class ScratchFile {
+ public:
+  explicit ScratchFile(const std::string& stem)
+      : path_(std::filesystem::temp_directory_path() / fmt::format("{}-{}.log", stem, ::getpid())) {}
+  ~ScratchFile() {
+    std::error_code ignored;
+    std::filesystem::remove(path_, ignored);
+  }
+  ScratchFile(const ScratchFile&) = delete;
+  ScratchFile& operator=(const ScratchFile&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+}  // namespace
+
+std::string scipy_peer_missing() {
+  if (!std::filesystem::exists(CONTACT_ODE_PYTHON_EXE))
+    return fmt::format("{} (python3)", CONTACT_ODE_PYTHON_EXE);
+  ScratchFile log("contact-ode-scipy-check");
+  if (run_process({CONTACT_ODE_PYTHON_EXE, "-c", "import numpy, scipy.integrate"}, {}, log.path()) != 0)
+    return "SciPy for " CONTACT_ODE_PYTHON_EXE " (python3-scipy)";
+  return "";
+}
+
+std::vector<ScipyRun> run_scipy_peer(const ScipyDrop& d) {
+  ScratchFile log("contact-ode-scipy");
+  std::vector<std::string> argv = {CONTACT_ODE_PYTHON_EXE,
+                                   CONTACT_ODE_SCIPY_PEER,
+                                   "--methods",
+                                   fmt::format("{}", fmt::join(d.methods, ",")),
+                                   "--rtols",
+                                   fmt::format("{}", fmt::join(d.rtols, ","))};
+  for (const auto& [flag, value] : {std::pair{"--atol-ratio", d.atol_ratio},
+                                    {"--m", d.m},
+                                    {"--g", d.g},
+                                    {"--k", d.k},
+                                    {"--c", d.c},
+                                    {"--h0", d.h0},
+                                    {"--v0", d.v0},
+                                    {"--t-end", d.t_end},
+                                    {"--repeats", static_cast<double>(d.repeats)}})
+    argv.insert(argv.end(), {flag, fmt::format("{}", value)});
+  const int code = run_process(argv, {}, log.path());
+  const std::string out = read_all(log.path());
+  if (code != 0) throw std::runtime_error(fmt::format("the SciPy peer failed (exit {}):\n{}", code, out));
+  std::vector<ScipyRun> runs;
+  std::istringstream lines(out);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.empty() || line[0] != '{') continue;
+    const auto j = nlohmann::json::parse(line);
+    runs.push_back({j.at("method"), j.at("rtol"), j.at("atol"), j.at("y"), j.at("v"),
+                    j.at("apexes").get<std::vector<double>>(), j.at("nfev"), j.at("njev"), j.at("cpu_s"),
+                    j.at("cpu_min_s"), j.at("cpu_max_s")});
+  }
+  if (runs.size() != d.methods.size() * d.rtols.size())
+    throw std::runtime_error(fmt::format("the SciPy peer printed {} results, expected {}:\n{}", runs.size(),
+                                         d.methods.size() * d.rtols.size(), out));
+  return runs;
+}
+
+std::vector<ScoredScipyRun> scipy_on_ball(const Problem& ball, double k, const std::vector<double>& rtols) {
+  std::vector<ScoredScipyRun> scored;
+  for (const ScipyRun& p : run_scipy_peer({.k = k, .t_end = ball.t_end, .rtols = rtols})) {
+    RunResult r;  // the peer's final state, as a run
+    r.samples.push_back({.t = ball.t_end, .y = Vector{{p.y, p.v}}, .energy = 0, .dissipated = 0});
+    scored.push_back({p, ball.error(r, false)});
+  }
+  return scored;
+}
+
+}  // namespace contact

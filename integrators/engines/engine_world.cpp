@@ -1,0 +1,135 @@
+#include "engine_world.hpp"
+
+#include "../time_stepping.hpp"
+#include "contact_ode/integrators/capabilities.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace contact {
+
+std::pair<int, int> EngineScene::bodies(std::size_t c) const {
+  const int i = static_cast<int>(c);
+  return layout.floor ? std::pair{i - 1, i} : std::pair{i, i + 1};
+}
+
+int EngineScene::contact_between(int a, int b) const {
+  if (a > b) std::swap(a, b);
+  const int c = layout.floor ? b : a;
+  if (b != a + 1 || c < 0 || c >= static_cast<int>(restitution.size())) return -1;
+  return c;
+}
+
+namespace {
+
+const SphereLine* sphere_line_of(const Dynamics& s) { return dynamic_cast<const SphereLine*>(&s); }
+
+bool can_run_engine(const Dynamics& s) {
+  return sphere_line_of(s) && has_impulse_map(s) && has_normal_impulses(s);
+}
+
+EngineScene engine_scene(const Dynamics& scene, double dt) {
+  const auto* line = sphere_line_of(scene);
+  if (!line) throw std::invalid_argument(fmt::format("scene '{}' is not spheres on a line", scene.name()));
+  const NormalImpulses& normal = normal_impulses(scene, "engine");
+  const ImpulseMap& impulses = impulse_map(scene, "engine");
+  EngineScene es{.layout = line->sphere_line(),
+                 .centre = {},
+                 .velocity = {},
+                 .restitution = {},
+                 .law = {},
+                 .inverse_mass = {},
+                 .dt = dt};
+  const Vector y = scene.initial_state();
+  for (std::size_t b = 0; b < es.layout.mass.size(); ++b) {
+    es.centre.push_back(es.layout.rest_centre[b] + y[static_cast<Eigen::Index>(2 * b)]);
+    es.velocity.push_back(y[static_cast<Eigen::Index>(2 * b + 1)]);
+  }
+  for (std::size_t c = 0; c < scene.contact_count(); ++c) {
+    es.restitution.push_back(impulses.restitution(c));
+    es.law.push_back(normal.linear_law(c));
+    es.inverse_mass.push_back(normal.inverse_mass(c, y));
+  }
+  return es;
+}
+
+}  // namespace
+
+MethodInfo engine_method(std::string name, std::string description, bool springs, EngineFactory make) {
+  auto run = [springs, make = std::move(make)](const Dynamics& scene, const Method& m,
+                                               const SolveOptions& span) {
+    const EngineScene es = engine_scene(scene, m.dt);
+    if (springs)
+      for (const LinearLaw& law : es.law)
+        if (!(law.k > 0))
+          throw std::invalid_argument(
+              fmt::format("method '{}' models the scene's penalty law, and scene '{}' has no linear one",
+                          m.name, scene.name()));
+    std::unique_ptr<EngineWorld> world = make(es);
+    const ContactGeometry& geo = contact_geometry(scene);
+    const std::size_t nc = scene.contact_count();
+    std::vector<double> centre, velocity, impulse(nc, 0.0), start(nc);
+    std::vector<bool> pushed(nc, false);
+    auto step = [&](double t, double h, Vector& y, StepReport& report, SolverStats& stats) {
+      for (std::size_t i = 0; i < nc; ++i) start[i] = geo.gap_rate(i, y);
+      try {
+        world->step();
+      } catch (const EngineError& failure) {
+        throw SolverFailure(Status::SolverError, t, failure.what());
+      }
+      world->read(centre, velocity);
+      world->impulses(impulse);
+      for (std::size_t b = 0; b < centre.size(); ++b) {
+        y[static_cast<Eigen::Index>(2 * b)] = centre[b] - es.layout.rest_centre[b];
+        y[static_cast<Eigen::Index>(2 * b + 1)] = velocity[b];
+      }
+      for (std::size_t i = 0; i < nc; ++i) {
+        report.push[i] = es.inverse_mass[i] * impulse[i];
+        const bool pushes = report.push[i] > kPushNoise;
+        if (springs && geo.gap(i, y) < 0) {
+          // The scene's dashpot at the step's rate (the rectangle rule): its loss, not the engine's.
+          const double rate = geo.gap_rate(i, y);
+          report.dissipated += h * es.law[i].c * rate * rate;
+        } else if (!springs && pushes && !pushed[i]) {
+          report.dissipated += newton_loss(start[i], es.restitution[i], es.inverse_mass[i]);
+        }
+        pushed[i] = pushes;
+      }
+      stats.rhs_evals += 1;  // one engine step
+    };
+    return run_time_stepping(scene, m.name, m.dt, step, span, springs);
+  };
+  return {.name = std::move(name),
+          .description = std::move(description),
+          .family = "engine",
+          .fixed_step = true,
+          .uses_contact_law = springs,
+          .needs = "spheres on a line (SphereLine), an impulse map and normal impulses",
+          .can_run = can_run_engine,
+          .run = std::move(run)};
+}
+
+std::vector<MethodInfo> engine_methods() {
+  std::vector<MethodInfo> all;
+  auto add = [&all](std::vector<MethodInfo> entries) {
+    all.insert(all.end(), entries.begin(), entries.end());
+  };
+  // Each engine is optional at configure time (integrators/engines/CMakeLists.txt).
+#ifdef CONTACT_ODE_WITH_MUJOCO
+  add(mujoco_methods());
+#endif
+#ifdef CONTACT_ODE_WITH_BULLET
+  add(bullet_methods());
+#endif
+#ifdef CONTACT_ODE_WITH_ODE
+  add(ode_engine_methods());
+#endif
+  (void)add;
+  return all;
+}
+
+std::string engines_missing() { return CONTACT_ODE_ENGINES_MISSING; }
+
+}  // namespace contact

@@ -1,0 +1,34 @@
+# The external engines, each optional: found ones are compiled into contact_integrators (their
+# methods join the registry), missing ones are named at configure time and in
+# engines_missing(). scripts/setup.sh installs all of them.
+find_package(PkgConfig QUIET)
+find_package(mujoco CONFIG QUIET)
+if(PKG_CONFIG_FOUND)
+  pkg_check_modules(BULLET QUIET IMPORTED_TARGET bullet-float64)
+  pkg_check_modules(ODE QUIET IMPORTED_TARGET ode)
+endif()
+
+set(missing "")
+# engine(NAME TARGET SOURCE PACKAGES): compile SOURCE in, linked to TARGET, when TARGET exists.
+function(engine name target source packages)
+  string(TOUPPER ${name} upper)
+  if(TARGET ${target})
+    target_sources(contact_integrators PRIVATE engines/${source})
+    target_link_libraries(contact_integrators PRIVATE ${target})
+    target_compile_definitions(contact_integrators PRIVATE CONTACT_ODE_WITH_${upper})
+    set(CONTACT_ODE_ENGINES ${CONTACT_ODE_ENGINES} ${name} PARENT_SCOPE)
+  else()
+    set(missing ${missing} "${name} (${packages})" PARENT_SCOPE)
+  endif()
+endfunction()
+engine(mujoco mujoco::mujoco mujoco_engine.cpp "libmujoco-dev libqhull-dev")
+engine(bullet PkgConfig::BULLET bullet_engine.cpp "libbullet-dev")
+engine(ode PkgConfig::ODE ode_engine.cpp "libode-dev")
+
+list(JOIN missing ", " missing_text)
+set_source_files_properties(engines/engine_world.cpp PROPERTIES
+  COMPILE_DEFINITIONS "CONTACT_ODE_ENGINES_MISSING=\"${missing_text}\"")
+if(missing)
+  message(STATUS "contact-ode: built without the engines ${missing_text}; scripts/setup.sh installs them")
+endif()
+set(CONTACT_ODE_ENGINES "${CONTACT_ODE_ENGINES}" PARENT_SCOPE)
