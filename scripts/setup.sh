@@ -20,6 +20,7 @@ packages=(
   pybind11-dev python3-pybind11 python3-numpy  # the Python module contact_ode (python/)
   python3-pytest python3-matplotlib            # its tests and the example (tests/python, examples/)
   libmujoco-dev libqhull-dev libbullet-dev libode-dev  # the peer engines (integrators/engines)
+  libsiconos-kernel-dev libsiconos-mechanics-dev python3-siconos  # Siconos (its CMake targets need the io libraries)
   python3-scipy        # the SciPy peer of the work-precision study and the benchmarks
   latexmk texlive-latex-base texlive-latex-recommended texlive-fonts-recommended  # the paper
 )

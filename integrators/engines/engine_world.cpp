@@ -70,10 +70,9 @@ MethodInfo engine_method(std::string name, std::string description, bool springs
     std::unique_ptr<EngineWorld> world = make(es);
     const ContactGeometry& geo = contact_geometry(scene);
     const std::size_t nc = scene.contact_count();
-    std::vector<double> centre, velocity, impulse(nc, 0.0), start(nc);
+    std::vector<double> centre, velocity, impulse(nc, 0.0);
     std::vector<bool> pushed(nc, false);
     auto step = [&](double t, double h, Vector& y, StepReport& report, SolverStats& stats) {
-      for (std::size_t i = 0; i < nc; ++i) start[i] = geo.gap_rate(i, y);
       try {
         world->step();
       } catch (const EngineError& failure) {
@@ -93,7 +92,11 @@ MethodInfo engine_method(std::string name, std::string description, bool springs
           const double rate = geo.gap_rate(i, y);
           report.dissipated += h * es.law[i].c * rate * rate;
         } else if (!springs && pushes && !pushed[i]) {
-          report.dissipated += newton_loss(start[i], es.restitution[i], es.inverse_mass[i]);
+          // Newton's loss for the approach speed that the contact's first impulse J implies,
+          // J w / (1 + e): the speed at the impact itself for an event-driven engine, the
+          // step's for a time-stepping one.
+          const double e = es.restitution[i], w = es.inverse_mass[i];
+          report.dissipated += newton_loss(-impulse[i] * w / (1 + e), e, w);
         }
         pushed[i] = pushes;
       }
@@ -125,6 +128,9 @@ std::vector<MethodInfo> engine_methods() {
 #endif
 #ifdef CONTACT_ODE_WITH_ODE
   add(ode_engine_methods());
+#endif
+#ifdef CONTACT_ODE_WITH_SICONOS
+  add(siconos_methods());
 #endif
   (void)add;
   return all;

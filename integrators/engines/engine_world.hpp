@@ -59,5 +59,6 @@ MethodInfo engine_method(std::string name, std::string description, bool springs
 std::vector<MethodInfo> mujoco_methods();
 std::vector<MethodInfo> bullet_methods();
 std::vector<MethodInfo> ode_engine_methods();
+std::vector<MethodInfo> siconos_methods();
 
 }  // namespace contact

@@ -25,6 +25,26 @@ engine(mujoco mujoco::mujoco mujoco_engine.cpp "libmujoco-dev libqhull-dev")
 engine(bullet PkgConfig::BULLET bullet_engine.cpp "libbullet-dev")
 engine(ode PkgConfig::ODE ode_engine.cpp "libode-dev")
 
+# Siconos: Boost before its config, which sets CMAKE_CXX_STANDARD 11 in the caller's scope (kept
+# inside this function's); its headers need C++17, so they compile alone in an object library.
+function(find_siconos)
+  find_package(Boost QUIET)
+  if(Boost_FOUND)
+    find_package(siconos CONFIG QUIET)
+  endif()
+endfunction()
+find_siconos()
+if(TARGET Siconos::kernel)
+  add_library(contact_siconos OBJECT engines/siconos_line.cpp)
+  set_target_properties(contact_siconos PROPERTIES CXX_STANDARD 17 POSITION_INDEPENDENT_CODE ON)
+  target_link_libraries(contact_siconos PRIVATE Siconos::kernel Siconos::numerics)
+endif()
+engine(siconos Siconos::kernel siconos_engine.cpp "libsiconos-kernel-dev libsiconos-mechanics-dev python3-siconos")
+if(TARGET Siconos::kernel)
+  target_sources(contact_integrators PRIVATE $<TARGET_OBJECTS:contact_siconos>)
+  target_link_libraries(contact_integrators PRIVATE Siconos::numerics)
+endif()
+
 list(JOIN missing ", " missing_text)
 set_source_files_properties(engines/engine_world.cpp PROPERTIES
   COMPILE_DEFINITIONS "CONTACT_ODE_ENGINES_MISSING=\"${missing_text}\"")

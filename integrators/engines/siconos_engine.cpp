@@ -1,0 +1,52 @@
+// Siconos 4.4 on the spheres-on-a-line scenes (siconos_line.hpp): event-driven impacts with
+// Newton's law, LSODAR between them at rtol 1e-10, atol 1e-12, the run sampled every dt. The
+// engine's answer to "which contact method": no step error at the impacts at all, only the
+// integrator's and the event location's tolerance.
+#include "engine_world.hpp"
+#include "siconos_line.hpp"
+
+#include <memory>
+
+namespace contact {
+
+namespace {
+
+class SiconosWorld final : public EngineWorld {
+ public:
+  explicit SiconosWorld(const EngineScene& s)
+      : line_(SiconosSpheres{.radius = s.layout.radius,
+                             .vertical = s.layout.vertical,
+                             .floor = s.layout.floor,
+                             .g = s.layout.g,
+                             .mass = s.layout.mass,
+                             .centre = s.centre,
+                             .velocity = s.velocity,
+                             .restitution = s.restitution,
+                             .dt = s.dt,
+                             .rtol = 1e-10,
+                             .atol = 1e-12}) {}
+
+  void step() override {
+    try {
+      line_.step();
+    } catch (const std::runtime_error& e) {
+      throw EngineError(e.what());
+    }
+  }
+  void read(std::vector<double>& centre, std::vector<double>& velocity) const override {
+    line_.read(centre, velocity);
+  }
+  void impulses(std::vector<double>& impulse) const override { line_.impulses(impulse); }
+
+ private:
+  SiconosLine line_;
+};
+
+}  // namespace
+
+std::vector<MethodInfo> siconos_methods() {
+  return {engine_method("siconos", "Siconos 4.4 event-driven: LSODAR flight, Newton's impact law by LCP, Zeno to rest",
+                        false, [](const EngineScene& s) { return std::make_unique<SiconosWorld>(s); })};
+}
+
+}  // namespace contact

@@ -1,0 +1,111 @@
+#include "siconos_line.hpp"
+
+#include <SiconosKernel.hpp>
+
+#include <stdexcept>
+#include <string>
+
+namespace contact {
+
+struct SiconosLine::State {
+  SiconosSpheres spheres;
+  std::vector<SP::LagrangianLinearTIDS> bodies;
+  std::vector<SP::Interaction> contacts;
+  SP::EventDriven simulation;
+  std::vector<double> impulse;
+};
+
+SiconosLine::SiconosLine(const SiconosSpheres& sp) : s_(std::make_unique<State>()) {
+  s_->spheres = sp;
+  const double t_far = 1e9;  // the run ends when the caller stops stepping
+  auto nsds = std::make_shared<NonSmoothDynamicalSystem>(0.0, t_far);
+  for (std::size_t b = 0; b < sp.mass.size(); ++b) {
+    auto q0 = std::make_shared<SiconosVector>(1), v0 = std::make_shared<SiconosVector>(1);
+    (*q0)(0) = sp.centre[b];
+    (*v0)(0) = sp.velocity[b];
+    auto mass = std::make_shared<SimpleMatrix>(1, 1);
+    (*mass)(0, 0) = sp.mass[b];
+    auto body = std::make_shared<LagrangianLinearTIDS>(q0, v0, mass);
+    auto weight = std::make_shared<SiconosVector>(1);
+    (*weight)(0) = sp.vertical ? -sp.mass[b] * sp.g : 0.0;
+    body->setFExtPtr(weight);
+    nsds->insertDynamicalSystem(body);
+    s_->bodies.push_back(body);
+  }
+  for (std::size_t c = 0; c < sp.restitution.size(); ++c) {
+    const bool on_floor = sp.floor && c == 0;
+    // The gap: centre - r above the floor, or x_b - x_a - 2r between neighbours a and b.
+    auto H = std::make_shared<SimpleMatrix>(1, on_floor ? 1 : 2);
+    auto offset = std::make_shared<SiconosVector>(1);
+    if (on_floor) {
+      (*H)(0, 0) = 1.0;
+      (*offset)(0) = -sp.radius;
+    } else {
+      (*H)(0, 0) = -1.0;
+      (*H)(0, 1) = 1.0;
+      (*offset)(0) = -2 * sp.radius;
+    }
+    auto inter = std::make_shared<Interaction>(std::make_shared<NewtonImpactNSL>(sp.restitution[c]),
+                                               std::make_shared<LagrangianLinearTIR>(H, offset));
+    const std::size_t upper = sp.floor ? c : c + 1;
+    if (on_floor)
+      nsds->link(inter, s_->bodies[upper]);
+    else
+      nsds->link(inter, s_->bodies[upper - 1], s_->bodies[upper]);
+    s_->contacts.push_back(inter);
+  }
+  auto osi = std::make_shared<LsodarOSI>();
+  osi->setTol(1, sp.rtol, sp.atol);
+  s_->simulation = std::make_shared<EventDriven>(nsds, std::make_shared<TimeDiscretisation>(0.0, sp.dt));
+  s_->simulation->insertIntegrator(osi);
+  s_->simulation->insertNonSmoothProblem(std::make_shared<LCP>(), SICONOS_OSNSP_ED_IMPACT);
+  s_->simulation->insertNonSmoothProblem(std::make_shared<LCP>(), SICONOS_OSNSP_ED_SMOOTH_ACC);
+  try {
+    s_->simulation->initialize();
+  } catch (const std::exception& e) {
+    throw std::runtime_error(std::string("Siconos could not initialise the simulation: ") + e.what());
+  }
+  s_->impulse.assign(sp.restitution.size(), 0.0);
+}
+
+SiconosLine::~SiconosLine() = default;
+
+void SiconosLine::step() {
+  EventDriven& sim = *s_->simulation;
+  std::fill(s_->impulse.begin(), s_->impulse.end(), 0.0);
+  const double target = sim.startingTime() + s_->spheres.dt * (1 - 1e-9);
+  try {
+    for (long events = 0; sim.nextTime() <= target + s_->spheres.dt * 1e-6; ++events) {
+      if (events > 1'000'000)
+        throw std::runtime_error("more than a million events in one step at t = " +
+                                 std::to_string(sim.startingTime()));
+      const double t0 = sim.startingTime();
+      sim.advanceToEvent();
+      sim.processEvents();
+      const double held = sim.startingTime() - t0;
+      for (std::size_t c = 0; c < s_->contacts.size(); ++c) {
+        const Interaction& inter = *s_->contacts[c];
+        s_->impulse[c] += inter.lambda(1)->getValue(0);  // an impact's impulse, 0 otherwise
+        if (inter.lambda(2)) s_->impulse[c] += inter.lambda(2)->getValue(0) * held;  // resting force
+      }
+      if (sim.startingTime() >= target) break;
+    }
+  } catch (const std::runtime_error&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw std::runtime_error(std::string("Siconos: ") + e.what());
+  }
+}
+
+void SiconosLine::read(std::vector<double>& centre, std::vector<double>& velocity) const {
+  centre.resize(s_->bodies.size());
+  velocity.resize(s_->bodies.size());
+  for (std::size_t b = 0; b < s_->bodies.size(); ++b) {
+    centre[b] = s_->bodies[b]->q()->getValue(0);
+    velocity[b] = s_->bodies[b]->velocity()->getValue(0);
+  }
+}
+
+void SiconosLine::impulses(std::vector<double>& impulse) const { impulse = s_->impulse; }
+
+}  // namespace contact
