@@ -13,6 +13,7 @@ if [ "${1:-}" = "--sanitize" ]; then
   build_dir=build-asan
   config=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DCONTACT_ODE_SANITIZE=ON -DCONTACT_ODE_BENCHMARKS=OFF)
   export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
+  export LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp"  # Siconos's own shared_ptr cycles
   export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 fi
 

@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -35,6 +36,18 @@ inline std::vector<std::vector<std::string>> csv_rows(const std::string& csv) {
   std::vector<std::vector<std::string>> out;
   std::istringstream in(csv);
   for (std::string line; std::getline(in, line);) out.push_back(contact::split_csv_line(line));
+  return out;
+}
+
+// The rows of a CSV text (header first) as maps from column to cell.
+inline std::vector<std::map<std::string, std::string>> csv_table(const std::string& csv) {
+  const auto rows = csv_rows(csv);
+  std::vector<std::map<std::string, std::string>> out;
+  for (std::size_t r = 1; r < rows.size(); ++r) {
+    std::map<std::string, std::string> row;
+    for (std::size_t c = 0; c < rows[0].size() && c < rows[r].size(); ++c) row[rows[0][c]] = rows[r][c];
+    out.push_back(row);
+  }
   return out;
 }
 

@@ -181,3 +181,17 @@ TEST(Siconos, EventDrivenBouncesAreTheExactOnes) {
   EXPECT_NEAR(r.samples.back().y[0], 0.0, 1e-9);
   EXPECT_NEAR(r.samples.back().y[1], 0.0, 1e-9);
 }
+
+// Siconos on a cradle with 1 mm gaps, e = 1: each event-driven impact exchanges two balls'
+// velocities exactly, so only the last ball moves on, at v0, to rounding.
+TEST(Siconos, CradleWithGapsHandsTheStrikersSpeedToTheLastBall) {
+  REQUIRE_ENGINE("siconos");
+  const std::size_t n = 5;
+  const BallChain cradle(
+      {.n = n, .m = 0.1, .v0 = 1.0, .approach = 1.5e-3, .spacing = 1e-3, .e = 1.0, .law = Hooke{1e6}});
+  const RunResult r = solve(cradle, {.name = "siconos", .dt = 1e-3}, {.t_end = 0.02, .sample_dt = 0.02});
+  ASSERT_TRUE(r.ok()) << r.message;
+  const Vector& y = r.samples.back().y;
+  for (std::size_t b = 0; b < n; ++b)
+    EXPECT_NEAR(y[static_cast<Eigen::Index>(2 * b + 1)], b + 1 == n ? 1.0 : 0.0, 1e-12) << "ball " << b;
+}

@@ -10,14 +10,7 @@ class TimeSteppingCli : public CliTest {
  protected:
   // The rows of a CSV as maps from column to cell.
   std::vector<std::map<std::string, std::string>> table(const fs::path& file) const {
-    const auto rows = csv_rows(slurp(file));
-    std::vector<std::map<std::string, std::string>> out;
-    for (std::size_t r = 1; r < rows.size(); ++r) {
-      std::map<std::string, std::string> row;
-      for (std::size_t c = 0; c < rows[0].size() && c < rows[r].size(); ++c) row[rows[0][c]] = rows[r][c];
-      out.push_back(row);
-    }
-    return out;
+    return csv_table(slurp(file));
   }
 };
 }  // namespace

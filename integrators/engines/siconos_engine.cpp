@@ -45,7 +45,8 @@ class SiconosWorld final : public EngineWorld {
 }  // namespace
 
 std::vector<MethodInfo> siconos_methods() {
-  return {engine_method("siconos", "Siconos 4.4 event-driven: LSODAR flight, Newton's impact law by LCP, Zeno to rest",
+  return {engine_method("siconos",
+                        "Siconos 4.4 event-driven: LSODAR flight, Newton's impact law by LCP, Zeno to rest",
                         false, [](const EngineScene& s) { return std::make_unique<SiconosWorld>(s); })};
 }
 

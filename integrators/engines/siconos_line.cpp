@@ -1,16 +1,31 @@
 #include "siconos_line.hpp"
 
 #include <SiconosKernel.hpp>
+#include <boost/exception/diagnostic_information.hpp>
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
 namespace contact {
 
+namespace {
+
+// Siconos throws boost exceptions whose what() is only "std::exception": its message, file and
+// function are in the diagnostic information, on one line.
+std::string siconos_message() {
+  std::string text = boost::current_exception_diagnostic_information(false);
+  std::replace(text.begin(), text.end(), '\n', ' ');
+  return text;
+}
+
+}  // namespace
+
 struct SiconosLine::State {
   SiconosSpheres spheres;
   std::vector<SP::LagrangianLinearTIDS> bodies;
   std::vector<SP::Interaction> contacts;
+  SP::NonSmoothDynamicalSystem nsds;
   SP::EventDriven simulation;
   std::vector<double> impulse;
 };
@@ -18,7 +33,7 @@ struct SiconosLine::State {
 SiconosLine::SiconosLine(const SiconosSpheres& sp) : s_(std::make_unique<State>()) {
   s_->spheres = sp;
   const double t_far = 1e9;  // the run ends when the caller stops stepping
-  auto nsds = std::make_shared<NonSmoothDynamicalSystem>(0.0, t_far);
+  auto nsds = s_->nsds = std::make_shared<NonSmoothDynamicalSystem>(0.0, t_far);
   for (std::size_t b = 0; b < sp.mass.size(); ++b) {
     auto q0 = std::make_shared<SiconosVector>(1), v0 = std::make_shared<SiconosVector>(1);
     (*q0)(0) = sp.centre[b];
@@ -62,13 +77,21 @@ SiconosLine::SiconosLine(const SiconosSpheres& sp) : s_(std::make_unique<State>(
   s_->simulation->insertNonSmoothProblem(std::make_shared<LCP>(), SICONOS_OSNSP_ED_SMOOTH_ACC);
   try {
     s_->simulation->initialize();
-  } catch (const std::exception& e) {
-    throw std::runtime_error(std::string("Siconos could not initialise the simulation: ") + e.what());
+  } catch (...) {
+    throw std::runtime_error("Siconos could not initialise the simulation: " + siconos_message());
   }
   s_->impulse.assign(sp.restitution.size(), 0.0);
 }
 
-SiconosLine::~SiconosLine() = default;
+// Siconos's topology graphs hold its systems, interactions and integrator in shared_ptr cycles:
+// taking the interactions and systems out of the system breaks them, so that nothing leaks.
+SiconosLine::~SiconosLine() {
+  try {
+    for (auto& inter : s_->contacts) s_->nsds->removeInteraction(inter);
+    for (auto& body : s_->bodies) s_->nsds->removeDynamicalSystem(body);
+  } catch (...) {  // a destructor does not throw; what is left is only memory
+  }
+}
 
 void SiconosLine::step() {
   EventDriven& sim = *s_->simulation;
@@ -92,8 +115,9 @@ void SiconosLine::step() {
     }
   } catch (const std::runtime_error&) {
     throw;
-  } catch (const std::exception& e) {
-    throw std::runtime_error(std::string("Siconos: ") + e.what());
+  } catch (...) {
+    throw std::runtime_error("Siconos at t = " + std::to_string(sim.startingTime()) + ": " +
+                             siconos_message());
   }
 }
 

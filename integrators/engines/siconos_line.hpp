@@ -17,11 +17,11 @@ namespace contact {
 struct SiconosSpheres {
   double radius;
   bool vertical, floor;
-  double g;                                  // along -axis when vertical [m/s^2]
+  double g;                                    // along -axis when vertical [m/s^2]
   std::vector<double> mass, centre, velocity;  // per sphere
-  std::vector<double> restitution;           // per contact (floor first, then neighbours)
-  double dt;                                 // the output step: one step() advances by it [s]
-  double rtol, atol;                         // LSODAR's tolerances
+  std::vector<double> restitution;             // per contact (floor first, then neighbours)
+  double dt;                                   // the output step: one step() advances by it [s]
+  double rtol, atol;                           // LSODAR's tolerances
 };
 
 class SiconosLine {
