@@ -5,6 +5,11 @@
 //   ApexTarget/<integrator>/<-log10 rtol>: undamped Hooke ball at k = 1e6, the largest error of
 //     the first five apex heights against the exact penalty solution (h0: the spring returns the
 //     impact speed) and the right-hand sides it took.
+//   P1/<integrator>: the problem P1 -- ball drop, m = 1, h0 = 1, Kelvin–Voigt k = 1e5 tuned to
+//     e = 0.8 (unclamped), t in [0, 3], rtol 1e-6, atol 1e-9 -- nine repetitions (median, min,
+//     max of CPU time), with the first five apex heights as counters apex_1..apex_5;
+//     P1Reference the same at rtol 1e-12, atol 1e-14: the heights every P1 run (and the SciPy
+//     peer, scripts/run_benchmarks.sh) is scored against.
 //   ExactBounces: event-driven impacts per second with the closed-form flight.
 // Counters are work, not time: steps, rhs_evals, jac_evals, contacts, steps_per_contact.
 #include "contact_ode/integrators/event_driven.hpp"
@@ -13,7 +18,9 @@
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 
 using namespace contact;
 
@@ -66,6 +73,35 @@ void ApexTarget(benchmark::State& state, const std::string& method) {
   state.counters["apex_error_m"] = worst;
 }
 
+RunResult p1(const std::string& method, double rtol, double atol) {
+  const BallDrop model({1.0, 9.81, 1.0, 0.0, 0.8, kelvin_voigt_for_restitution(1e5, 1.0, 0.8, false)});
+  PenaltyOptions o;
+  o.integrator.method = method;
+  o.integrator.rtol = rtol;
+  o.integrator.atol = atol;
+  o.integrator.max_steps = 10000000;
+  return run_penalty(model, o, {.t_end = 3.0, .sample_dt = 3.0});
+}
+
+void apex_counters(benchmark::State& state, const RunResult& r) {
+  for (std::size_t n = 0; n < 5; ++n)
+    state.counters["apex_" + std::to_string(n + 1)] = n < r.apexes.size() ? r.apexes[n].gap : std::nan("");
+}
+
+void P1(benchmark::State& state, const std::string& method) {
+  RunResult r;
+  for (auto _ : state) r = p1(method, 1e-6, 1e-9);
+  report(state, r);
+  apex_counters(state, r);
+}
+
+void P1Reference(benchmark::State& state) {
+  RunResult r;
+  for (auto _ : state) r = p1("cvode-bdf", 1e-12, 1e-14);
+  report(state, r);
+  apex_counters(state, r);
+}
+
 void ExactBounces(benchmark::State& state) {
   // e = 0.9: about 270 impacts before the rest guard (rest speed 1e-12 m/s) ends the cascade.
   const BallDrop model({1.0, 9.81, 1.0, 0.0, 0.9, Hooke{1e6}});
@@ -92,13 +128,25 @@ void register_all() {
     auto* b = benchmark::RegisterBenchmark(("BallDrop/" + info.name).c_str(), BallDrop_, info.name);
     b->DenseRange(2, k_max, 1)->Unit(benchmark::kMillisecond)->Iterations(info.adaptive ? 3 : 1);
     if (info.adaptive) {
+      benchmark::RegisterBenchmark(("P1/" + info.name).c_str(), P1, info.name)
+          ->Unit(benchmark::kMillisecond)
+          ->Repetitions(9)
+          ->ReportAggregatesOnly(true)
+          ->ComputeStatistics(
+              "min", [](const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); })
+          ->ComputeStatistics(
+              "max", [](const std::vector<double>& v) { return *std::max_element(v.begin(), v.end()); });
       benchmark::RegisterBenchmark(("ApexTarget/" + info.name).c_str(), ApexTarget, info.name)
           ->DenseRange(8, 12, 2)
           ->Unit(benchmark::kMillisecond)
           ->Iterations(1);
     }
   }
-  benchmark::RegisterBenchmark("ExactBounces", ExactBounces)->Unit(benchmark::kMicrosecond);
+  benchmark::RegisterBenchmark("P1Reference", P1Reference)->Unit(benchmark::kMillisecond)->Iterations(1);
+  benchmark::RegisterBenchmark("ExactBounces", ExactBounces)
+      ->Unit(benchmark::kMicrosecond)
+      ->Repetitions(5)
+      ->ReportAggregatesOnly(true);
 }
 
 }  // namespace

@@ -1,11 +1,17 @@
-// bench_report — turns Google Benchmark JSON (bench_integrators, bench_chain) into Markdown:
-// the machine, one table per benchmark family, and each target of the study checked from the
-// measured numbers. Usage: bench_report RESULT.json [...] > benchmarks.md
+// bench_report — turns the benchmark run (Google Benchmark JSON of bench_integrators and
+// bench_chain, the SciPy peer's JSON lines, the study's timing) into Markdown: the machine, its
+// load and the project's build type, one table per benchmark family (CPU time: median and range
+// of the repetitions), and every target of the study with its verdict computed from the numbers.
+// Usage: bench_report --build-type T --load L [--scipy P1.jsonl] [--timing TIMING.json] RESULT.json...
 #include "contact_ode/analysis/fit.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cmath>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -15,10 +21,11 @@ using nlohmann::json;
 
 namespace {
 
-struct Row {
+// One benchmark case: its median row (or its only row) and the min and max rows when repeated.
+struct Case {
   std::string family, variant;
   long arg = 0;
-  json data;
+  json median, min, max;
 };
 
 std::string cpu_model() {
@@ -28,55 +35,100 @@ std::string cpu_model() {
   return "unknown CPU";
 }
 
-double num(const json& j, const char* key) { return j.contains(key) ? j[key].get<double>() : std::nan(""); }
+double num(const json& j, const char* key) {
+  return j.is_object() && j.contains(key) && j[key].is_number() ? j[key].get<double>() : std::nan("");
+}
 
 std::string verdict(bool ok) { return ok ? "**met**" : "**not met**"; }
 
+// "Family/variant/arg/iterations:N/repeats:M_median" -> family, variant, arg, statistic.
+void parse_name(std::string name, Case& c, std::string& stat) {
+  if (const auto u = name.rfind('_'); u != std::string::npos && name.find("repeats:") < u) {
+    stat = name.substr(u + 1);
+    name.erase(u);
+  }
+  for (const char* tail : {"/repeats:", "/iterations:"})
+    if (const auto it = name.find(tail); it != std::string::npos) name.erase(it);
+  const auto s1 = name.find('/'), s2 = name.rfind('/');
+  c.family = name.substr(0, s1);
+  if (s1 != std::string::npos && s2 != s1) {
+    c.variant = name.substr(s1 + 1, s2 - s1 - 1);
+    c.arg = std::stol(name.substr(s2 + 1));
+  } else if (s1 != std::string::npos) {
+    c.variant = name.substr(s1 + 1);
+  }
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot read " + path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
 }  // namespace
 
-int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::cerr << "usage: bench_report RESULT.json [...]\n";
-    return 2;
-  }
-  std::vector<Row> rows;
-  json context;
+int main(int argc, char** argv) try {
+  std::string build_type = "?", load = "?", scipy_path, timing_path;
+  std::vector<std::string> inputs;
   for (int a = 1; a < argc; ++a) {
-    std::ifstream in(argv[a]);
-    if (!in) {
-      std::cerr << "bench_report: cannot read " << argv[a] << "\n";
-      return 2;
-    }
-    const json j = json::parse(in);
+    const std::string arg = argv[a];
+    auto value = [&]() -> std::string {
+      if (a + 1 >= argc) throw std::invalid_argument(arg + ": needs a value");
+      return argv[++a];
+    };
+    if (arg == "--build-type")
+      build_type = value();
+    else if (arg == "--load")
+      load = value();
+    else if (arg == "--scipy")
+      scipy_path = value();
+    else if (arg == "--timing")
+      timing_path = value();
+    else
+      inputs.push_back(arg);
+  }
+  if (inputs.empty()) throw std::invalid_argument("usage: bench_report [options] RESULT.json [...]");
+  std::vector<Case> cases;
+  json context;
+  for (const auto& path : inputs) {
+    // Google Benchmark writes NaN (a counter's 0/0, e.g. its "cv" of a constant) unquoted, which
+    // is not JSON: read as null.
+    std::string text = read_text(path);
+    for (const char* token : {": NaN", ": -NaN", ": Infinity", ": -Infinity"})
+      for (auto at = text.find(token); at != std::string::npos; at = text.find(token, at))
+        text.replace(at, std::strlen(token), ": null");
+    const json j = json::parse(text);
     context = j["context"];
     for (const auto& b : j["benchmarks"]) {
-      std::string name = b["name"];
-      // "Family/variant/arg/iterations:N": the last part is Google Benchmark's, not ours.
-      if (const auto it = name.find("/iterations:"); it != std::string::npos) name.erase(it);
-      const auto s1 = name.find('/'), s2 = name.rfind('/');
-      Row r{name.substr(0, s1), "", 0, b};
-      if (s1 != std::string::npos && s2 != s1) {
-        r.variant = name.substr(s1 + 1, s2 - s1 - 1);
-        r.arg = std::stol(name.substr(s2 + 1));
-      } else if (s1 != std::string::npos) {
-        r.variant = name.substr(s1 + 1);
-      }
-      rows.push_back(r);
+      Case c;
+      std::string stat;
+      parse_name(b["name"], c, stat);
+      if (!stat.empty() && stat != "median" && stat != "min" && stat != "max") continue;
+      auto it = std::find_if(cases.begin(), cases.end(), [&](const Case& x) {
+        return x.family == c.family && x.variant == c.variant && x.arg == c.arg;
+      });
+      if (it == cases.end()) it = cases.insert(cases.end(), c);
+      (stat == "min" ? it->min : stat == "max" ? it->max : it->median) = b;
     }
   }
-  auto find = [&](const std::string& family, const std::string& variant, long arg) -> const json* {
-    for (const auto& r : rows)
-      if (r.family == family && r.variant == variant && r.arg == arg) return &r.data;
+  auto find = [&](const std::string& family, const std::string& variant, long arg) -> const Case* {
+    for (const auto& c : cases)
+      if (c.family == family && c.variant == variant && c.arg == arg) return &c;
     return nullptr;
   };
 
-  fmt::print("# Benchmarks\n\nMachine: {}, {} CPUs at {} MHz; library build: {}; run {}.\n\n", cpu_model(),
-             context.value("num_cpus", 0), context.value("mhz_per_cpu", 0),
-             context.value("library_build_type", "?"), context.value("date", "?"));
+  fmt::print(
+      "# Benchmarks\n\nMachine: {}, {} CPUs at {} MHz; load average before the run: {}; the project built as "
+      "{} (Google Benchmark's own library: {}); run {}. Times are CPU time per iteration: the median of "
+      "the repetitions, with their range.\n\n",
+      cpu_model(), context.value("num_cpus", 0), context.value("mhz_per_cpu", 0), load, build_type,
+      context.value("library_build_type", "?"), context.value("date", "?"));
 
-  // One table per family: variant, argument, time and every counter.
-  std::map<std::string, std::vector<const Row*>> families;
-  for (const auto& r : rows) families[r.family].push_back(&r);
+  // One table per family: variant, argument, CPU time and every counter.
+  std::map<std::string, std::vector<const Case*>> families;
+  for (const auto& c : cases) families[c.family].push_back(&c);
   const std::vector<std::string> skip = {"name",
                                          "family_index",
                                          "per_family_instance_index",
@@ -90,79 +142,136 @@ int main(int argc, char** argv) {
                                          "cpu_time",
                                          "time_unit",
                                          "error_occurred",
-                                         "error_message"};
+                                         "error_message",
+                                         "aggregate_name",
+                                         "aggregate_unit"};
   for (const auto& [family, list] : families) {
     std::vector<std::string> counters;
-    for (const auto& [k, v] : list.front()->data.items())
+    for (const auto& [k, v] : list.front()->median.items())
       if (std::find(skip.begin(), skip.end(), k) == skip.end()) counters.push_back(k);
-    fmt::print(
-        "## {}\n\n| variant | arg | time | {} |\n|---|---|---|{}\n", family, fmt::join(counters, " | "),
-        std::string(counters.size(), ' ') + [&] {
-          std::string s;
-          for (std::size_t i = 0; i < counters.size(); ++i) s += "---|";
-          return s;
-        }());
-    for (const Row* r : list) {
+    std::string rule;
+    for (std::size_t i = 0; i < counters.size() + 3; ++i) rule += "---|";
+    fmt::print("## {}\n\n| variant | arg | CPU time | {} |\n|{}\n", family, fmt::join(counters, " | "), rule);
+    for (const Case* c : list) {
       std::string cells;
-      for (const auto& c : counters) cells += fmt::format(" {:.4g} |", num(r->data, c.c_str()));
-      const std::string time =
-          r->data.value("error_occurred", false)
-              ? "failed: " + r->data.value("error_message", std::string())
-              : fmt::format("{:.4g} {}", num(r->data, "real_time"), r->data.value("time_unit", ""));
-      fmt::print("| {} | {} | {} |{}\n", r->variant, r->arg, time, cells);
+      for (const auto& k : counters) cells += fmt::format(" {:.4g} |", num(c->median, k.c_str()));
+      const std::string unit = c->median.value("time_unit", "");
+      std::string time = c->median.value("error_occurred", false)
+                             ? "failed: " + c->median.value("error_message", std::string())
+                             : fmt::format("{:.4g} {}", num(c->median, "cpu_time"), unit);
+      if (c->min.is_object() && c->max.is_object())
+        time += fmt::format(" [{:.4g}, {:.4g}]", num(c->min, "cpu_time"), num(c->max, "cpu_time"));
+      fmt::print("| {} | {} | {} |{}\n", c->variant, c->arg, time, cells);
     }
     fmt::print("\n");
   }
 
   fmt::print("## Targets\n\n");
-  // 1. CVODE BDF right-hand sides against SciPy's BDF on the same ball drop.
-  if (const json* lo = find("BallDrop", "cvode-bdf", 2), *hi = find("BallDrop", "cvode-bdf", 8); lo && hi) {
-    const double a = num(*lo, "rhs_evals"), b = num(*hi, "rhs_evals");
-    fmt::print(
-        "- CVODE BDF penalty ball drop, rhs evaluations at k = 1e2 and 1e8: {:.0f} and {:.0f} "
-        "(SciPy BDF, measured elsewhere: 549 and 888): {}\n",
-        a, b, verdict(a < 549 && b < 888));
+  // P1 against SciPy, measured in the same run: CPU per solve and the first five apexes'
+  // largest error against the tight reference (P1Reference).
+  const Case* ref = find("P1Reference", "", 0);
+  auto apex_error = [&](auto apex) {
+    double worst = 0;
+    for (int n = 1; n <= 5; ++n)
+      worst = std::max(worst, std::abs(apex(n) - num(ref->median, fmt::format("apex_{}", n).c_str())));
+    return worst;
+  };
+  if (ref && !scipy_path.empty()) {
+    std::vector<json> peers;
+    std::istringstream lines(read_text(scipy_path));
+    for (std::string line; std::getline(lines, line);)
+      if (!line.empty() && line[0] == '{') peers.push_back(json::parse(line));
+    std::vector<std::string> who_meets;
+    for (const auto& c : cases) {
+      if (c.family != "P1") continue;
+      const double ours = num(c.median, "cpu_time") * 1e-3;  // [s]; the benchmark reports ms
+      const double err = apex_error([&](int n) { return num(c.median, fmt::format("apex_{}", n).c_str()); });
+      bool all = true;
+      std::vector<std::string> parts;
+      for (const auto& p : peers) {
+        const double theirs = p["cpu_s"].get<double>();
+        const auto apexes = p["apexes"].get<std::vector<double>>();
+        const double their_err =
+            apexes.size() < 5 ? std::nan("") : apex_error([&](int n) { return apexes[n - 1]; });
+        const bool ok = theirs / ours >= 50 && err <= their_err;
+        all = all && ok;
+        parts.push_back(fmt::format("{} {:.0f}x (apex error {:.1e} m against {:.1e} m)",
+                                    p["method"].get<std::string>(), theirs / ours, err, their_err));
+      }
+      if (c.variant == "cvode-bdf")
+        fmt::print(
+            "- P1 (rtol 1e-6), CVODE BDF at {:.3g} ms per solve: {}; target >= 50x less CPU than each, apex "
+            "error no worse: {}\n",
+            ours * 1e3, fmt::join(parts, "; "), verdict(all));
+      if (all) who_meets.push_back(fmt::format("{} ({:.3g} ms)", c.variant, ours * 1e3));
+    }
+    fmt::print("- P1: integrators that meet it against all four SciPy methods: {}\n",
+               who_meets.empty() ? std::string("none") : fmt::format("{}", fmt::join(who_meets, ", ")));
   }
-  if (const json* k3 = find("BallDrop", "cvode-bdf", 3), *k10 = find("BallDrop", "cvode-bdf", 10);
-      k3 && k10) {
-    const double ratio = num(*k10, "steps_per_contact") / num(*k3, "steps_per_contact");
-    fmt::print("- CVODE BDF steps per contact, k = 1e10 over k = 1e3: {:.2f} (target <= 1.5): {}\n", ratio,
-               verdict(ratio <= 1.5));
-  }
-  // 2. Five apexes within 1e-8 of the exact penalty solution in at most 1500 rhs evaluations.
+  // Five apexes of the undamped ball at k = 1e6 within 1e-8 m in at most 500 right-hand sides.
   std::vector<std::string> meets;
-  for (const auto& r : rows)
-    if (r.family == "ApexTarget" && num(r.data, "apex_error_m") <= 1e-8 && num(r.data, "rhs_evals") <= 1500)
-      meets.push_back(fmt::format("{} at rtol 1e-{} ({:.0f} rhs, error {:.1e} m)", r.variant, r.arg,
-                                  num(r.data, "rhs_evals"), num(r.data, "apex_error_m")));
-  fmt::print("- k = 1e6, first five apexes within 1e-8 m with <= 1500 rhs evaluations: {}{}\n",
-             meets.empty() ? "no integrator" : fmt::format("{}", fmt::join(meets, "; ")),
-             meets.empty() ? " **not met**" : "");
-  if (const json* e = find("ExactBounces", "", 0)) {
-    const double rate = num(*e, "impacts_per_s");
-    fmt::print("- event-driven closed form: {:.3g} impacts per second (target >= 1e6): {}\n", rate,
-               verdict(rate >= 1e6));
+  std::string bdf = "cvode-bdf reaches 1e-8 at no tolerance tried";
+  for (const auto& c : cases) {
+    if (c.family != "ApexTarget" || !(num(c.median, "apex_error_m") <= 1e-8)) continue;
+    const double rhs = num(c.median, "rhs_evals");
+    if (c.variant == "cvode-bdf" && bdf.rfind("cvode-bdf reaches 1e-8 at no", 0) == 0)
+      bdf = fmt::format("cvode-bdf (the default) first reaches it at rtol 1e-{} with {:.0f} rhs", c.arg, rhs);
+    if (rhs <= 500) meets.push_back(fmt::format("{} at rtol 1e-{} ({:.0f} rhs)", c.variant, c.arg, rhs));
   }
-  // 3. The chain: linear growth in N for band and KLU, and the speed-up over dense at N = 1e3.
+  fmt::print(
+      "- k = 1e6, five apexes within 1e-8 m in <= 500 rhs evaluations by the default method: {}; within "
+      "500 rhs: {}: {}\n",
+      bdf, meets.empty() ? std::string("none") : fmt::format("{}", fmt::join(meets, "; ")),
+      verdict(bdf.find(" rhs") != std::string::npos && std::stod(bdf.substr(bdf.rfind("with ") + 5)) <= 500));
+  if (const Case* e = find("ExactBounces", "", 0)) {
+    const double rate = num(e->median, "impacts_per_s");
+    fmt::print("- event-driven closed form: {:.3g} impacts per second (median; target >= 1e7): {}\n", rate,
+               verdict(rate >= 1e7));
+  }
+  // The chain: every N ran, band and KLU linear in N to 1e5, and >= 100x dense at N = 1e3.
+  long failed = 0, ran = 0;
+  for (const auto& c : cases)
+    if (c.family == "Chain") (c.median.value("error_occurred", false) ? failed : ran) += 1;
+  fmt::print("- chain: {} cases ran, {} failed (target: every N of every solver): {}\n", ran, failed,
+             verdict(failed == 0 && ran > 0));
   for (const char* solver : {"band", "klu"}) {
     std::vector<double> n, t;
     for (long N : {1000L, 10000L, 100000L})
-      if (const json* j = find("Chain", solver, N)) {
+      if (const Case* c = find("Chain", solver, N)) {
         n.push_back(static_cast<double>(N));
-        t.push_back(num(*j, "time_per_sim_s"));
+        t.push_back(num(c->median, "time_per_sim_s"));
       }
     if (n.size() >= 2) {
       const double p = contact::fit_power_law(n, t).exponent;
       fmt::print(
-          "- chain, {}: time per simulated second grows as N^{:.2f} from N = 1e3 to 1e5 (target: linear): "
-          "{}\n",
+          "- chain, {}: CPU per simulated second grows as N^{:.2f} from N = 1e3 to 1e5 (target: linear, "
+          "exponent < 1.2): {}\n",
           solver, p, verdict(p < 1.2));
     }
-    if (const json* d = find("Chain", "dense", 1000), *s = find("Chain", solver, 1000); d && s) {
-      const double speedup = num(*d, "time_per_sim_s") / num(*s, "time_per_sim_s");
+    if (const Case* d = find("Chain", "dense", 1000), *s = find("Chain", solver, 1000); d && s) {
+      const double speedup = num(d->median, "time_per_sim_s") / num(s->median, "time_per_sim_s");
       fmt::print("- chain, N = 1e3: {} is {:.0f}x faster than dense (target >= 100x): {}\n", solver, speedup,
                  verdict(speedup >= 100));
     }
   }
+  if (!timing_path.empty()) {
+    const json t = json::parse(read_text(timing_path));
+    const double total = t.value("study_s", NAN) + t.value("paper_s", NAN);
+    fmt::print(
+        "- the study ({:.1f} s) and the paper ({:.1f} s) together {:.1f} s of wall time on {} cores (target "
+        "<= "
+        "10 s): {}\n",
+        t.value("study_s", NAN), t.value("paper_s", NAN), total, context.value("num_cpus", 0),
+        verdict(total <= 10));
+    if (t.contains("fresh_build_s"))
+      fmt::print("- a fresh Release build: {:.0f} s (target <= 240 s): {}\n",
+                 t["fresh_build_s"].get<double>(), verdict(t["fresh_build_s"].get<double>() <= 240));
+    else
+      fmt::print(
+          "- a fresh Release build: not measured in this run (scripts/run_benchmarks.sh --fresh-build)\n");
+  }
   return 0;
+} catch (const std::exception& e) {
+  std::cerr << "bench_report: " << e.what() << "\n";
+  return 2;
 }

@@ -8,11 +8,16 @@
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
+#include <mutex>
+#include <sstream>
+#include <thread>
 
 extern char** environ;
 
@@ -21,15 +26,41 @@ namespace contact {
 namespace {
 
 volatile std::sig_atomic_t g_signal = 0;
-volatile pid_t g_child = 0;  // the child being waited for, to pass SIGTERM on
+// The children being waited for (by up to kSlots threads at once: the study runs experiments in
+// parallel), to pass SIGTERM on. Lock-free atomics, so the handler may read them.
+constexpr int kSlots = 64;
+std::atomic<pid_t> g_children[kSlots];
+static_assert(std::atomic<pid_t>::is_always_lock_free);
 
 extern "C" void on_signal(int sig) {
   g_signal = sig;
-  const pid_t child = g_child;
-  // Passed on to the child (kill is async-signal-safe): a Ctrl-C on a terminal reaches the whole
-  // process group anyway, but a signal sent to this process alone must stop the child too.
-  if (child > 0) ::kill(child, sig);
+  // Passed on to the children (kill is async-signal-safe): a Ctrl-C on a terminal reaches the
+  // whole process group anyway, but a signal sent to this process alone must stop them too.
+  for (auto& slot : g_children)
+    if (const pid_t child = slot.load(); child > 0) ::kill(child, sig);
 }
+
+// Holds a child's pid in a free slot while it is waited for.
+class ChildSlot {
+ public:
+  explicit ChildSlot(pid_t pid) {
+    for (auto& s : g_children) {
+      pid_t free = 0;
+      if (s.compare_exchange_strong(free, pid)) {
+        slot_ = &s;
+        return;
+      }
+    }
+  }
+  ~ChildSlot() {
+    if (slot_) slot_->store(0);
+  }
+  ChildSlot(const ChildSlot&) = delete;
+  ChildSlot& operator=(const ChildSlot&) = delete;
+
+ private:
+  std::atomic<pid_t>* slot_ = nullptr;
+};
 
 }  // namespace
 
@@ -73,19 +104,47 @@ int run_process(const std::vector<std::string>& args, const std::filesystem::pat
   pid_t pid = 0;
   const int err = posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), environ);
   if (err != 0) throw std::runtime_error(fmt::format("cannot run {}: {}", args[0], std::strerror(err)));
-  g_child = pid;
   int status = 0;
-  while (::waitpid(pid, &status, 0) < 0) {
-    if (errno != EINTR) {
-      g_child = 0;
-      throw std::runtime_error(fmt::format("waiting for {}: {}", args[0], std::strerror(errno)));
-    }
+  {
+    const ChildSlot held(pid);
+    while (::waitpid(pid, &status, 0) < 0)
+      if (errno != EINTR)
+        throw std::runtime_error(fmt::format("waiting for {}: {}", args[0], std::strerror(errno)));
   }
-  g_child = 0;
   throw_if_interrupted();
   if (WIFEXITED(status)) return WEXITSTATUS(status);
   if (WIFSIGNALED(status)) return 128 + WTERMSIG(status);
   return 1;
+}
+
+void run_parallel(std::size_t count, long jobs, const std::function<void(std::size_t)>& body) {
+  std::atomic<std::size_t> next{0};
+  std::mutex lock;
+  std::exception_ptr failure;
+  auto worker = [&] {
+    for (std::size_t i; (i = next++) < count;) {
+      try {
+        body(i);
+      } catch (...) {
+        const std::lock_guard<std::mutex> hold(lock);
+        if (!failure) failure = std::current_exception();
+        next = count;
+        return;
+      }
+    }
+  };
+  std::vector<std::thread> threads;
+  for (long j = 1; j < std::min<long>(jobs, static_cast<long>(count)); ++j) threads.emplace_back(worker);
+  worker();
+  for (auto& t : threads) t.join();
+  if (failure) std::rethrow_exception(failure);
+}
+
+std::string read_text(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
 }
 
 int guarded_main(const char* name, int argc, char** argv, int (*body)(int, char**)) {

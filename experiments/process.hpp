@@ -10,6 +10,7 @@
 // Children (gnuplot, the experiments a study runs) are started without a shell: arguments are
 // passed as they are, so a quote or a space in a path (TMPDIR, --out) cannot break a command.
 #include <filesystem>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -31,6 +32,14 @@ void throw_if_interrupted();
 // process was interrupted meanwhile.
 int run_process(const std::vector<std::string>& argv, const std::filesystem::path& cwd = {},
                 const std::filesystem::path& log = {});
+
+// Calls body(i) for every i in [0, count), each once, on up to `jobs` threads (this one among
+// them). The first exception a call throws (an Interrupted too) stops the others taking new
+// indices and is rethrown here once every thread has stopped.
+void run_parallel(std::size_t count, long jobs, const std::function<void(std::size_t)>& body);
+
+// A text file's whole content ("" if it cannot be read).
+std::string read_text(const std::filesystem::path& path);
 
 // The first line a shell command prints on stdout, without its newline ("" if it prints nothing
 // or cannot run): tool versions and machine facts for the paper.

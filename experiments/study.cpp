@@ -4,6 +4,8 @@
 // --tiny runs the smoke-test arguments instead of the defaults. Started by mpirun (or srun) it
 // deals the experiments out over the ranks, experiment j to rank j mod size; each writes its own
 // folders, and rank 0 gathers what ran and writes index.md and study.json, as a serial run does.
+// --jobs N runs N experiments at a time (default: one per core), each child's output kept in a
+// log and printed whole when it ends, so that two experiments' lines never interleave.
 // Exit codes: 0, 1 an experiment failed or left an output missing, 2 bad input.
 #include "cli.hpp"
 #include "output.hpp"
@@ -12,12 +14,14 @@
 #include "study_manifest.hpp"
 
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <mutex>
 #include <thread>
 
 using namespace contact;
@@ -27,11 +31,13 @@ int program(int argc, char** argv) {
   const Ranks ranks(argc, argv);
   std::string out = "results", manifest_path = CONTACT_ODE_STUDY_MANIFEST, only;
   bool tiny = false;
+  long jobs = std::max(1u, std::thread::hardware_concurrency());
   cli::Options app("study", "Runs every experiment of the study into one folder and writes its index.md.");
   app.add("--out", out, "results folder");
   app.add("--manifest", manifest_path, "the study's manifest", cli::existing_file());
   app.add_flag("--tiny", tiny, "run the smoke-test settings (seconds, for tests)");
   app.add("--only", only, "run only these experiments, comma-separated (default: all)");
+  app.add("--jobs", jobs, "experiments run at a time (default: the cores)", cli::integer_in(1, 64));
   if (const int code = app.parse(argc, argv); code >= 0) return code;
   StudyManifest manifest;
   try {
@@ -60,24 +66,41 @@ int program(int argc, char** argv) {
   const auto start = std::chrono::steady_clock::now();
   nlohmann::json record = {{"tiny", tiny}, {"experiments", nlohmann::json::array()}};
   nlohmann::json mine = nlohmann::json::array();  // this rank's runs: {"index", "record", "ok"}
+  std::vector<std::size_t> queue;                 // this rank's experiments, in the manifest's order
   std::size_t dealt = 0;
   for (std::size_t index = 0; index < manifest.experiments.size(); ++index) {
     const auto& e = manifest.experiments[index];
     if (!only_list.empty() && std::find(only_list.begin(), only_list.end(), e.name) == only_list.end())
       continue;
-    if (static_cast<int>(dealt++ % static_cast<std::size_t>(ranks.size())) != ranks.rank()) continue;
+    if (static_cast<int>(dealt++ % static_cast<std::size_t>(ranks.size())) == ranks.rank())
+      queue.push_back(index);
+  }
+  const bool quiet = jobs > 1;  // children's output to logs, printed whole
+  std::string pattern = (fs::temp_directory_path() / "contact_study_XXXXXX").string();
+  if (quiet && ::mkdtemp(pattern.data()) == nullptr)
+    throw std::runtime_error(
+        fmt::format("cannot create a scratch folder in {}", fs::temp_directory_path().string()));
+  const ScratchDir logs_dir{quiet ? fs::path(pattern) : fs::path()};  // removed however the study ends
+  const fs::path& logs = logs_dir.path;
+  std::mutex lock;  // guards `mine` and the terminal
+  run_parallel(queue.size(), jobs, [&](std::size_t q) {
+    const std::size_t index = queue[q];
+    const auto& e = manifest.experiments[index];
     // The experiment replaces its folder only if it succeeds: earlier results stay until then.
-    const fs::path dir = fs::path(out) / e.name;
+    const fs::path dir = fs::path(out) / e.name, log = quiet ? logs / (e.name + ".log") : fs::path();
     std::vector<std::string> cmd{(bin / e.exe).string()};
     for (const auto& a : tiny ? e.tiny : e.args) cmd.push_back(a);
     cmd.insert(cmd.end(), {"--out", dir.string()});
-    fmt::print("\n== {} ==\n", e.name);
+    if (!quiet) fmt::print("\n== {} ==\n", e.name);
     std::fflush(stdout);
     const auto t0 = std::chrono::steady_clock::now();
-    const int code = run_process(cmd);  // throws Interrupted after a Ctrl-C: the study stops
+    const int code = run_process(cmd, {}, log);  // throws Interrupted after a Ctrl-C: the study stops
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::vector<std::string> problems =
         code == 0 ? check_outputs(e, dir) : std::vector<std::string>{fmt::format("exit code {}", code)};
+    const std::lock_guard<std::mutex> hold(lock);
+    if (quiet) fmt::print("\n== {} ({:.1f} s) ==\n{}", e.name, seconds, read_text(log));
+    std::fflush(stdout);
     for (const auto& p : problems) std::cerr << fmt::format("study: {}: {}\n", e.name, p);
     mine.push_back({{"index", index},
                     {"record",
@@ -85,7 +108,7 @@ int program(int argc, char** argv) {
                       {"command", fmt::format("{}", fmt::join(cmd, " "))},
                       {"wall_time_s", seconds},
                       {"ok", problems.empty()}}}});
-  }
+  });
   // Rank 0 gathers every rank's runs and lists them in the manifest's order.
   const auto gathered = ranks.gather(mine.dump());
   if (ranks.rank() != 0) return 0;
@@ -102,6 +125,7 @@ int program(int argc, char** argv) {
   record["wall_time_s"] = total;
   record["cores"] = std::thread::hardware_concurrency();
   record["ranks"] = ranks.size();
+  record["jobs"] = jobs;
   if (failures > 0) {
     std::cerr << fmt::format("study: {} experiment(s) failed; index.md not written\n", failures);
     return cli::kExitFailure;

@@ -1,17 +1,53 @@
 #!/usr/bin/env bash
-# Builds in Release, runs the Google Benchmark programs and writes benchmarks/RESULTS.md (the
-# table the README shows) from their JSON. Takes a few minutes on 2 cores.
+# Builds in Release, runs the Google Benchmark programs (each case repeated: medians and ranges of
+# CPU time), the SciPy peer on problem P1 in the same run, the study and the paper (their wall
+# time), and writes benchmarks/RESULTS.md (the table the README shows) with every target's
+# verdict computed from these measurements. Takes about ten minutes on 2 cores.
+#   bash scripts/run_benchmarks.sh                 as above
+#   bash scripts/run_benchmarks.sh --fresh-build   also times a fresh Release build (about 5 more minutes)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 bash scripts/setup.sh
+load=$(cut -d' ' -f1-3 /proc/loadavg)
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build build -j"$(nproc)" --target bench_integrators bench_chain bench_report
+cmake --build build -j"$(nproc)"
+build_type=$(grep -E '^CMAKE_BUILD_TYPE:' build/CMakeCache.txt | cut -d= -f2)
 
 out=build/benchmark-results
 mkdir -p "$out"
-build/benchmarks/bench_integrators --benchmark_out="$out/integrators.json" --benchmark_out_format=json
-build/benchmarks/bench_chain --benchmark_out="$out/chain.json" --benchmark_out_format=json
-build/benchmarks/bench_report "$out/integrators.json" "$out/chain.json" > benchmarks/RESULTS.md.tmp
+echo "run_benchmarks: integrators (P1 nine times each, the k sweep, the apex target, exact bounces)"
+build/benchmarks/bench_integrators --benchmark_out="$out/integrators.json" --benchmark_out_format=json >/dev/null
+echo "run_benchmarks: the chain, N = 10 ... 1e5, five times each"
+build/benchmarks/bench_chain --benchmark_out="$out/chain.json" --benchmark_out_format=json >/dev/null
+
+# P1 for SciPy: the same Kelvin–Voigt law, c = 2 zeta sqrt(k m) with zeta tuned to e = 0.8
+# (models/contact_law.hpp: zeta = -ln e / sqrt(pi^2 + ln^2 e)), nine solves each.
+echo "run_benchmarks: SciPy's solve_ivp on P1"
+c=$(/usr/bin/python3 -c "import math; e=0.8; z=-math.log(e)/math.sqrt(math.pi**2+math.log(e)**2); print(repr(2*z*math.sqrt(1e5*1.0)))")
+/usr/bin/python3 python/scipy_peer.py --k 1e5 --c "$c" --h0 1 --t-end 3 --rtols 1e-6 --atol 1e-9 --repeats 9 \
+  > "$out/scipy_p1.jsonl"
+
+echo "run_benchmarks: the study and the paper"
+scratch=$(mktemp -d)
+trap 'rm -rf "$scratch"' EXIT
+t0=$(date +%s.%N)
+build/experiments/study --out "$scratch/results" >/dev/null
+t1=$(date +%s.%N)
+bash scripts/build_paper.sh build "$scratch/results" >/dev/null
+t2=$(date +%s.%N)
+timing="{\"study_s\": $(awk "BEGIN{print $t1 - $t0}"), \"paper_s\": $(awk "BEGIN{print $t2 - $t1}")"
+if [ "${1:-}" = "--fresh-build" ]; then
+  echo "run_benchmarks: a fresh Release build"
+  t0=$(date +%s.%N)
+  cmake -S . -B "$scratch/build" -DCMAKE_BUILD_TYPE=Release >/dev/null
+  cmake --build "$scratch/build" -j"$(nproc)" >/dev/null
+  timing="$timing, \"fresh_build_s\": $(awk "BEGIN{print $(date +%s.%N) - $t0}")"
+fi
+echo "$timing}" > "$out/timing.json"
+
+build/benchmarks/bench_report --build-type "$build_type" --load "$load" --scipy "$out/scipy_p1.jsonl" \
+  --timing "$out/timing.json" "$out/integrators.json" "$out/chain.json" > benchmarks/RESULTS.md.tmp
 mv benchmarks/RESULTS.md.tmp benchmarks/RESULTS.md
 echo "wrote benchmarks/RESULTS.md"
+grep -A30 '^## Targets' benchmarks/RESULTS.md
