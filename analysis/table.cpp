@@ -137,4 +137,44 @@ std::vector<CsvRecord> read_csv(const std::filesystem::path& path) {
   return rows;
 }
 
+Table pivot(const Table& t, const std::string& row, const std::vector<std::string>& keep,
+            const std::string& across, const std::string& value) {
+  auto index = [&](const std::string& name) {
+    const auto it = std::find(t.columns().begin(), t.columns().end(), name);
+    if (it == t.columns().end()) throw std::invalid_argument("pivot: no column '" + name + "'");
+    return static_cast<std::size_t>(it - t.columns().begin());
+  };
+  const std::size_t r = index(row), a = index(across), v = index(value);
+  auto text = [](const Table::Cell& c) {
+    return std::holds_alternative<std::string>(c) ? std::get<std::string>(c) : std::string();
+  };
+  std::vector<std::string> rows, columns;
+  for (const auto& cells : t.rows()) {
+    if (std::find(rows.begin(), rows.end(), text(cells[r])) == rows.end()) rows.push_back(text(cells[r]));
+    if (std::find(columns.begin(), columns.end(), text(cells[a])) == columns.end())
+      columns.push_back(text(cells[a]));
+  }
+  std::vector<std::string> header{row};
+  header.insert(header.end(), keep.begin(), keep.end());
+  header.insert(header.end(), columns.begin(), columns.end());
+  Table out(header);
+  for (const auto& name : rows) {
+    std::vector<Table::Cell> cells{name};
+    std::vector<Table::Cell> spread(columns.size(), std::nan(""));
+    bool first = true;
+    for (const auto& source : t.rows()) {
+      if (text(source[r]) != name) continue;
+      if (first)
+        for (const auto& k : keep) cells.push_back(source[index(k)]);
+      first = false;
+      const auto c = static_cast<std::size_t>(std::find(columns.begin(), columns.end(), text(source[a])) -
+                                              columns.begin());
+      spread[c] = source[v];
+    }
+    cells.insert(cells.end(), spread.begin(), spread.end());
+    out.add_row(cells);
+  }
+  return out;
+}
+
 }  // namespace contact

@@ -9,7 +9,8 @@
 // explicit spring step is unstable above 2). Then the drop at steps --dt x 4 ... / 4: apex error,
 // observed order and CPU time per fixed-step method: the work-precision figure (engines and
 // Moreau–Jean).
-// Outputs in --out (default results/engines): engines.{csv,md,tex}, convergence.{csv,md,tex},
+// Outputs in --out (default results/engines): engines.{csv,md,tex}, summary.{csv,md,tex} (each
+// method's scored error per scene, one row per method), convergence.{csv,md,tex},
 // orders.{csv,md,tex} (fitted over the three finest steps), work_precision.{png,pdf,gp}, meta.json. Exit
 // codes: 0, 1, 2 bad input.
 #include "contact_ode/analysis/cpu_time.hpp"
@@ -89,6 +90,7 @@ int program(int argc, char** argv) {
       }
     }
     files.add_table("engines", table);
+    files.add_table("summary", pivot(table, "method", {"setting"}, "scene", "scored_error"));
 
     // The drop's work-precision: the largest first-apex error over five drop heights in
     // [1, 1.1] m (drawn once, seeded: the impact's phase inside the step varies, so that no step

@@ -57,3 +57,20 @@ TEST(PaperInputs, CsvReadsBackWhatTablesWrite) {
   EXPECT_EQ(rows[1].at("value"), "2");
   EXPECT_THROW(contact::read_csv(file), std::runtime_error);
 }
+
+// A pivot spreads a long table by one column: each (row, across) pair's value lands in its cell,
+// the kept columns come from the row's first appearance, a missing pair is NaN.
+TEST(PaperInputs, PivotSpreadsALongTable) {
+  contact::Table t({"method", "setting", "scene", "error"});
+  t.add_row({std::string("a"), std::string("x"), std::string("drop"), 1.0});
+  t.add_row({std::string("a"), std::string("ignored"), std::string("stack"), 2.0});
+  t.add_row({std::string("b"), std::string("y"), std::string("drop"), 3.0});
+  const contact::Table p = contact::pivot(t, "method", {"setting"}, "scene", "error");
+  EXPECT_EQ(p.columns(), (std::vector<std::string>{"method", "setting", "drop", "stack"}));
+  ASSERT_EQ(p.rows().size(), 2u);
+  EXPECT_EQ(std::get<std::string>(p.rows()[0][1]), "x");
+  EXPECT_EQ(std::get<double>(p.rows()[0][3]), 2.0);
+  EXPECT_EQ(std::get<double>(p.rows()[1][2]), 3.0);
+  EXPECT_TRUE(std::isnan(std::get<double>(p.rows()[1][3])));
+  EXPECT_THROW(contact::pivot(t, "method", {}, "nope", "error"), std::invalid_argument);
+}

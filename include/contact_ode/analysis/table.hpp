@@ -32,6 +32,12 @@ class Table {
 // The cells of one line of Table::to_csv(): the inverse of its quoting ("a, b" and "" escapes).
 std::vector<std::string> split_csv_line(const std::string& line);
 
+// The table spread out for reading: one row per distinct value of column `row` (in order of first
+// appearance, with the `keep` columns of its first row), one column per distinct value of column
+// `across`, holding that row's `value` (NaN where no row has the pair).
+Table pivot(const Table& t, const std::string& row, const std::vector<std::string>& keep,
+            const std::string& across, const std::string& value);
+
 // The rows of a CSV file written by Table::to_csv(), each a map from column name to cell.
 // Throws std::runtime_error naming the file when it cannot be read.
 using CsvRecord = std::map<std::string, std::string>;
