@@ -105,6 +105,7 @@ std::vector<ScoredScene> engine_scenes(double k) {
            "|first apex - e^2 h0| [m]",
            {{"e", 0.8}, {"k", k}},
            3.0,
+           1.8 * std::sqrt(2 / 9.81),  // the fall from 1 m, then e V / g up
            [](const RunResult& r, bool) {
              return r.apexes.empty() ? NAN : std::abs(r.apexes.front().gap - 0.64);
            }},
@@ -113,24 +114,28 @@ std::vector<ScoredScene> engine_scenes(double k) {
            "max |v - exact| [m/s]",
            {{"n", 2}, {"e", 0.8}, {"approach", 1e-3}, {"k", k}},
            0.05,
+           NAN,
            velocities([](Eigen::Index b, Eigen::Index) { return b == 0 ? 0.1 : 0.9; })},
           {"cradle-1mm",
            "ball-chain",
            "max |v - sequential| [m/s]",
            {{"n", 5}, {"e", 1}, {"spacing", 1e-3}, {"k", k}},
            0.05,
+           NAN,
            last_ball},
           {"cradle-0",
            "ball-chain",
            "max |v - sequential| [m/s]",
            {{"n", 5}, {"e", 1}, {"spacing", 0}, {"k", k}},
            0.05,
+           NAN,
            last_ball},
           {"stack",
            "ball-stack",
            "|top sink - exact| [m]",
            {{"n", n}, {"e", 0.5}, {"m", m}, {"g", g}, {"k", k}},
            2.0,
+           NAN,
            [=](const RunResult& r, bool springs) {
              const Vector& y = r.samples.back().y;
              return std::abs(-y[y.size() - 2] - (springs ? m * g * n * (n + 1) / (2 * k) : 0.0));

@@ -60,6 +60,7 @@ struct ScoredScene {
   std::string name, scene, scored_as;
   ParameterValues params;  // for make_scene, "k" added by the caller
   double t_end;            // [s]
+  double first_apex_time;  // when the first bounce peaks, exactly [s] (NaN: no bounce to peak)
   // The error of a successful run; `springs`: the method models the penalty law.
   std::function<double(const RunResult& r, bool springs)> error;
 };
