@@ -43,6 +43,10 @@ RunResult run_ball(const BallDropOptions& o, const std::string& method, double k
 
 std::vector<std::string> ball_methods() { return methods_for(BallDrop({})); }
 
+std::vector<std::string> ball_methods(const BallDropOptions& o) {
+  return methods_for(BallDrop({o.m, o.g, o.h0, o.v0, o.e, law_for(o, o.k)}));
+}
+
 SpringContact closed_form_contact(const BallDropOptions& o, double k) {
   return linear_law_first_contact(o.law, o.m, k, o.e, impact_speed(o), o.g);
 }

@@ -35,8 +35,10 @@ double scaled_atol(const BallDropOptions& o);
 ContactLaw law_for(const BallDropOptions& o, double k);
 Method method_for(const BallDropOptions& o, const std::string& name);
 RunResult run_ball(const BallDropOptions& o, const std::string& method, double k);
-// Every method that can run the ball drop.
+// Every method that can run the ball drop (with the default law), and those that can run it with
+// o's law (a power law has no linear spring for XPBD or an engine's spring setting to match).
 std::vector<std::string> ball_methods();
+std::vector<std::string> ball_methods(const BallDropOptions& o);
 // The first contact in closed form where the law has one (references.hpp), else NaN.
 SpringContact closed_form_contact(const BallDropOptions& o, double k);
 // The closed forms a reader compares the tables with, as text.

@@ -123,3 +123,14 @@ TEST_F(BallDropCli, SweepPrintsOneRowPerStiffnessAndMethod) {
   EXPECT_EQ(csv.rfind("k_N_per_m,method,omega_dt,closed_form_penetration_m,closed_form_duration_s,status", 0),
             0u);
 }
+
+// With a power law (Hertz) there is no linear spring for XPBD or an engine's spring setting to
+// match: "all" is every method that can run that ball, and the others are left out, not failed.
+TEST_F(BallDropCli, AllMeansTheMethodsTheLawAllows) {
+  const Outcome r = run("--law hertz --t-end 0.6 --out hz");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string csv = slurp(dir_ / "hz" / "comparison.csv");
+  EXPECT_NE(csv.find("\npenalty,"), std::string::npos) << csv;
+  for (const char* absent : {"\nxpbd,", "\nmujoco-spring,", "\node-spring,"})
+    EXPECT_EQ(csv.find(absent), std::string::npos) << absent;
+}

@@ -30,6 +30,15 @@ bool can_run_engine(const Dynamics& s) {
   return sphere_line_of(s) && has_impulse_map(s) && has_normal_impulses(s);
 }
 
+// A spring setting gives the engine the scene's linear law: every contact must have one.
+bool can_run_engine_spring(const Dynamics& s) {
+  if (!can_run_engine(s)) return false;
+  const auto& normal = dynamic_cast<const NormalImpulses&>(s);
+  for (std::size_t i = 0; i < s.contact_count(); ++i)
+    if (!(normal.linear_law(i).k > 0)) return false;
+  return true;
+}
+
 EngineScene engine_scene(const Dynamics& scene, double dt) {
   const auto* line = sphere_line_of(scene);
   if (!line) throw std::invalid_argument(fmt::format("scene '{}' is not spheres on a line", scene.name()));
@@ -104,14 +113,18 @@ MethodInfo engine_method(std::string name, std::string description, bool springs
     };
     return run_time_stepping(scene, m.name, m.dt, step, span, springs);
   };
-  return {.name = std::move(name),
-          .description = std::move(description),
-          .family = "engine",
-          .fixed_step = true,
-          .uses_contact_law = springs,
-          .needs = "spheres on a line (SphereLine), an impulse map and normal impulses",
-          .can_run = can_run_engine,
-          .run = std::move(run)};
+  return {
+      .name = std::move(name),
+      .description = std::move(description),
+      .family = "engine",
+      .fixed_step = true,
+      .uses_contact_law = springs,
+      .needs =
+          springs
+              ? "spheres on a line (SphereLine), an impulse map and normal impulses, with linear penalty laws"
+              : "spheres on a line (SphereLine), an impulse map and normal impulses",
+      .can_run = springs ? can_run_engine_spring : can_run_engine,
+      .run = std::move(run)};
 }
 
 std::vector<MethodInfo> engine_methods() {
