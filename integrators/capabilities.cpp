@@ -42,6 +42,14 @@ bool has_normal_impulses(const Dynamics& scene) {
          dynamic_cast<const ContactGeometry*>(&scene);
 }
 
+bool has_linear_laws(const Dynamics& scene) {
+  if (!has_normal_impulses(scene)) return false;
+  const auto& normal = dynamic_cast<const NormalImpulses&>(scene);
+  for (std::size_t i = 0; i < scene.contact_count(); ++i)
+    if (!(normal.linear_law(i).k > 0)) return false;
+  return true;
+}
+
 const NormalImpulses& normal_impulses(const Dynamics& scene, std::string_view method) {
   if (const auto* m = dynamic_cast<const NormalImpulses*>(&scene)) return *m;
   throw std::invalid_argument(fmt::format(

@@ -19,14 +19,6 @@ namespace contact {
 
 namespace {
 
-bool has_linear_laws(const Dynamics& s) {
-  if (!has_normal_impulses(s)) return false;
-  const auto& n = dynamic_cast<const NormalImpulses&>(s);
-  for (std::size_t i = 0; i < s.contact_count(); ++i)
-    if (!(n.linear_law(i).k > 0)) return false;
-  return true;
-}
-
 RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) {
   const ContactGeometry& geo = contact_geometry(scene);
   const NormalImpulses& normal = normal_impulses(scene, m.name);

@@ -31,13 +31,7 @@ bool can_run_engine(const Dynamics& s) {
 }
 
 // A spring setting gives the engine the scene's linear law: every contact must have one.
-bool can_run_engine_spring(const Dynamics& s) {
-  if (!can_run_engine(s)) return false;
-  const auto& normal = dynamic_cast<const NormalImpulses&>(s);
-  for (std::size_t i = 0; i < s.contact_count(); ++i)
-    if (!(normal.linear_law(i).k > 0)) return false;
-  return true;
-}
+bool can_run_engine_spring(const Dynamics& s) { return can_run_engine(s) && has_linear_laws(s); }
 
 EngineScene engine_scene(const Dynamics& scene, double dt) {
   const auto* line = sphere_line_of(scene);

@@ -18,6 +18,9 @@ bool has_impulse_map(const Dynamics& scene);
 const ImpulseMap& impulse_map(const Dynamics& scene, std::string_view method);
 // Whether the scene offers normal impulses of any size (time-stepping solvers).
 bool has_normal_impulses(const Dynamics& scene);
+// Whether it offers normal impulses and every contact's penalty law is linear (a spring to match:
+// XPBD's compliance, an engine's spring setting).
+bool has_linear_laws(const Dynamics& scene);
 // Its normal impulses; throws std::invalid_argument naming `method` and the scene when it has none.
 const NormalImpulses& normal_impulses(const Dynamics& scene, std::string_view method);
 
