@@ -209,20 +209,29 @@ int main(int argc, char** argv) try {
                who_meets.empty() ? std::string("none") : fmt::format("{}", fmt::join(who_meets, ", ")));
   }
   // Five apexes of the undamped ball at k = 1e6 within 1e-8 m in at most 500 right-hand sides.
+  // The default (cvode-bdf) is judged at the loosest tolerance where it reaches 1e-8.
   std::vector<std::string> meets;
-  std::string bdf = "cvode-bdf reaches 1e-8 at no tolerance tried";
+  double bdf_rhs = std::nan("");
+  long bdf_rtol = 0;
   for (const auto& c : cases) {
     if (c.family != "ApexTarget" || !(num(c.median, "apex_error_m") <= 1e-8)) continue;
     const double rhs = num(c.median, "rhs_evals");
-    if (c.variant == "cvode-bdf" && bdf.rfind("cvode-bdf reaches 1e-8 at no", 0) == 0)
-      bdf = fmt::format("cvode-bdf (the default) first reaches it at rtol 1e-{} with {:.0f} rhs", c.arg, rhs);
+    if (c.variant == "cvode-bdf" && std::isnan(bdf_rhs)) {
+      bdf_rhs = rhs;
+      bdf_rtol = c.arg;
+    }
     if (rhs <= 500) meets.push_back(fmt::format("{} at rtol 1e-{} ({:.0f} rhs)", c.variant, c.arg, rhs));
   }
+  const std::string bdf =
+      std::isnan(bdf_rhs)
+          ? std::string("cvode-bdf reaches 1e-8 at no tolerance tried")
+          : fmt::format("cvode-bdf (the default) first reaches it at rtol 1e-{} with {:.0f} rhs", bdf_rtol,
+                        bdf_rhs);
   fmt::print(
       "- k = 1e6, five apexes within 1e-8 m in <= 500 rhs evaluations by the default method: {}; within "
       "500 rhs: {}: {}\n",
       bdf, meets.empty() ? std::string("none") : fmt::format("{}", fmt::join(meets, "; ")),
-      verdict(bdf.find(" rhs") != std::string::npos && std::stod(bdf.substr(bdf.rfind("with ") + 5)) <= 500));
+      verdict(bdf_rhs <= 500));
   if (const Case* e = find("ExactBounces", "", 0)) {
     const double rate = num(e->median, "impacts_per_s");
     fmt::print("- event-driven closed form: {:.3g} impacts per second (median; target >= 1e7): {}\n", rate,

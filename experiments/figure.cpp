@@ -4,7 +4,6 @@
 
 #include "process.hpp"
 
-#include <unistd.h>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -46,11 +45,7 @@ std::string logy(const std::string& ylabel) {
 void render(const Figure& f, OutputSet& out) {
   throw_if_interrupted();
   // A private scratch folder (mkdtemp: unique, not guessable) removed however render() ends.
-  std::string pattern = (fs::temp_directory_path() / "contact_figure_XXXXXX").string();
-  if (::mkdtemp(pattern.data()) == nullptr)
-    throw std::runtime_error(
-        fmt::format("cannot create a scratch folder in {}", fs::temp_directory_path().string()));
-  const ScratchDir scratch{pattern};
+  const ScratchDir scratch{make_scratch_dir("contact_figure")};
   const fs::path& dir = scratch.path;
   std::ofstream(dir / "data.csv") << f.data;
   // One gnuplot run draws both pictures, the script once per terminal (a multiplot cannot be

@@ -55,6 +55,14 @@ std::string sibling_name(const fs::path& dir, const char* what) {
 
 }  // namespace
 
+fs::path make_scratch_dir(const std::string& stem) {
+  std::string pattern = (fs::temp_directory_path() / (stem + "_XXXXXX")).string();
+  if (::mkdtemp(pattern.data()) == nullptr)
+    throw std::runtime_error(
+        fmt::format("cannot create a scratch folder in {}", fs::temp_directory_path().string()));
+  return pattern;
+}
+
 ScratchDir::~ScratchDir() {
   std::error_code ec;
   if (!path.empty()) fs::remove_all(path, ec);

@@ -21,6 +21,10 @@ struct ScratchDir {
   ~ScratchDir();
 };
 
+// A new private folder in the temporary directory (mkdtemp: unique, not guessable), named
+// STEM_XXXXXX; throws std::runtime_error when it cannot be made. Own it with a ScratchDir.
+std::filesystem::path make_scratch_dir(const std::string& stem);
+
 class OutputSet {
  public:
   void add(const std::string& name, std::string content) { files_[name] = std::move(content); }

@@ -88,6 +88,11 @@ std::vector<WorkJob> work_precision_jobs(const std::vector<Problem>& problems,
   return jobs;
 }
 
+double first_apex_error(const BallDropParams& p, const RunResult& r) {
+  if (!r.ok() || r.apexes.empty()) return NAN;
+  return std::abs(r.apexes.front().gap - RigidBounces(p.h0, p.v0, p.g, p.e).apex_height(1));
+}
+
 std::vector<ScoredScene> engine_scenes(double k) {
   auto velocities = [](std::function<double(Eigen::Index, Eigen::Index)> exact) {
     return [exact](const RunResult& r, bool) {
@@ -99,34 +104,36 @@ std::vector<ScoredScene> engine_scenes(double k) {
     };
   };
   const auto last_ball = velocities([](Eigen::Index b, Eigen::Index n) { return b + 1 == n ? 1.0 : 0.0; });
-  const double m = 0.1, g = 9.81, n = 4;
+  const double m = 0.1, g = 9.81, n = 4, e_drop = 0.8, e_pair = 0.8;
+  const BallDropParams drop{.m = 1.0, .g = g, .h0 = 1.0, .v0 = 0.0, .e = e_drop};
   return {{"drop",
            "ball-drop",
            "|first apex - e^2 h0| [m]",
-           {{"e", 0.8}, {"k", k}},
+           {{"e", drop.e}, {"g", drop.g}, {"h0", drop.h0}, {"v0", drop.v0}, {"m", drop.m}, {"k", k}},
            3.0,
-           1.8 * std::sqrt(2 / 9.81),  // the fall from 1 m, then e V / g up
-           [](const RunResult& r, bool) {
-             return r.apexes.empty() ? NAN : std::abs(r.apexes.front().gap - 0.64);
-           }},
+           RigidBounces(drop.h0, drop.v0, drop.g, drop.e).apex_time(1),
+           [drop](const RunResult& r, bool) { return first_apex_error(drop, r); }},
           {"head-on",
            "ball-chain",
            "max |v - exact| [m/s]",
-           {{"n", 2}, {"e", 0.8}, {"approach", 1e-3}, {"k", k}},
+           {{"n", 2}, {"e", e_pair}, {"v0", 1.0}, {"approach", 1e-3}, {"k", k}},
            0.05,
            NAN,
-           velocities([](Eigen::Index b, Eigen::Index) { return b == 0 ? 0.1 : 0.9; })},
+           // Equal masses, striker at 1 m/s: (1 - e) / 2 and (1 + e) / 2.
+           velocities([e_pair](Eigen::Index b, Eigen::Index) {
+             return b == 0 ? (1 - e_pair) / 2 : (1 + e_pair) / 2;
+           })},
           {"cradle-1mm",
            "ball-chain",
            "max |v - sequential| [m/s]",
-           {{"n", 5}, {"e", 1}, {"spacing", 1e-3}, {"k", k}},
+           {{"n", 5}, {"e", 1}, {"v0", 1.0}, {"spacing", 1e-3}, {"k", k}},
            0.05,
            NAN,
            last_ball},
           {"cradle-0",
            "ball-chain",
            "max |v - sequential| [m/s]",
-           {{"n", 5}, {"e", 1}, {"spacing", 0}, {"k", k}},
+           {{"n", 5}, {"e", 1}, {"v0", 1.0}, {"spacing", 0}, {"k", k}},
            0.05,
            NAN,
            last_ball},

@@ -5,6 +5,7 @@
 // solution (penalty methods) or the rigid limit (impulses).
 #include "contact_ode/integrators/method_registry.hpp"
 #include "contact_ode/integrators/run_result.hpp"
+#include "contact_ode/models/ball_drop.hpp"
 #include "contact_ode/models/mechanical_system.hpp"
 #include "contact_ode/models/parameters.hpp"
 
@@ -47,6 +48,10 @@ struct WorkJob {
 std::vector<WorkJob> work_precision_jobs(const std::vector<Problem>& problems,
                                          const std::vector<std::string>& integrators,
                                          const std::vector<double>& tols, long halvings);
+
+// A ball drop's first apex against the rigid one, |apex - e^2 h0| for a ball dropped at rest
+// (RigidBounces in general) [m]; NaN when the run failed or did not bounce.
+double first_apex_error(const BallDropParams& p, const RunResult& r);
 
 // The scenes the engines are compared on (experiments/engines.cpp), each scored against its
 // exact rigid answer:

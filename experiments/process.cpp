@@ -17,6 +17,7 @@
 #include <fstream>
 #include <mutex>
 #include <sstream>
+#include <system_error>
 #include <thread>
 
 extern char** environ;
@@ -134,7 +135,13 @@ void run_parallel(std::size_t count, long jobs, const std::function<void(std::si
     }
   };
   std::vector<std::thread> threads;
-  for (long j = 1; j < std::min<long>(jobs, static_cast<long>(count)); ++j) threads.emplace_back(worker);
+  for (long j = 1; j < std::min<long>(jobs, static_cast<long>(count)); ++j) {
+    try {
+      threads.emplace_back(worker);
+    } catch (const std::system_error&) {  // no more threads to be had: the ones started do the rest
+      break;
+    }
+  }
   worker();
   for (auto& t : threads) t.join();
   if (failure) std::rethrow_exception(failure);

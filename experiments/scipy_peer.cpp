@@ -1,58 +1,31 @@
 #include "scipy_peer.hpp"
 
+#include "output.hpp"
 #include "process.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
-#include <unistd.h>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
 namespace contact {
 
-namespace {
-
-std::string read_all(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// The scratch log of one child run, removed when done.
-class ScratchFile {
- public:
-  explicit ScratchFile(const std::string& stem)
-      : path_(std::filesystem::temp_directory_path() / fmt::format("{}-{}.log", stem, ::getpid())) {}
-  ~ScratchFile() {
-    std::error_code ignored;
-    std::filesystem::remove(path_, ignored);
-  }
-  ScratchFile(const ScratchFile&) = delete;
-  ScratchFile& operator=(const ScratchFile&) = delete;
-  const std::filesystem::path& path() const { return path_; }
-
- private:
-  std::filesystem::path path_;
-};
-
-}  // namespace
-
 std::string scipy_peer_missing() {
   if (!std::filesystem::exists(CONTACT_ODE_PYTHON_EXE))
     return fmt::format("{} (python3)", CONTACT_ODE_PYTHON_EXE);
-  ScratchFile log("contact-ode-scipy-check");
-  if (run_process({CONTACT_ODE_PYTHON_EXE, "-c", "import numpy, scipy.integrate"}, {}, log.path()) != 0)
+  const ScratchDir scratch{make_scratch_dir("contact_scipy")};
+  if (run_process({CONTACT_ODE_PYTHON_EXE, "-c", "import numpy, scipy.integrate"}, {},
+                  scratch.path / "log") != 0)
     return "SciPy for " CONTACT_ODE_PYTHON_EXE " (python3-scipy)";
   return "";
 }
 
 std::vector<ScipyRun> run_scipy_peer(const ScipyDrop& d) {
-  ScratchFile log("contact-ode-scipy");
+  const ScratchDir scratch{make_scratch_dir("contact_scipy")};
+  const std::filesystem::path log = scratch.path / "log";
   std::vector<std::string> argv = {CONTACT_ODE_PYTHON_EXE,
                                    CONTACT_ODE_SCIPY_PEER,
                                    "--methods",
@@ -69,8 +42,8 @@ std::vector<ScipyRun> run_scipy_peer(const ScipyDrop& d) {
                                     {"--t-end", d.t_end},
                                     {"--repeats", static_cast<double>(d.repeats)}})
     argv.insert(argv.end(), {flag, fmt::format("{}", value)});
-  const int code = run_process(argv, {}, log.path());
-  const std::string out = read_all(log.path());
+  const int code = run_process(argv, {}, log);
+  const std::string out = read_text(log);
   if (code != 0) throw std::runtime_error(fmt::format("the SciPy peer failed (exit {}):\n{}", code, out));
   std::vector<ScipyRun> runs;
   std::istringstream lines(out);

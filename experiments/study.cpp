@@ -14,12 +14,10 @@
 #include "study_manifest.hpp"
 
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <mutex>
 #include <thread>
@@ -76,11 +74,8 @@ int program(int argc, char** argv) {
       queue.push_back(index);
   }
   const bool quiet = jobs > 1;  // children's output to logs, printed whole
-  std::string pattern = (fs::temp_directory_path() / "contact_study_XXXXXX").string();
-  if (quiet && ::mkdtemp(pattern.data()) == nullptr)
-    throw std::runtime_error(
-        fmt::format("cannot create a scratch folder in {}", fs::temp_directory_path().string()));
-  const ScratchDir logs_dir{quiet ? fs::path(pattern) : fs::path()};  // removed however the study ends
+  const ScratchDir logs_dir{quiet ? make_scratch_dir("contact_study")
+                                  : fs::path()};  // removed however it ends
   const fs::path& logs = logs_dir.path;
   std::mutex lock;  // guards `mine` and the terminal
   run_parallel(queue.size(), jobs, [&](std::size_t q) {

@@ -92,9 +92,8 @@ class BulletWorld final : public EngineWorld {
   // skipped (farther than the processing threshold) keeps the impulse of its last solve.
   void impulses(std::vector<double>& impulse) const override {
     std::fill(impulse.begin(), impulse.end(), 0.0);
-    auto& dispatcher = const_cast<btCollisionDispatcher&>(dispatcher_);
-    for (int k = 0; k < dispatcher.getNumManifolds(); ++k) {
-      const btPersistentManifold* m = dispatcher.getManifoldByIndexInternal(k);
+    for (int k = 0; k < dispatcher_.getNumManifolds(); ++k) {
+      const btPersistentManifold* m = dispatcher_.getManifoldByIndexInternal(k);
       const int c = scene_.contact_between(m->getBody0()->getUserIndex(), m->getBody1()->getUserIndex());
       if (c < 0) continue;
       for (int p = 0; p < m->getNumContacts(); ++p)
@@ -106,7 +105,7 @@ class BulletWorld final : public EngineWorld {
  private:
   EngineScene scene_;
   btDefaultCollisionConfiguration configuration_;
-  btCollisionDispatcher dispatcher_;
+  mutable btCollisionDispatcher dispatcher_;  // its manifold accessor is not const
   btDbvtBroadphase broadphase_;
   btSequentialImpulseConstraintSolver solver_;
   btDiscreteDynamicsWorld world_;

@@ -63,13 +63,7 @@ EngineScene engine_scene(const Dynamics& scene, double dt) {
 MethodInfo engine_method(std::string name, std::string description, bool springs, EngineFactory make) {
   auto run = [springs, make = std::move(make)](const Dynamics& scene, const Method& m,
                                                const SolveOptions& span) {
-    const EngineScene es = engine_scene(scene, m.dt);
-    if (springs)
-      for (const LinearLaw& law : es.law)
-        if (!(law.k > 0))
-          throw std::invalid_argument(
-              fmt::format("method '{}' models the scene's penalty law, and scene '{}' has no linear one",
-                          m.name, scene.name()));
+    const EngineScene es = engine_scene(scene, m.dt);  // solve() has checked can_run
     std::unique_ptr<EngineWorld> world = make(es);
     const ContactGeometry& geo = contact_geometry(scene);
     const std::size_t nc = scene.contact_count();
@@ -126,7 +120,7 @@ std::vector<MethodInfo> engine_methods() {
   auto add = [&all](std::vector<MethodInfo> entries) {
     all.insert(all.end(), entries.begin(), entries.end());
   };
-  // Each engine is optional at configure time (integrators/engines/CMakeLists.txt).
+  // Each engine is optional at configure time (integrators/engines/engines.cmake).
 #ifdef CONTACT_ODE_WITH_MUJOCO
   add(mujoco_methods());
 #endif

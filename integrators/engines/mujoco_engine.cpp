@@ -78,6 +78,7 @@ class MujocoWorld final : public EngineWorld {
     if (mj_makeEmptyFileVFS(vfs.get(), "scene.xml", static_cast<int>(xml.size())) != 0)
       throw std::runtime_error("MuJoCo: cannot make a file in its virtual file system");
     const int file = mj_findFileVFS(vfs.get(), "scene.xml");
+    if (file < 0) throw std::runtime_error("MuJoCo: the file just made is not in its virtual file system");
     std::memcpy(vfs->filedata[file], xml.data(), xml.size());
     char error[1000] = "";
     model_.reset(mj_loadXML("scene.xml", vfs.get(), error, sizeof error));

@@ -22,6 +22,7 @@
 #include <ode/ode.h>
 
 #include <cstdarg>
+#include <cstdint>
 #include <cstdio>
 #include <string>
 
@@ -91,6 +92,7 @@ class OdeWorld final : public EngineWorld {
       dBodySetAutoDisableFlag(body, 0);
       dGeomID geom = dCreateSphere(space_, l.radius);
       dGeomSetBody(geom, body);
+      dGeomSetData(geom, reinterpret_cast<void*>(static_cast<std::intptr_t>(b + 1)));
       bodies_.push_back(body);
     }
     feedback_.reserve(s.restitution.size());  // at most one joint per contact and step
@@ -145,12 +147,9 @@ class OdeWorld final : public EngineWorld {
     dReal normal[3];
   };
 
-  int sphere_of(dGeomID g) const {
-    const dBodyID body = dGeomGetBody(g);
-    if (!body) return -1;
-    for (std::size_t b = 0; b < bodies_.size(); ++b)
-      if (bodies_[b] == body) return static_cast<int>(b);
-    return -1;
+  // A sphere geom carries its index + 1 as its data; the floor's plane carries none (-1).
+  static int sphere_of(dGeomID g) {
+    return static_cast<int>(reinterpret_cast<std::intptr_t>(dGeomGetData(g))) - 1;
   }
 
   static void near(void* self, dGeomID g1, dGeomID g2) { static_cast<OdeWorld*>(self)->collide(g1, g2); }
