@@ -2,11 +2,13 @@
 
 #include "contact_ode/integrators/run_result.hpp"
 #include "process.hpp"
+#include "ranks.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include <chrono>
+#include <cstdint>
 #include <iostream>
 #include <stdexcept>
 
@@ -19,7 +21,10 @@ Experiment::Experiment(std::string name, std::string description, std::string de
   add("--out", out_, "output directory (replaced whole when the run succeeds)");
 }
 
+Experiment::~Experiment() = default;
+
 int Experiment::run_body(int argc, char** argv, const std::function<void(OutputSet&)>& body) {
+  ranks_ = std::make_unique<Ranks>(argc, argv);
   if (const int code = parse(argc, argv); code >= 0) return code;
   if (const auto err = check_output_dir(out_); !err.empty()) {
     std::cerr << program() << ": " << err << "\n";
@@ -27,7 +32,8 @@ int Experiment::run_body(int argc, char** argv, const std::function<void(OutputS
   }
   const auto start = std::chrono::steady_clock::now();
   OutputSet outputs;
-  body(outputs);  // exceptions go to guarded_main: exit 2 for bad input, 1 otherwise
+  body(outputs);                      // exceptions go to guarded_main: exit 2 for bad input, 1 otherwise
+  if (ranks_->rank() != 0) return 0;  // rank 0 writes
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const nlohmann::json meta = {
       {"experiment", program()},
@@ -36,6 +42,7 @@ int Experiment::run_body(int argc, char** argv, const std::function<void(OutputS
       {"git_revision", git_revision()},
       {"libraries", nlohmann::json::parse(library_versions_json())},
       {"wall_time_s", wall},
+      {"mpi_ranks", ranks_->size()},
   };
   outputs.add("meta.json", meta.dump(2) + "\n");
   try {
@@ -46,6 +53,50 @@ int Experiment::run_body(int argc, char** argv, const std::function<void(OutputS
   }
   fmt::print("\nwrote {} files to {} ({:.2f} s)\n", outputs.files().size(), out_, wall);
   return 0;
+}
+
+std::optional<std::vector<nlohmann::json>> Experiment::share(
+    std::size_t count, const std::function<nlohmann::json(std::size_t)>& run_case) {
+  const auto size = static_cast<std::size_t>(ranks_->size()), rank = static_cast<std::size_t>(ranks_->rank());
+  // This rank's cases as [[i, result], ...]; a failure ends its share as {"index", "error", "bad_input"}.
+  nlohmann::json mine = nlohmann::json::array();
+  for (std::size_t i = rank; i < count; i += size) {
+    try {
+      mine.push_back({i, run_case(i)});
+    } catch (const std::exception& e) {
+      if (size == 1) throw;
+      mine.push_back({{"index", i},
+                      {"error", e.what()},
+                      {"bad_input", dynamic_cast<const std::invalid_argument*>(&e) != nullptr}});
+      break;
+    }
+  }
+  if (size == 1) {
+    std::vector<nlohmann::json> results;
+    for (auto& item : mine) results.push_back(std::move(item[1]));
+    return results;
+  }
+  const std::vector<std::uint8_t> bytes = nlohmann::json::to_cbor(mine);
+  const auto parts = ranks_->gather(std::string(bytes.begin(), bytes.end()));
+  if (rank != 0) return std::nullopt;
+  std::vector<nlohmann::json> results(count);
+  const nlohmann::json* first_failure = nullptr;
+  std::vector<nlohmann::json> all;
+  for (const auto& part : parts) all.push_back(nlohmann::json::from_cbor(part.begin(), part.end()));
+  for (const auto& share : all)
+    for (const auto& item : share) {
+      if (item.is_object()) {
+        if (!first_failure || item["index"] < (*first_failure)["index"]) first_failure = &item;
+      } else {
+        results[item[0].get<std::size_t>()] = item[1];
+      }
+    }
+  if (first_failure) {
+    const auto what = (*first_failure)["error"].get<std::string>();
+    if ((*first_failure)["bad_input"].get<bool>()) throw std::invalid_argument(what);
+    throw std::runtime_error(what);
+  }
+  return results;
 }
 
 namespace {

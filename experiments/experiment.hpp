@@ -5,23 +5,31 @@
 //            receive results before any work, starts the clock, runs the body, then writes the
 //            body's outputs with meta.json (options, command line, git revision, libraries, wall
 //            time) by a staged swap, and prints where.
+// Under mpirun (or srun) every rank runs the body and rank 0 alone writes; a sweep deals its
+// cases out over the ranks with share(), and only rank 0 goes on to tables and figures.
 // The body reports bad input by throwing std::invalid_argument (exit 2, nothing written) and a
 // failed run by throwing anything else (exit 1, nothing written); require() turns a RunResult
 // that failed into such an exception, naming the run.
 #include "cli.hpp"
 #include "output.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include <functional>
+#include <memory>
+#include <optional>
 #include <string>
 #include <type_traits>
 
 namespace contact {
 
 struct RunResult;
+class Ranks;
 
 class Experiment : public cli::Options {
  public:
   Experiment(std::string name, std::string description, std::string default_out);
+  ~Experiment();
   const std::string& out() const { return out_; }
   // The exit code: 0, 1 (run or write failed), 2 (bad input). The body returns nothing: it
   // reports failure by throwing, so that no exit code can be dropped on the way.
@@ -31,10 +39,19 @@ class Experiment : public cli::Options {
                   "an experiment's body reports failure by throwing, not by returning a code");
     return run_body(argc, argv, std::function<void(OutputSet&)>(body));
   }
+  // A sweep's cases 0 .. count-1: run_case(i) for each, its result as JSON (NaN and infinities
+  // survive: the ranks exchange CBOR). Serially without mpirun; under mpirun case i runs on rank
+  // i mod size. Returns every result in case order on rank 0, and std::nullopt on the others:
+  // their share is done and the body returns. A case's exception is rethrown on rank 0 (the
+  // first by case index; std::invalid_argument stays bad input) once every rank has finished.
+  // One call per run, from the body.
+  std::optional<std::vector<nlohmann::json>> share(
+      std::size_t count, const std::function<nlohmann::json(std::size_t)>& run_case);
 
  private:
   int run_body(int argc, char** argv, const std::function<void(OutputSet& outputs)>& body);
   std::string out_;
+  std::unique_ptr<Ranks> ranks_;
 };
 
 // Throws std::runtime_error "<what>: <status> at t = ... s: <solver message>" unless r succeeded.

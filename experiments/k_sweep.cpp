@@ -8,10 +8,10 @@
 // 2 zeta / w and 2 (sqrt(zeta^2 + 1) - zeta) / w, analysis/contact_advisor.hpp); beside them the
 // closed forms (Hooke with gravity, exact; Kelvin–Voigt without gravity) and the exponents of
 // penetration and duration against k fitted by least squares in log-log (GSL) over k >= 1e4,
-// where gravity's share g / (w V) is below 2 %.
-// Outputs in --out (default results/k_sweep): k_sweep.{csv,md,tex}, exponents.{csv,md,tex},
-// penetration.{png,pdf,gp}, duration.{png,pdf,gp}, cost.{png,pdf,gp}, stable_dt.{png,pdf,gp},
-// meta.json. Exit codes: 0, 1 solver failure, 2 bad input.
+// where gravity's share g / (w V) is below 2 %. Under mpirun the (law, k) cases are dealt over ranks.
+// Outputs in --out (default results/k_sweep): k_sweep and exponents (.csv/.md/.tex), figures
+// penetration, duration, cost, stable_dt (.png/.pdf/.gp), meta.json. Exit codes: 0, 1 solver failure, 2 bad
+// input.
 #include "contact_ode/analysis/fit.hpp"
 #include "contact_ode/analysis/references.hpp"
 #include "contact_ode/analysis/table.hpp"
@@ -20,7 +20,6 @@
 #include "contact_ode/models/law_registry.hpp"
 #include "experiment.hpp"
 #include "figure.hpp"
-#include "output.hpp"
 #include "process.hpp"
 #include "progress.hpp"
 
@@ -36,8 +35,7 @@ namespace {
 // The linear laws, whose penetration and duration have closed forms against k.
 const std::vector<std::string> kLaws = {"hooke", "kelvin-voigt", "kelvin-voigt-clamped"};
 
-// A gnuplot log-log figure of column `y` (and its closed form `y_ref` where given) against k,
-// one curve per law; the data are the k_sweep CSV.
+// A log-log figure of data column `ycol` (and its closed form `ref_col`, if > 0) against k, per law.
 Figure loglog(const std::string& name, const std::string& ylabel, int ycol, int ref_col) {
   std::string plot = fmt::format(
       "set logscale xy\nset format x '10^{{%L}}'\nset xlabel 'k [N/m]'\nset ylabel '{}'\nset format y "
@@ -60,8 +58,7 @@ int program(int argc, char** argv) {
   double e = 0.8, k_min = 1e2, k_max = 1e10;
   long per_decade = 3;
   Experiment app("k_sweep",
-                 "The effect of the spring constant on a penalty contact: penetration, duration, "
-                 "restitution, energy, cost and stable steps.",
+                 "What k does to a penalty contact: penetration, duration, restitution, cost, stable steps.",
                  "results/k_sweep");
   app.add("--e", e, "target restitution of the Kelvin-Voigt laws", cli::real_in(0, 1, true, false));
   app.add("--k-min", k_min, "smallest k [N/m]", cli::positive());
@@ -73,50 +70,56 @@ int program(int argc, char** argv) {
           "--k-max: value '{:g}' is below --k-min = {:g}; accepted range [k-min, inf)", k_max, k_min));
     const double m = 1.0, g = 9.81, h0 = 1.0, V = std::sqrt(2 * g * h0);
     const std::vector<double> grid = log_grid(k_min, k_max, per_decade);
-
     Table table({"k_N_per_m", "law", "penetration_m", "closed_form_penetration_m", "duration_s",
                  "closed_form_duration_s", "restitution", "energy_after_first_bounce_rel",
                  "steps_per_contact", "rhs_per_contact", "jac_per_contact", "newton_per_contact",
                  "failed_steps", "euler_max_dt_s", "symplectic_max_dt_s"});
     std::string data;  // for the figures: k, law index, the numeric columns in table order
     Progress progress("k_sweep", kLaws.size() * grid.size());
-    std::map<std::string, std::vector<double>> fit_k, fit_pen, fit_dur;
-    for (std::size_t li = 0; li < kLaws.size(); ++li) {
-      for (const double k : grid) {
-        const std::string& law = kLaws[li];
-        progress.step(fmt::format("{} k = {:.3g}", law, k));
-        Method penalty{.name = "penalty"};
-        penalty.integrator.rtol = 1e-10;
-        penalty.integrator.atol = 1e-12;
-        penalty.integrator.max_steps = 1000000;
-        // The first contact (0.45 s, lasting up to 0.37 s at k = 1e2) and the first apex.
-        const BallDrop model({m, g, h0, 0.0, e, make_law(law, {.k = k, .m = m, .e = e})});
-        const RunResult r = require(solve(model, penalty, {.t_end = 1.6, .sample_dt = 1.6}),
-                                    fmt::format("{} at k = {:g}", law, k));
-        if (r.contacts.empty() || !r.contacts[0].closed() || r.apexes.empty())
-          throw std::runtime_error(fmt::format("{} at k = {:g}: no complete first bounce", law, k));
-        const auto& c = r.contacts[0];
-        const double contacts = static_cast<double>(r.contacts.size());
-        // Closed forms: Hooke exactly (with gravity); Kelvin–Voigt in the gravity-free limit.
-        const SpringContact ref = linear_law_first_contact(law, m, k, e, V, g);
-        const double zeta = law_info(law).damped ? damping_ratio_for_restitution(e) : 0.0;
-        const double w = std::sqrt(k / m);
-        const double euler_dt = 2 * zeta / w, symplectic_dt = 2 * (std::sqrt(zeta * zeta + 1) - zeta) / w;
-        const double energy_left = r.apexes[0].energy / r.energy0;
-        const auto& st = r.stats;
-        const auto per = [&](long count) { return static_cast<double>(count) / contacts; };
-        table.add_row({k, kLaws[li], c.max_penetration, ref.max_penetration, c.duration(), ref.duration,
-                       c.restitution(), energy_left, per(st.steps), per(st.rhs_evals), per(st.jac_evals),
-                       per(st.newton_iters), st.failed_steps, euler_dt, symplectic_dt});
-        data += fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", k, li, c.max_penetration,
-                            ref.max_penetration, c.duration(), ref.duration, per(st.steps), per(st.rhs_evals),
-                            euler_dt > 0 ? euler_dt : NAN, symplectic_dt, c.restitution());
-        if (k >= 1e4) {
-          fit_k[kLaws[li]].push_back(k);
-          fit_pen[kLaws[li]].push_back(c.max_penetration);
-          fit_dur[kLaws[li]].push_back(c.duration());
-        }
-      }
+    const auto cases = app.share(kLaws.size() * grid.size(), [&](std::size_t i) -> nlohmann::json {
+      const std::string& law = kLaws[i / grid.size()];
+      const double k = grid[i % grid.size()];
+      progress.step(fmt::format("{} k = {:.3g}", law, k));
+      Method penalty{.name = "penalty"};
+      penalty.integrator.rtol = 1e-10;
+      penalty.integrator.atol = 1e-12;
+      penalty.integrator.max_steps = 1000000;
+      // The first contact (0.45 s, lasting up to 0.37 s at k = 1e2) and the first apex.
+      const BallDrop model({m, g, h0, 0.0, e, make_law(law, {.k = k, .m = m, .e = e})});
+      const RunResult r = require(solve(model, penalty, {.t_end = 1.6, .sample_dt = 1.6}),
+                                  fmt::format("{} at k = {:g}", law, k));
+      if (r.contacts.empty() || !r.contacts[0].closed() || r.apexes.empty())
+        throw std::runtime_error(fmt::format("{} at k = {:g}: no complete first bounce", law, k));
+      const auto& c = r.contacts[0];
+      const double n = static_cast<double>(r.contacts.size());
+      const auto per = [n](long count) { return static_cast<double>(count) / n; };
+      return {{"penetration", c.max_penetration}, {"duration", c.duration()},
+              {"restitution", c.restitution()},   {"energy_left", r.apexes[0].energy / r.energy0},
+              {"steps", per(r.stats.steps)},      {"rhs", per(r.stats.rhs_evals)},
+              {"jac", per(r.stats.jac_evals)},    {"newton", per(r.stats.newton_iters)},
+              {"failed", r.stats.failed_steps}};
+    });
+    if (!cases) return;  // another MPI rank: its share is done
+    std::map<std::string, std::vector<double>> fit_k, fit_pen, fit_dur;  // k >= 1e4, per law
+    for (std::size_t i = 0; i < cases->size(); ++i) {
+      const std::size_t li = i / grid.size();
+      const std::string& law = kLaws[li];
+      const double k = grid[i % grid.size()];
+      const auto get = [&c = (*cases)[i]](const char* key) { return c[key].get<double>(); };
+      // Closed forms: Hooke exactly (with gravity); Kelvin–Voigt in the gravity-free limit.
+      const SpringContact ref = linear_law_first_contact(law, m, k, e, V, g);
+      const double zeta = law_info(law).damped ? damping_ratio_for_restitution(e) : 0.0, w = std::sqrt(k / m);
+      const double euler_dt = 2 * zeta / w, symplectic_dt = 2 * (std::sqrt(zeta * zeta + 1) - zeta) / w;
+      table.add_row({k, law, get("penetration"), ref.max_penetration, get("duration"), ref.duration,
+                     get("restitution"), get("energy_left"), get("steps"), get("rhs"), get("jac"),
+                     get("newton"), static_cast<long>(get("failed")), euler_dt, symplectic_dt});
+      data += fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", k, li, get("penetration"),
+                          ref.max_penetration, get("duration"), ref.duration, get("steps"), get("rhs"),
+                          euler_dt > 0 ? euler_dt : NAN, symplectic_dt, get("restitution"));
+      if (k < 1e4) continue;
+      fit_k[law].push_back(k);
+      fit_pen[law].push_back(get("penetration"));
+      fit_dur[law].push_back(get("duration"));
     }
     Table exponents({"law", "penetration_exponent", "penetration_exponent_sd", "duration_exponent",
                      "duration_exponent_sd", "expected"});
@@ -128,8 +131,8 @@ int program(int argc, char** argv) {
     }
     files.add_table("k_sweep", table);
     files.add_table("exponents", exponents);
-    // data.csv columns: 1 k, 2 law, 3 pen, 4 pen ref, 5 dur, 6 dur ref, 7 steps/contact, 8 rhs/contact, 9
-    // euler dt, 10 symplectic dt, 11 e
+    // data columns: 1 k, 2 law, 3 pen, 4 ref, 5 dur, 6 ref, 7 steps, 8 rhs, 9 euler dt, 10 symplectic dt, 11
+    // e
     for (Figure f : {loglog("penetration", "maximum penetration [m]", 3, 4),
                      loglog("duration", "contact duration [s]", 5, 6),
                      loglog("cost", "CVODE right-hand sides per contact", 8, 0),

@@ -17,6 +17,7 @@
 #include <fstream>
 #include <mutex>
 #include <sstream>
+#include <string_view>
 #include <system_error>
 #include <thread>
 
@@ -63,6 +64,20 @@ class ChildSlot {
   std::atomic<pid_t>* slot_ = nullptr;
 };
 
+// This process's environment without the variables an MPI launcher sets (mpirun's OMPI_*, the
+// PMI/PMIx of Slurm's srun): a child is a program of its own, not one more of our ranks, and
+// would otherwise try to join this process's MPI job.
+std::vector<char*> environment_for_child() {
+  std::vector<char*> env;
+  for (char** var = environ; *var != nullptr; ++var) {
+    const std::string_view entry(*var);
+    if (!entry.starts_with("OMPI_") && !entry.starts_with("PMI_") && !entry.starts_with("PMIX_"))
+      env.push_back(*var);
+  }
+  env.push_back(nullptr);
+  return env;
+}
+
 }  // namespace
 
 void install_interrupt_handlers() {
@@ -103,7 +118,8 @@ int run_process(const std::vector<std::string>& args, const std::filesystem::pat
       throw std::runtime_error("posix_spawn_file_actions_addopen failed");
   }
   pid_t pid = 0;
-  const int err = posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  std::vector<char*> env = environment_for_child();
+  const int err = posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), env.data());
   if (err != 0) throw std::runtime_error(fmt::format("cannot run {}: {}", args[0], std::strerror(err)));
   int status = 0;
   {

@@ -1,5 +1,6 @@
 // The study under mpirun: two ranks deal the experiments out between them and write what a serial
 // run writes — every CSV the same cell for cell but the wall-time columns, and the same index.
+// A sweeping experiment under mpirun deals its own cases out, and writes what it writes alone.
 #include "cli_fixture.hpp"
 
 #include <set>
@@ -7,14 +8,20 @@
 namespace {
 class StudyMpi : public CliTest {};
 
-// Every CSV under `root`, relative path -> rows with the wall-clock columns left out.
+// As root, Open MPI wants both variables; --oversubscribe: more ranks than cores is fine.
+constexpr const char* kMpirun =
+    "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 " MPIEXEC " --oversubscribe -np ";
+
+// Every CSV under `root`, relative path -> rows with the timing (wall-clock and CPU) columns left out.
 std::map<std::string, std::vector<contact::CsvRecord>> tables(const fs::path& root) {
   std::map<std::string, std::vector<contact::CsvRecord>> out;
   for (const auto& entry : fs::recursive_directory_iterator(root)) {
     if (entry.path().extension() != ".csv") continue;
     auto rows = contact::read_csv(entry.path());
     for (auto& row : rows)
-      std::erase_if(row, [](const auto& cell) { return cell.first.find("wall") != std::string::npos; });
+      std::erase_if(row, [](const auto& cell) {
+        return cell.first.find("wall") != std::string::npos || cell.first.find("cpu") != std::string::npos;
+      });
     out[fs::relative(entry.path(), root).string()] = rows;
   }
   return out;
@@ -25,10 +32,7 @@ TEST_F(StudyMpi, TwoRanksWriteWhatOneProcessWrites) {
   const std::string only = "--tiny --only ball_drop,zeno,k_sweep,contact_laws,method_orders";
   const Outcome serial = run(STUDY_EXE, only + " --out serial");
   ASSERT_EQ(serial.code, 0) << serial.err;
-  // As root, Open MPI wants both variables; --oversubscribe: more ranks than cores is fine.
-  const Outcome mpi =
-      run(STUDY_EXE, only + " --out mpi",
-          "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 " MPIEXEC " --oversubscribe -np 2");
+  const Outcome mpi = run(STUDY_EXE, only + " --out mpi", std::string(kMpirun) + "2");
   ASSERT_EQ(mpi.code, 0) << mpi.err;
   const auto a = tables(dir_ / "serial"), b = tables(dir_ / "mpi");
   ASSERT_GE(a.size(), 10u);
@@ -47,4 +51,42 @@ TEST_F(StudyMpi, TwoRanksWriteWhatOneProcessWrites) {
   };
   EXPECT_EQ(lines(slurp(dir_ / "serial" / "index.md")), lines(slurp(dir_ / "mpi" / "index.md")));
   EXPECT_NE(slurp(dir_ / "mpi" / "study.json").find("\"ranks\": 2"), std::string::npos);
+}
+
+// k_sweep's (law, k) cases and convergence_dt's (integrator, location, step) cases dealt over
+// three ranks (uneven shares): the tables are the serial run's, cell for cell but CPU times, since
+// each case is the same computation wherever it runs; rank 0 alone writes.
+TEST_F(StudyMpi, ASweepsCasesOverRanksGiveTheSerialTables) {
+  const std::vector<std::pair<std::string, std::string>> sweeps = {
+      {K_SWEEP_EXE, "--k-min 1e3 --k-max 1e5"},
+      {CONVERGENCE_DT_EXE, "--integrators rk4,cvode-bdf --halvings 2 --tol-min 1e-5 --heights 2"}};
+  for (const auto& [exe, args] : sweeps) {
+    const std::string name = fs::path(exe).filename().string();
+    const Outcome serial = run(exe, args + " --out " + name + "-serial");
+    ASSERT_EQ(serial.code, 0) << serial.err;
+    const Outcome mpi = run(exe, args + " --out " + name + "-mpi", std::string(kMpirun) + "3");
+    ASSERT_EQ(mpi.code, 0) << mpi.err;
+    const auto a = tables(dir_ / (name + "-serial")), b = tables(dir_ / (name + "-mpi"));
+    ASSERT_GE(a.size(), 2u) << name;
+    EXPECT_EQ(a, b) << name;
+    EXPECT_NE(slurp(dir_ / (name + "-mpi") / "meta.json").find("\"mpi_ranks\": 3"), std::string::npos);
+  }
+}
+
+// A case failing on a rank other than 0 fails the whole run once every rank has finished (no
+// rank waits forever), with the case's message and exit code (1 failure, 2 bad input), and
+// nothing written; without a failure the three ranks' squares arrive in case order.
+TEST_F(StudyMpi, ACaseFailingOnAnotherRankFailsTheRun) {
+  const std::string mpirun = std::string(kMpirun) + "3";
+  const Outcome ok = run(SHARE_PROBE_EXE, "--cases 7 --out ok", mpirun);
+  ASSERT_EQ(ok.code, 0) << ok.err;
+  const auto rows = contact::read_csv(dir_ / "ok" / "squares.csv");
+  ASSERT_EQ(rows.size(), 7u);
+  for (std::size_t i = 0; i < rows.size(); ++i) EXPECT_EQ(std::stod(rows[i].at("square")), double(i * i));
+  for (const auto& [flags, code] : {std::pair{"--fail 4", 1}, {"--fail 5 --bad-input", 2}}) {
+    const Outcome bad = run(SHARE_PROBE_EXE, std::string("--cases 7 --out bad ") + flags, mpirun);
+    EXPECT_EQ(bad.code, code) << flags << bad.err;
+    EXPECT_NE(bad.err.find("failed on purpose"), std::string::npos) << bad.err;
+    EXPECT_FALSE(fs::exists(dir_ / "bad")) << flags;
+  }
 }
