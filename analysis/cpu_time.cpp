@@ -14,17 +14,25 @@ double cpu_seconds() {
 }
 
 CpuTiming time_cpu(const std::function<void()>& f, int repeats) {
-  if (repeats < 1) throw std::invalid_argument("time_cpu: repeats must be >= 1");
+  return time_cpu_within(f, repeats, repeats, 0.0);
+}
+
+CpuTiming time_cpu_within(const std::function<void()>& f, int min_repeats, int max_repeats, double budget_s) {
+  if (min_repeats < 1 || max_repeats < min_repeats)
+    throw std::invalid_argument("time_cpu: repeats must satisfy 1 <= min_repeats <= max_repeats");
   std::vector<double> t;
-  for (int i = 0; i < repeats; ++i) {
+  double used = 0;
+  while (static_cast<int>(t.size()) < min_repeats ||
+         (static_cast<int>(t.size()) < max_repeats && used < budget_s)) {
     const double start = cpu_seconds();
     f();
     t.push_back(cpu_seconds() - start);
+    used += t.back();
   }
   std::sort(t.begin(), t.end());
   const std::size_t n = t.size();
   const double median = n % 2 ? t[n / 2] : 0.5 * (t[n / 2 - 1] + t[n / 2]);
-  return {median, t.front(), t.back(), repeats};
+  return {median, t.front(), t.back(), static_cast<int>(n)};
 }
 
 }  // namespace contact

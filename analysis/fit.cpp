@@ -32,10 +32,10 @@ double observed_order(double h_prev, double err_prev, double h, double err) {
 }
 
 double fitted_order(const std::vector<double>& h, const std::vector<double>& err, double floor,
-                    std::size_t rows) {
+                    std::size_t rows, double ceiling) {
   std::vector<double> x, y;
   for (std::size_t i = 0; i < h.size() && i < err.size(); ++i)
-    if (err[i] > floor) {
+    if (err[i] > floor && err[i] < ceiling) {
       x.push_back(h[i]);
       y.push_back(err[i]);
     }
@@ -46,13 +46,14 @@ double fitted_order(const std::vector<double>& h, const std::vector<double>& err
   return x.size() >= 2 ? fit_power_law(x, y).exponent : std::nan("");
 }
 
-double fitted_order(const std::vector<ConvergencePoint>& points, double floor, std::size_t rows) {
+double fitted_order(const std::vector<ConvergencePoint>& points, double floor, std::size_t rows,
+                    double ceiling) {
   std::vector<double> h, err;
   for (const auto& p : points) {
     h.push_back(p.step);
     err.push_back(p.error);
   }
-  return fitted_order(h, err, floor, rows);
+  return fitted_order(h, err, floor, rows, ceiling);
 }
 
 LineFit fit_line(const std::vector<double>& x, const std::vector<double>& y) {

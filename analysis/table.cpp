@@ -40,7 +40,32 @@ std::string latex_escape(const std::string& s) {
   return out;
 }
 
+// A rendered number as LaTeX: "3.2e-05" becomes $3.2\times10^{-5}$; text is escaped.
+std::string latex_cell(const Table::Cell& c, int digits) {
+  const std::string s = render(c, digits);
+  if (s == "—") return "--";
+  if (!std::holds_alternative<double>(c)) return latex_escape(s);
+  const auto e = s.find('e');
+  if (e == std::string::npos) return s;
+  const int exponent = std::stoi(s.substr(e + 1));
+  const std::string mantissa = s.substr(0, e);
+  return mantissa == "1" ? fmt::format("$10^{{{}}}$", exponent)
+                         : fmt::format("${}\\times10^{{{}}}$", mantissa, exponent);
+}
+
 }  // namespace
+
+void Table::set_latex_header(std::vector<std::string> header) {
+  if (header.size() != columns_.size())
+    throw std::invalid_argument(
+        fmt::format("LaTeX header has {} cells, the table {} columns", header.size(), columns_.size()));
+  for (auto& cell : header) {
+    if (cell.find('\n') == std::string::npos) continue;
+    for (std::size_t nl; (nl = cell.find('\n')) != std::string::npos;) cell.replace(nl, 1, "\\\\");
+    cell = "\\shortstack{" + cell + "}";
+  }
+  latex_header_ = std::move(header);
+}
 
 void Table::add_row(std::vector<Cell> row) {
   if (row.size() != columns_.size())
@@ -89,14 +114,12 @@ std::string Table::to_markdown(int digits) const {
 
 std::string Table::to_latex(int digits) const {
   std::string out = "\\begin{tabular}{" + std::string(columns_.size(), 'r') + "}\n\\toprule\n";
-  auto cell = [&](std::size_t j, const std::string& s) {
-    if (j > 0) out += " & ";
-    out += s == "—" ? std::string("--") : latex_escape(s);
-  };
-  for (std::size_t j = 0; j < columns_.size(); ++j) cell(j, columns_[j]);
+  auto cell = [&](std::size_t j, const std::string& s) { out += (j > 0 ? " & " : "") + s; };
+  for (std::size_t j = 0; j < columns_.size(); ++j)
+    cell(j, latex_header_.empty() ? latex_escape(columns_[j]) : latex_header_[j]);
   out += " \\\\\n\\midrule\n";
   for (const auto& row : rows_) {
-    for (std::size_t j = 0; j < row.size(); ++j) cell(j, render(row[j], digits));
+    for (std::size_t j = 0; j < row.size(); ++j) cell(j, latex_cell(row[j], digits));
     out += " \\\\\n";
   }
   return out + "\\bottomrule\n\\end{tabular}\n";

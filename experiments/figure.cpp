@@ -4,6 +4,7 @@
 
 #include "process.hpp"
 
+#include <array>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -29,6 +30,37 @@ void Series::add(const std::string& rows, const std::string& clause) {
   data_ += rows + "\n\n";
   plot_ += fmt::format("{}'data.csv' index {} {}", count_ ? ", " : "", count_, clause);
   ++count_;
+}
+
+std::string series_style(std::size_t i) {
+  static constexpr std::array<const char*, 10> kColours = {"#4e79a7", "#f28e2b", "#e15759", "#76b7b2",
+                                                           "#59a14f", "#edc948", "#b07aa1", "#ff9da7",
+                                                           "#9c755f", "#000000"};
+  static constexpr std::array<int, 10> kPoints = {1, 2, 4, 6, 8, 10, 12, 3, 5, 7};
+  if (i >= kColours.size()) throw std::invalid_argument(fmt::format("series {}: a panel has at most 10", i));
+  return fmt::format("lc rgb '{}' pt {}", kColours[i], kPoints[i]);
+}
+
+Figure convergence_figure(const std::string& name, const std::string& xlabel, const std::string& ylabel,
+                          const std::vector<NamedPoints>& series, const std::vector<int>& slopes) {
+  Series lines;
+  double x0 = 0, y0 = 0;
+  for (const auto& [title, points] : series) {
+    std::string rows;
+    for (const auto& p : points) {
+      rows += fmt::format("{},{}\n", p.step, p.error);
+      if (p.step >= x0) {
+        y0 = p.step > x0 ? p.error : std::max(y0, p.error);
+        x0 = p.step;
+      }
+    }
+    lines.add(rows,
+              fmt::format("using 1:2 with linespoints {} title '{}'", series_style(lines.count()), title));
+  }
+  std::string plot = loglog(xlabel, ylabel) + "set key outside right font ',9'\nplot " + lines.plot();
+  for (const int p : slopes)
+    plot += fmt::format(", {} * (x / {})**{} with lines dt 3 lc rgb 'gray50' title 'slope {}'", y0, x0, p, p);
+  return {name, lines.data(), plot};
 }
 
 std::string loglog(const std::string& xlabel, const std::string& ylabel) {

@@ -3,9 +3,12 @@
 // as PNG for quick viewing and PDF for the paper. The script and data are written to a private
 // scratch folder, gnuplot runs there (no shell), and the pictures join the experiment's
 // OutputSet, so they are written with everything else or not at all.
+#include "contact_ode/analysis/fit.hpp"
 #include "output.hpp"
 
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace contact {
 
@@ -24,17 +27,29 @@ class Series {
   const std::string& data() const { return data_; }
   const std::string& plot() const { return plot_; }
   bool empty() const { return count_ == 0; }
+  std::size_t count() const { return static_cast<std::size_t>(count_); }
 
  private:
   std::string data_, plot_;
   int count_ = 0;
 };
 
+// The line colour and point type of series i of a panel (i < 10): ten colours (Tableau 10) and ten
+// markers, so that no two of a panel's series look alike.
+std::string series_style(std::size_t i);
+
 // The lines that start a log-log figure: both axes logarithmic with powers-of-ten ticks, the
 // axis labels (gnuplot text) and a grid.
 std::string loglog(const std::string& xlabel, const std::string& ylabel);
 // The same with only the y axis logarithmic.
 std::string logy(const std::string& ylabel);
+
+// A convergence panel (at most 10 series): each named series' errors against its steps (log-log,
+// lines and points), and dashed grey reference lines of the given slopes through the largest
+// error at the largest step.
+using NamedPoints = std::pair<std::string, std::vector<ConvergencePoint>>;
+Figure convergence_figure(const std::string& name, const std::string& xlabel, const std::string& ylabel,
+                          const std::vector<NamedPoints>& series, const std::vector<int>& slopes);
 
 // Renders the figure into `out`: NAME.png and NAME.pdf from one gnuplot run, and, to redraw it,
 // the script NAME.gp with its data NAME-data.csv. Throws std::runtime_error with gnuplot's

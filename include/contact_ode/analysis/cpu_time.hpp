@@ -15,5 +15,9 @@ struct CpuTiming {
 };
 // Runs f `repeats` (>= 1) times and times each call.
 CpuTiming time_cpu(const std::function<void()>& f, int repeats);
+// Runs f at least `min_repeats` (>= 1) and at most `max_repeats` times, stopping once the calls
+// have used `budget_s` of CPU time: ten repeats of a solve of a millisecond, three of a slow one
+// (whose timer noise is relatively small), so that a sweep's timing costs a bounded multiple.
+CpuTiming time_cpu_within(const std::function<void()>& f, int min_repeats, int max_repeats, double budget_s);
 
 }  // namespace contact

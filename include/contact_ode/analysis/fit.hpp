@@ -1,6 +1,7 @@
 #pragma once
 // Least-squares fits in log-log space (GSL): y ~ C x^p gives the observed order or exponent p.
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 namespace contact {
@@ -19,11 +20,12 @@ PowerFit fit_power_law(const std::vector<double>& x, const std::vector<double>& 
 // log(err_prev / err) / log(h_prev / h), where h is a step, a tolerance or 1/k.
 double observed_order(double h_prev, double err_prev, double h, double err);
 
-// The order fitted (fit_power_law) over the last `rows` points with err > floor: the finest rows
-// of a table ordered coarse to fine, inside the asymptotic range and above rounding. NaN when
-// fewer than two remain.
+// The order fitted (fit_power_law) over the last `rows` points with floor < err < ceiling: the
+// finest rows of a table ordered coarse to fine, above rounding and, below the ceiling, small
+// enough for the error's leading term to dominate (the asymptotic range). NaN when fewer than two
+// remain.
 double fitted_order(const std::vector<double>& h, const std::vector<double>& err, double floor,
-                    std::size_t rows);
+                    std::size_t rows, double ceiling = std::numeric_limits<double>::infinity());
 
 // One row of a convergence study, coarse to fine: the step (dt, rtol or 1/k), the error, the cost.
 struct ConvergencePoint {
@@ -32,7 +34,8 @@ struct ConvergencePoint {
   long cost = 0;
 };
 // fitted_order over the points' steps and errors.
-double fitted_order(const std::vector<ConvergencePoint>& points, double floor, std::size_t rows);
+double fitted_order(const std::vector<ConvergencePoint>& points, double floor, std::size_t rows,
+                    double ceiling = std::numeric_limits<double>::infinity());
 
 // Points from lo to hi (0 < lo <= hi), evenly spaced in log, per_decade >= 1 of them per decade
 // (rounded; at least the two ends), the ends exact: lo * (hi/lo)^(j/n). lo == hi gives one point.

@@ -1,6 +1,7 @@
 #pragma once
 // A small table of results rendered as CSV (full precision, for machines), Markdown (for the
-// terminal and results/index.md) and LaTeX booktabs (for the paper).
+// terminal and results/index.md) and LaTeX booktabs (for the paper: numbers in powers of ten,
+// e.g. $3.2\times10^{-5}$, and a typeset header where one is set).
 #include <filesystem>
 #include <map>
 #include <string>
@@ -17,6 +18,12 @@ class Table {
   // Appends a row; throws std::invalid_argument if its width differs from the header's.
   void add_row(std::vector<Cell> row);
 
+  // The header the LaTeX rendering shows instead of the column names (which stay the CSV's and
+  // Markdown's): LaTeX source, for symbols and units ("$\\Delta t$ [s]"); a newline stacks a cell's
+  // lines. Throws
+  // std::invalid_argument if its width differs from the header's.
+  void set_latex_header(std::vector<std::string> header);
+
   const std::vector<std::string>& columns() const { return columns_; }
   const std::vector<std::vector<Cell>>& rows() const { return rows_; }
 
@@ -25,7 +32,7 @@ class Table {
   std::string to_latex(int significant_digits = 4) const;
 
  private:
-  std::vector<std::string> columns_;
+  std::vector<std::string> columns_, latex_header_;
   std::vector<std::vector<Cell>> rows_;
 };
 
