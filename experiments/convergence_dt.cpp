@@ -1,24 +1,14 @@
-// convergence_dt — observed orders of every integrator on the penalty ball drop, with and without
-// the contact switches located.
-// Problem: m = 1 kg dropped from h0 = 1 m onto a Hooke spring (k = --k), g = 9.81 m/s^2, to
-// t = --t-final (1.5 s: two contacts, four force kinks). The reference is the closed-form
-// solution (analysis/references.hpp, hooke_ball_state). Error norm: the scaled maximum norm
-// max(|x - x*| / h0, |v - v*| / V) at t-final, V = sqrt(2 g h0) the impact speed.
-// Fixed-step runs (every integrator that can run at a fixed step): dt = --dt-max / 2^j,
-// j = 0..--halvings. Adaptive runs (every error-controlled integrator): rtol = 10^-3 .. --tol-min,
-// one per decade, atol = rtol / 100.
-// "unlocated": the modes follow the state inside each step, so steps straddle the kink of
-// F = k max(-x, 0) (a jump in dF/dx): a method of order p > 2 drops to order 2.
-// "located": each switch is a root; the integrator stops and restarts there, and recovers p.
-// Observed order between rows: log(err_prev / err) / log(dt_prev / dt) (or of tolerances). The
-// fitted order is the least-squares log-log slope (GSL) over the five finest rows with
-// err > 1e-10 (the asymptotic range, above the floor set by locating roots to 100 ulps
-// of t and by dense output).
-// Outputs in --out (default results/convergence_dt): fixed_step.{csv,md,tex},
-// adaptive.{csv,md,tex}, orders.{csv,md,tex}, fixed_step_errors.{png,pdf,gp},
-// adaptive_errors.{png,pdf,gp},
-// meta.json. Exit codes: 0, 1 solver failure, 2 bad input.
-#include "contact_ode/analysis/fit.hpp"
+// convergence_dt — observed orders of every integrator on the penalty ball drop, switches located or not.
+// Problem: 1 kg dropped on a Hooke spring (--k) to t = --t-final (1.5 s: two contacts, four kinks)
+// from --heights heights in [1, 1.25) m, so that the kinks fall at every phase of a fixed step. Error
+// of a drop: max(|x - x*| / h0, |v - v*| / V) at t-final against the closed form; a row reports its
+// maximum and RMS over the heights and the CPU time per solve.
+// Fixed steps dt = --dt-max / 2^j, j = 0..--halvings; tolerances rtol = 10^-3 .. --tol-min, atol =
+// rtol / 100. "unlocated": steps straddle the kink of F = k max(-x, 0), so an order p > 2 drops to 2.
+// The fitted order: the least-squares log-log slope (GSL) of the maximum error over the five finest
+// rows with 1e-9 < error < 1e-2. Under mpirun the (integrator, location, step) cases go over ranks.
+// Outputs in --out (default results/convergence_dt): fixed_step, adaptive, orders (.csv/.md/.tex),
+// figures {fixed,adaptive}_{unlocated,located} with reference slopes, meta.json. Exit 0, 1, 2 bad input.
 #include "contact_ode/analysis/table.hpp"
 #include "contact_ode/integrators/penalty.hpp"
 #include "experiment.hpp"
@@ -36,18 +26,25 @@ using namespace contact;
 
 namespace {
 
-constexpr double kRoundOff = 1e-10;  // below: root-location (100 ulps of t) and dense-output error
+// The fit's range: errors below 1e-2 (the leading term dominates) and above the floor of root location
+constexpr double kRoundOff = 1e-9, kAsymptotic = 1e-2;  // and dense output (RK4's located rows flatten)
 constexpr std::size_t kFitRows = 5;
+
+struct Case {
+  std::string integrator;
+  bool located, fixed;  // switches located; a fixed-step run (else adaptive)
+  double step;          // dt or rtol
+};
+using Points = std::map<bool, std::map<std::string, std::vector<ConvergencePoint>>>;  // [located][integrator]
 
 }  // namespace
 
 int program(int argc, char** argv) {
   double k = 1e4, t_final = 1.5, dt_max = 2e-3, tol_min = 1e-10;
-  long halvings = 6;
+  long halvings = 6, heights = 5;
   std::string integrators = "all";
   Experiment app("convergence_dt",
-                 "Observed orders of every integrator on the penalty ball drop, with and without located "
-                 "contact switches.",
+                 "Observed orders of every integrator on the penalty ball drop, kinks located or not.",
                  "results/convergence_dt");
   app.add("--k", k, "spring stiffness [N/m]", cli::positive());
   app.add("--t-final", t_final, "time at which the error is measured [s]", cli::positive());
@@ -55,93 +52,98 @@ int program(int argc, char** argv) {
   app.add("--halvings", halvings, "fixed steps: dt-max halved this many times", cli::integer_at_least(1));
   app.add("--tol-min", tol_min, "tightest tolerance (adaptive runs go from 1e-3 down to it)",
           cli::real_in(1e-14, 1e-4, false, false));
+  app.add("--heights", heights, "drop heights per row (the kinks' phases in the step)",
+          cli::integer_in(1, 100));
   app.add("--integrators", integrators, "integrators, comma-separated or 'all'",
           cli::some_of(integrator_names()));
   return app.run(argc, argv, [&](OutputSet& files) {
-    if (dt_max >= t_final) {
+    if (dt_max >= t_final)
       throw std::invalid_argument(
           fmt::format("--dt-max: value '{:g}' is not below --t-final = {:g}; accepted range (0, t-final)",
                       dt_max, t_final));
-    }
-    const Problem ball = ball_problem(k, t_final);
-
+    const auto drops = ball_problems_over_heights(k, t_final, static_cast<std::size_t>(heights));
     const auto chosen = cli::chosen(integrators, integrator_names());
-    std::vector<double> dts, tols;
-    for (long j = 0; j <= halvings; ++j) dts.push_back(dt_max / std::pow(2.0, static_cast<double>(j)));
-    for (double tol = 1e-3; tol >= tol_min * (1 - 1e-9); tol /= 10) tols.push_back(tol);
-    std::size_t runs = 0;
+    std::vector<Case> cases;
     for (const auto& name : chosen)
-      runs += 2 * ((integrator_info(name).fixed_step_capable ? dts.size() : 0) +
-                   (integrator_info(name).adaptive ? tols.size() : 0));
-
-    Table fixed({"integrator", "events", "dt_s", "error", "observed_order", "rhs_evals"});
-    Table adaptive({"integrator", "events", "rtol", "error", "observed_order", "rhs_evals"});
-    std::map<std::pair<std::string, bool>, std::vector<ConvergencePoint>> fixed_points, adaptive_points;
-    Progress progress("convergence_dt", runs);
-    auto run = [&](const std::string& name, bool located, bool is_fixed, double step) {
-      const char* events = located ? "located" : "unlocated";
-      progress.step(fmt::format("{} {} {:g}", name, events, step));
-      PenaltyOptions o{.locate_switches = located};
-      o.integrator.method = name;
-      o.integrator.max_steps = 10000000;
-      o.integrator = with_setting(o.integrator, is_fixed, step);
-      const RunResult r = require(run_penalty(*ball.model, o, {.t_end = t_final, .sample_dt = t_final}),
-                                  fmt::format("{} ({} {:g})", name, is_fixed ? "dt" : "rtol", step));
-      const double err = ball.error(r, false);
-      auto& points = (is_fixed ? fixed_points : adaptive_points)[{name, located}];
-      const double order =
-          points.empty() ? std::nan("") : observed_order(points.back().step, points.back().error, step, err);
-      points.push_back({step, err, r.stats.rhs_evals});
-      (is_fixed ? fixed : adaptive).add_row({name, std::string(events), step, err, order, r.stats.rhs_evals});
-    };
-    for (const auto& name : chosen)
-      for (bool located : {false, true}) {
+      for (const bool located : {false, true}) {
         if (integrator_info(name).fixed_step_capable)
-          for (double dt : dts) run(name, located, true, dt);
+          for (long j = 0; j <= halvings; ++j)
+            cases.push_back({name, located, true, dt_max / std::pow(2.0, static_cast<double>(j))});
         if (integrator_info(name).adaptive)
-          for (double tol : tols) run(name, located, false, tol);
+          for (double tol = 1e-3; tol >= tol_min * (1 - 1e-9); tol /= 10)
+            cases.push_back({name, located, false, tol});
       }
-
-    Table orders({"integrator", "theoretical_order", "fixed_order_unlocated", "fixed_order_located",
+    Progress progress("convergence_dt", cases.size());
+    const auto results = app.share(cases.size(), [&](std::size_t i) -> nlohmann::json {
+      const Case& c = cases[i];
+      progress.step(fmt::format("{} {} {:g}", c.integrator, c.located ? "located" : "unlocated", c.step));
+      PenaltyOptions o{.integrator = {.method = c.integrator, .max_steps = 10000000},
+                       .locate_switches = c.located};
+      o.integrator = with_setting(o.integrator, c.fixed, c.step);
+      return error_over(drops, [&](const Problem& drop) {
+        return require(run_penalty(*drop.model, o, {.t_end = t_final, .sample_dt = t_final}),
+                       fmt::format("{} ({} {:g})", c.integrator, c.fixed ? "dt" : "rtol", c.step));
+      });
+    });
+    if (!results) return;  // another MPI rank: its share is done
+    const auto columns = [](const char* step) {
+      return std::vector<std::string>{"integrator", "events",         step,        "error_max",
+                                      "error_rms",  "observed_order", "rhs_evals", "cpu_s"};
+    };
+    Table fixed(columns("dt_s")), adaptive(columns("rtol"));
+    Points fixed_points, adaptive_points;
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+      const Case& c = cases[i];
+      const auto r = (*results)[i].get<ErrorSpread>();
+      auto& points = (c.fixed ? fixed_points : adaptive_points)[c.located][c.integrator];
+      const double order = points.empty()
+                               ? std::nan("")
+                               : observed_order(points.back().step, points.back().error, c.step, r.max);
+      points.push_back({c.step, r.max, std::lround(r.rhs)});
+      (c.fixed ? fixed : adaptive)
+          .add_row({c.integrator, std::string(c.located ? "located" : "unlocated"), c.step, r.max, r.rms,
+                    order, std::lround(r.rhs), r.cpu_s});
+    }
+    Table orders({"integrator", "order", "expected_unlocated", "fixed_order_unlocated", "fixed_order_located",
                   "tol_exponent_unlocated", "tol_exponent_located", "rhs_evals_tightest_unlocated",
                   "rhs_evals_tightest_located"});
-    auto order_of = [](const auto& map, const std::string& name, bool located) {
-      const auto it = map.find({name, located});
-      return it == map.end() ? std::nan("") : fitted_order(it->second, kRoundOff, kFitRows);
+    orders.set_latex_header({"integrator", "$p$", "expected\nunlocated", "fixed $\\Delta t$\nunlocated",
+                             "fixed $\\Delta t$\nlocated", "rtol exponent\nunlocated",
+                             "rtol exponent\nlocated", "evaluations\nunlocated", "evaluations\nlocated"});
+    const auto fit = [](Points& sweep, bool located, const std::string& name) {
+      const auto it = sweep[located].find(name);  // (find: no empty series for the figures)
+      return it == sweep[located].end() ? std::nan("")
+                                        : fitted_order(it->second, kRoundOff, kFitRows, kAsymptotic);
     };
-    auto tightest_cost = [&](const std::string& name, bool located) {
-      const auto it = adaptive_points.find({name, located});
-      return it == adaptive_points.end() ? 0L : it->second.back().cost;
+    const auto cost = [&](bool located, const std::string& name) {
+      const auto it = adaptive_points[located].find(name);
+      return it == adaptive_points[located].end() ? std::nan("")
+                                                  : static_cast<double>(it->second.back().cost);
     };
-    for (const auto& name : chosen)
-      orders.add_row({name, static_cast<long>(integrator_info(name).order),
-                      order_of(fixed_points, name, false), order_of(fixed_points, name, true),
-                      order_of(adaptive_points, name, false), order_of(adaptive_points, name, true),
-                      tightest_cost(name, false), tightest_cost(name, true)});
-
-    // One figure per sweep: located solid, unlocated dashed, one colour per integrator.
-    auto figure = [](const std::string& name, const std::string& xlabel, const auto& points) {
-      Series series;
-      int colour = 0;
-      for (const auto& [key, pts] : points) {
-        std::string rows;
-        for (const auto& p : pts) rows += fmt::format("{},{}\n", p.step, p.error);
-        // Keys come in (name, unlocated), (name, located) pairs: one colour per integrator.
-        colour += key.second ? 0 : 1;
-        series.add(rows, fmt::format("using 1:2 with linespoints lc {} dt {} title '{}{}'", colour,
-                                     key.second ? 1 : 2, key.first, key.second ? " (located)" : ""));
-      }
-      return Figure{
-          name, series.data(),
-          loglog(xlabel, "error at t_{final}") + "set key outside right font ',8'\nplot " + series.plot()};
-    };
+    for (const auto& name : chosen) {
+      // The formula's order where a fixed step runs it (the adaptive codes vary theirs).
+      const double p = integrator_info(name).fixed_step_capable ? integrator_info(name).order : std::nan("");
+      orders.add_row({name, p, std::min(p, 2.0), fit(fixed_points, false, name),
+                      fit(fixed_points, true, name), fit(adaptive_points, false, name),
+                      fit(adaptive_points, true, name), cost(false, name), cost(true, name)});
+    }
     files.add_table("fixed_step", fixed);
     files.add_table("adaptive", adaptive);
     files.add_table("orders", orders);
-    if (!fixed_points.empty()) render(figure("fixed_step_errors", "dt [s]", fixed_points), files);
-    if (!adaptive_points.empty()) render(figure("adaptive_errors", "rtol", adaptive_points), files);
-    fmt::print("Observed orders on the penalty ball drop (k = {:g} N/m, error at t = {:g} s)\n\n{}", k,
-               t_final, orders.to_markdown(3));
+    const std::string ylabel = "max error at t_{final} over the heights";
+    for (const bool located : {false, true}) {
+      const std::string events = located ? "located" : "unlocated";
+      const auto& f = fixed_points[located];
+      const auto& a = adaptive_points[located];
+      if (!f.empty())
+        render(convergence_figure("fixed_" + events, "dt [s]", ylabel, {f.begin(), f.end()}, {1, 2, 4}),
+               files);
+      if (!a.empty())
+        render(convergence_figure("adaptive_" + events, "rtol", ylabel, {a.begin(), a.end()}, {1}), files);
+    }
+    fmt::print(
+        "Observed orders on the penalty ball drop (k = {:g} N/m, error at t = {:g} s, {} heights)\n\n{}", k,
+        t_final, heights, orders.to_markdown(3));
   });
 }
 

@@ -1,5 +1,6 @@
 #include "problems.hpp"
 
+#include "contact_ode/analysis/cpu_time.hpp"
 #include "contact_ode/analysis/references.hpp"
 #include "contact_ode/integrators/method_registry.hpp"
 #include "contact_ode/models/ball_chain.hpp"
@@ -11,8 +12,8 @@
 
 namespace contact {
 
-Problem ball_problem(double k, double t_end) {
-  const double m = 1.0, g = 9.81, h0 = 1.0, V = std::sqrt(2 * g * h0);
+Problem ball_problem(double k, double t_end, double h0) {
+  const double m = 1.0, g = 9.81, V = std::sqrt(2 * g * h0);
   auto error = [=](const RunResult& r, bool rigid) {
     const Vector& y = r.samples.back().y;
     const BallState ref =
@@ -21,6 +22,33 @@ Problem ball_problem(double k, double t_end) {
   };
   return {"ball", std::make_shared<BallDrop>(BallDropParams{m, g, h0, 0.0, 1.0, Hooke{k}}), t_end,
           hooke_contact(m, k, V, g).duration, error};
+}
+
+ErrorSpread error_over(const std::vector<Problem>& problems,
+                       const std::function<RunResult(const Problem&)>& solve_one) {
+  ErrorSpread out;
+  const double cpu0 = cpu_seconds();
+  for (const auto& problem : problems) {
+    const RunResult r = solve_one(problem);
+    const double err = problem.error(r, false);
+    out.max = std::max(out.max, err);
+    out.rms += err * err;
+    out.rhs += static_cast<double>(r.stats.rhs_evals);
+  }
+  const double n = static_cast<double>(problems.size());
+  out.rms = std::sqrt(out.rms / n);
+  out.rhs /= n;
+  out.cpu_s = (cpu_seconds() - cpu0) / n;
+  return out;
+}
+
+std::vector<Problem> ball_problems_over_heights(double k, double t_end, std::size_t count) {
+  const double golden = (std::sqrt(5.0) - 1) / 2;
+  std::vector<Problem> drops;
+  for (std::size_t j = 0; j < count; ++j)
+    drops.push_back(
+        ball_problem(k, t_end, 1.0 + 0.25 * std::fmod((static_cast<double>(j) + 0.5) * golden, 1.0)));
+  return drops;
 }
 
 Problem chain_problem(long balls, double k) {
@@ -86,6 +114,18 @@ std::vector<WorkJob> work_precision_jobs(const std::vector<Problem>& problems,
       jobs.push_back({&pr, "event", "exact-flight", "exact", 0.0, Method{.name = "event-exact"}});
   }
   return jobs;
+}
+
+std::vector<std::string> work_panels(const std::string& paradigm, const std::string& integrator) {
+  if (paradigm == "scipy") return {"peers"};
+  if (paradigm != "penalty") return {"paradigms"};
+  std::vector<std::string> panels{
+      integrator_info(integrator).implicit || integrator_info(integrator).variable_order ? "implicit"
+                                                                                         : "explicit"};
+  if (integrator == "cvode-bdf") panels.push_back("paradigms");
+  if (integrator == "cvode-bdf" || integrator == "cvode-adams" || integrator == "gsl-rkf45")
+    panels.push_back("peers");
+  return panels;
 }
 
 double first_apex_error(const BallDropParams& p, const RunResult& r) {

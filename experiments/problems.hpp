@@ -9,6 +9,8 @@
 #include "contact_ode/models/mechanical_system.hpp"
 #include "contact_ode/models/parameters.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include <functional>
 #include <memory>
 #include <string>
@@ -24,9 +26,24 @@ struct Problem {
   std::function<double(const RunResult& r, bool rigid)> error;
 };
 
-// 1 kg dropped from 1 m onto a Hooke spring k, to t_end. References in closed form (hooke_ball_state,
+// 1 kg dropped from h0 onto a Hooke spring k, to t_end. References in closed form (hooke_ball_state,
 // rigid_ball_state with e = 1); error max(|x - x*| / h0, |v - v*| / V), V the impact speed.
-Problem ball_problem(double k, double t_end);
+Problem ball_problem(double k, double t_end, double h0 = 1.0);
+
+// One setting's error over several problems of one kind (drops from several heights): the largest
+// and the RMS error (each problem's own `error`, against its spring model), and the mean
+// right-hand-side evaluations and CPU time per solve. JSON as {"max", "rms", "rhs", "cpu_s"}.
+struct ErrorSpread {
+  double max = 0, rms = 0, rhs = 0, cpu_s = 0;
+};
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ErrorSpread, max, rms, rhs, cpu_s)
+ErrorSpread error_over(const std::vector<Problem>& problems,
+                       const std::function<RunResult(const Problem&)>& solve_one);
+
+// ball_problem from `count` heights in [1, 1.25) m, quasi-random (the golden-ratio sequence): the
+// contacts of the drops fall at phases spread evenly over any fixed step, so that a convergence
+// study of a step that straddles a kink sees every phase rather than one.
+std::vector<Problem> ball_problems_over_heights(double k, double t_end, std::size_t count);
 
 // A row of `balls` steel balls (ball_chain.hpp) on Hooke springs k, the striker at 1 m/s, measured
 // once the pulse has had three pair contacts per ball to cross it. Spring reference: CVODE BDF at
@@ -48,6 +65,12 @@ struct WorkJob {
 std::vector<WorkJob> work_precision_jobs(const std::vector<Problem>& problems,
                                          const std::vector<std::string>& integrators,
                                          const std::vector<double>& tols, long halvings);
+
+// The figure panels a work-precision series belongs to, at most eight series each: "explicit"
+// (penalty under the explicit and fixed-step integrators), "implicit" (under the implicit and
+// multistep ones), "paradigms" (game loops, event-driven impulses, penalty under CVODE BDF) and
+// "peers" (SciPy, paradigm "scipy", beside CVODE BDF and Adams and GSL RKF45).
+std::vector<std::string> work_panels(const std::string& paradigm, const std::string& integrator);
 
 // A ball drop's first apex against the rigid one, |apex - e^2 h0| for a ball dropped at rest
 // (RigidBounces in general) [m]; NaN when the run failed or did not bounce.

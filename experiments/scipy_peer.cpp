@@ -60,12 +60,14 @@ std::vector<ScipyRun> run_scipy_peer(const ScipyDrop& d) {
   return runs;
 }
 
-std::vector<ScoredScipyRun> scipy_on_ball(const Problem& ball, double k, const std::vector<double>& rtols) {
+std::vector<ScoredScipyRun> scipy_on_ball(const Problem& ball, double k, const std::vector<double>& rtols,
+                                          int repeats) {
   std::vector<ScoredScipyRun> scored;
-  for (const ScipyRun& p : run_scipy_peer({.k = k, .t_end = ball.t_end, .rtols = rtols})) {
+  for (const ScipyRun& p :
+       run_scipy_peer({.k = k, .t_end = ball.t_end, .rtols = rtols, .repeats = repeats})) {
     RunResult r;  // the peer's final state, as a run
     r.samples.push_back({.t = ball.t_end, .y = Vector{{p.y, p.v}}, .energy = 0, .dissipated = 0});
-    scored.push_back({p, ball.error(r, false)});
+    scored.push_back({p, ball.error(r, false), ball.error(r, true)});
   }
   return scored;
 }

@@ -4,21 +4,23 @@
 // Chain: --balls equal balls (0.1 kg, touching), striker at 1 m/s from 1 cm, Hooke springs
 // k = --chain-k; error once the striker has arrived and three pair contact times per ball have
 // passed (0.031 s for 10 balls at 1e6 N/m).
-// Each paradigm is measured against the exact solution of its own model:
-//   penalty (every integrator) and game-spring  -> the spring model: for the ball the closed form
-//     (hooke_ball_state); for the chain CVODE BDF at rtol 1e-12, atol 1e-14, switches located;
-//   game (projection + impulse) and event-driven -> the rigid model: for the ball the closed
-//     form (rigid_ball_state); for the chain the sequential-impulse limit (the last ball leaves at
-//     the striker's speed, the rest stand still).
-// Error norm: ball max(|x - x*| / h0, |v - v*| / V); chain max_i |v_i - v_i*| / v0. Errors are
-// floored at 1e-16 for the log plots (event-driven chain impulses are exact).
-// Cost: right-hand-side evaluations (fixed-step and game methods: one per stage), wall time and
-// CPU time of the solve. The SciPy peer (scipy_peer.hpp: solve_ivp BDF, Radau, LSODA, RK45 with
-// restarts at the switches and the analytic Jacobian) runs the ball at the same tolerances.
+// Two errors per run. Physical (the figures' and the headline): every paradigm against the rigid
+// body the tutorial's contact stands for — the ball's closed form with e = 1 (rigid_ball_state), the
+// chain's sequential-impulse limit (the last ball leaves at the striker's speed) — so a penalty
+// spring's modelling error (its contact lasts pi sqrt(m/k)) counts. Model (the second view): each
+// paradigm against its own model's exact solution — spring runs against the Hooke closed form or
+// CVODE BDF at rtol 1e-12; game and event-driven runs against the rigid one.
+// Error norm: ball max(|x - x*| / h0, |v - v*| / V); chain max_i |v_i - v_i*| / v0; exact zeros
+// are drawn at 1e-16 (log axes). Cost: right-hand sides, wall time of the first solve, and CPU time
+// per solve: median (and range) of 3 to --repeats solves, as many as fit in 20 ms. The SciPy peer
+// (scipy_peer.hpp: solve_ivp BDF, Radau, LSODA, RK45, restarted at the switches, analytic
+// Jacobian) runs the ball at the same tolerances, timed over --repeats solves.
 // Settings: adaptive rtol = 1e-3 .. 1e-9 (atol = rtol / 100); fixed dt halved --halvings times
 // from 1/16 of a contact's duration (w dt = pi/16: 2.0e-3 s for the ball, 4.4e-5 s for the chain).
-// Outputs in --out (default results/work_precision): work_precision.{csv,md,tex},
-// {ball,chain}_{rhs,time}.{png,pdf,gp}, meta.json. Exit codes: 0, 1 solver failure, 2 bad input.
+// Under mpirun the runs are dealt over the ranks.
+// Outputs in --out (default results/work_precision): work_precision.{csv,md,tex}, per problem the
+// panels (work_panels) {ball,chain}_{explicit,implicit,paradigms,peers}.{png,pdf,gp} of physical
+// error against CPU time, meta.json. Exit codes: 0, 1 solver failure, 2 bad input.
 #include "contact_ode/analysis/cpu_time.hpp"
 #include "contact_ode/analysis/table.hpp"
 #include "experiment.hpp"
@@ -44,7 +46,7 @@ constexpr double kFloor = 1e-16;
 
 int program(int argc, char** argv) {
   double k = 1e4, chain_k = 1e6;
-  long balls = 10, halvings = 4;
+  long balls = 10, halvings = 4, repeats = 10;
   std::string integrators = "all", problems = "ball,chain";
   Experiment app(
       "work_precision",
@@ -55,6 +57,7 @@ int program(int argc, char** argv) {
   app.add("--balls", balls, "balls in the chain", cli::integer_at_least(2));
   app.add("--halvings", halvings, "fixed steps: the largest halved this many times",
           cli::integer_at_least(0));
+  app.add("--repeats", repeats, "most solves timed per run (CPU median)", cli::integer_in(3, 1000));
   app.add("--integrators", integrators, "penalty integrators, comma-separated or 'all'",
           cli::some_of(integrator_names()));
   app.add("--problems", problems, "ball, chain or both, comma-separated",
@@ -69,51 +72,73 @@ int program(int argc, char** argv) {
       problems_run.push_back(name == "ball" ? ball_problem(k, 1.5) : chain_problem(balls, chain_k));
     const std::vector<WorkJob> jobs = work_precision_jobs(problems_run, chosen, tols, halvings);
 
-    Table table({"problem", "paradigm", "integrator", "setting", "value", "error", "rhs_evals", "wall_time_s",
-                 "cpu_time_s"});
-    std::map<std::string, std::map<std::string, std::string>>
-        series;  // problem -> series label -> "cost,time,error" lines
     Progress progress("work_precision", jobs.size());
-    for (const auto& job : jobs) {
-      progress.step(fmt::format("{} {} {} {}={:g}", job.problem->name, job.paradigm, job.integrator,
-                                job.setting, job.value));
-      const double cpu0 = cpu_seconds();
-      const RunResult r = require(solve(*job.problem->model, job.method,
-                                        {.t_end = job.problem->t_end, .sample_dt = job.problem->t_end}),
-                                  fmt::format("{} {} {} ({} = {:g})", job.problem->name, job.paradigm,
-                                              job.integrator, job.setting, job.value));
-      const double cpu = cpu_seconds() - cpu0;
+    const auto results = app.share(jobs.size(), [&](std::size_t i) -> nlohmann::json {
+      const WorkJob& job = jobs[i];
+      const std::string what = fmt::format("{} {} {} ({} = {:g})", job.problem->name, job.paradigm,
+                                           job.integrator, job.setting, job.value);
+      progress.step(what);
+      RunResult r;
+      const CpuTiming cpu = time_cpu_within(
+          [&] {
+            r = solve(*job.problem->model, job.method,
+                      {.t_end = job.problem->t_end, .sample_dt = job.problem->t_end});
+          },
+          3, static_cast<int>(repeats), 0.02);
+      require(r, what);
       const bool rigid = job.paradigm == "game" || job.paradigm == "event";
-      const double err = job.problem->error(r, rigid);
-      table.add_row({job.problem->name, job.paradigm, job.integrator, job.setting, job.value, err,
-                     r.stats.rhs_evals, r.stats.wall_time_s, cpu});
-      series[job.problem->name][job.paradigm + " " + job.integrator] += fmt::format(
-          "{},{},{}\n", std::max(r.stats.rhs_evals, 1L), std::max(cpu, 1e-7), std::max(err, kFloor));
+      return {job.problem->error(r, true),
+              job.problem->error(r, rigid),
+              r.stats.rhs_evals,
+              r.stats.wall_time_s,
+              cpu.median,
+              cpu.min,
+              cpu.max,
+              cpu.repeats};
+    });
+    if (!results) return;  // another MPI rank: its share is done
+    Table table({"problem", "paradigm", "integrator", "setting", "value", "error_physical", "error_model",
+                 "rhs_evals", "wall_time_s", "cpu_time_s", "cpu_min_s", "cpu_max_s", "repeats"});
+    // problem -> panel -> series label -> "cpu,error" lines
+    std::map<std::string, std::map<std::string, std::map<std::string, std::string>>> panels;
+    const auto add = [&](const std::string& problem, const std::string& paradigm,
+                         const std::string& integrator, const std::vector<Table::Cell>& row, double cpu,
+                         double err) {
+      table.add_row(row);
+      for (const auto& panel : work_panels(paradigm, integrator))
+        panels[problem][panel][paradigm + " " + integrator] +=
+            fmt::format("{},{}\n", cpu, std::max(err, kFloor));
+    };
+    for (std::size_t i = 0; i < jobs.size(); ++i) {
+      const WorkJob& job = jobs[i];
+      const auto& r = (*results)[i];
+      std::vector<Table::Cell> row{job.problem->name, job.paradigm, job.integrator, job.setting, job.value};
+      for (std::size_t c = 0; c < r.size(); ++c)
+        row.push_back(r[c].is_number_integer() ? Table::Cell(r[c].get<long>())
+                                               : Table::Cell(r[c].get<double>()));
+      add(job.problem->name, job.paradigm, job.integrator, row, r[4].get<double>(), r[0].get<double>());
     }
     const std::string missing = scipy_peer_missing();
     if (!missing.empty())
       fmt::print(stderr, "work_precision: the SciPy peer is skipped: missing {}\n", missing);
     for (const Problem& ball : problems_run)
-      for (const auto& [p, err] : ball.name == "ball" && missing.empty() ? scipy_on_ball(ball, k, tols)
-                                                                         : std::vector<ScoredScipyRun>{}) {
-        table.add_row({"ball", "scipy", p.method, "rtol", p.rtol, err, p.nfev, std::nan(""), p.cpu_s});
-        series["ball"]["scipy " + p.method] +=
-            fmt::format("{},{},{}\n", p.nfev, p.cpu_s, std::max(err, kFloor));
-      }
+      for (const auto& [p, err, physical] : ball.name == "ball" && missing.empty()
+                                                ? scipy_on_ball(ball, k, tols, static_cast<int>(repeats))
+                                                : std::vector<ScoredScipyRun>{})
+        add("ball", "scipy", p.method,
+            {std::string("ball"), std::string("scipy"), p.method, std::string("rtol"), p.rtol, physical, err,
+             p.nfev, std::nan(""), p.cpu_s, p.cpu_min_s, p.cpu_max_s, repeats},
+            p.cpu_s, physical);
     files.add_table("work_precision", table);
-    for (const auto& [problem, lines] : series)
-      for (const auto& [cost, column, label] :
-           {std::tuple{std::string("rhs"), 1, std::string("right-hand-side evaluations")},
-            std::tuple{std::string("time"), 2, std::string("CPU time per solve [s]")}}) {
+    for (const auto& [problem, by_panel] : panels)
+      for (const auto& [panel, lines] : by_panel) {
         Series figure;
-        int i = 0;  // colours and point types cycle at different periods, so no two series look alike
-        for (const auto& [name, rows] : lines) {
-          figure.add(rows, fmt::format("using {}:3 with linespoints lc {} pt {} title '{}'", column,
-                                       i % 8 + 1, i % 13 + 1, name));
-          ++i;
-        }
-        render({problem + "_" + cost, figure.data(),
-                loglog(label, "error") + "set key outside right font ',8'\nplot " + figure.plot()},
+        for (const auto& [name, rows] : lines)
+          figure.add(rows, fmt::format("using 1:2 with linespoints {} title '{}'",
+                                       series_style(figure.count()), name));
+        render({problem + "_" + panel, figure.data(),
+                loglog("CPU time per solve [s]", "error against the rigid body") +
+                    "set key outside right font ',9'\nplot " + figure.plot()},
                files);
       }
     fmt::print("Work-precision: {} runs (ball k = {:g} N/m; chain of {} balls, k = {:g} N/m)\n\n{}",
