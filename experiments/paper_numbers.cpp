@@ -36,8 +36,8 @@ bool cell_matches(const std::string& cell, const std::string& wanted) {
   }
 }
 
-// One entry of numbers.json: {"macro", "file", "where": [[column, value], ...], "column",
-// "format" (optional), "last" (optional: the last matching row, e.g. a sweep's finest step)}.
+// One entry of numbers.json: {"macro", "file", "where": [[column, value], ...], "column", optional
+// "format", "scale" (a factor: 1e3 for s as ms) and "last" (the last matching row: a finest step)}.
 std::string lookup(const fs::path& results, const json& n) {
   const std::string file = n.at("file"), column = n.at("column");
   const CsvRecord* found = nullptr;
@@ -57,7 +57,9 @@ std::string lookup(const fs::path& results, const json& n) {
   if (!found->count(column)) throw std::runtime_error(fmt::format("{}: no column '{}'", file, column));
   const std::string& cell = found->at(column);
   const std::string format = n.value("format", "");
-  return format.empty() ? cell : fmt::format(fmt::runtime(format), std::stod(cell));
+  const double scale = n.value("scale", 1.0);
+  if (format.empty() && scale != 1.0) throw std::runtime_error(fmt::format("{}: a scale needs a format", file));
+  return format.empty() ? cell : fmt::format(fmt::runtime(format), scale * std::stod(cell));
 }
 
 // Numbers in scientific notation read better as a x 10^b in the text.
