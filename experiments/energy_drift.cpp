@@ -3,12 +3,11 @@
 // bounces of the rigid solution, and every rigid-body scene (the pair's Kelvin–Voigt spring, impulses and
 // dashpots booked by the energy ledger). Each method runs at every step in --dts (fixed-step) or
 // tolerance in --rtols (adaptive, atol = rtol / 100).
-// Energy error: (E + dissipated - E0) / |E0| at every sample, so physical loss is not counted and > 0
-// means the method invents energy. The drift rate is the least-squares slope (GSL) of that error against
-// time; the verdict is "gains" or "loses" when the final error exceeds 1e-10 in size, else "conserves".
-// Outputs in --out (default results/energy_drift): drift.{csv,md,tex}, ball_energy.{png,pdf,gp}
-// (|error| against t for the ball), rigid_energy.{png,pdf,gp} (largest |error| per scene at the first
-// --rigid-dts and last --rigid-rtols), meta.json. Exit codes: 0, 1 solver failure, 2 bad input.
+// Energy error: (E + dissipated - E0) / |E0| at every sample (> 0: the method invents energy). The drift rate
+// is the least-squares slope (GSL) of that error against time; the verdict is "gains" or "loses" when the
+// final error exceeds 1e-10 in size, else "conserves". Outputs in --out (default results/energy_drift):
+// drift.{csv,md,tex}, ball_energy_{game,other} and rigid_energy .{png,pdf,gp}, meta.json. Exit codes: 0, 1
+// solver failure, 2 bad input.
 #include "contact_ode/analysis/metrics.hpp"
 #include "contact_ode/analysis/table.hpp"
 #include "contact_ode/models/ball_drop.hpp"
@@ -93,7 +92,7 @@ int program(int argc, char** argv) {
 
     Table table({"system", "method", "setting", "value", "contacts", "final_energy_error_rel",
                  "max_abs_energy_error_rel", "drift_rate_per_s", "drift_rate_sd", "verdict", "rhs_evals"});
-    Series ball_figure;
+    std::map<std::string, Series> ball_figures;     // "game" loops and "other" methods: <= 10 series each
     std::map<std::string, std::string> rigid_rows;  // method -> "index,scene,max error" lines
     Progress progress("energy_drift", jobs.size());
     for (const auto& job : jobs) {
@@ -113,8 +112,9 @@ int program(int argc, char** argv) {
         std::string rows;
         for (std::size_t i = 0; i < d.t.size(); ++i)
           rows += fmt::format("{},{}\n", d.t[i], std::max(std::abs(d.gain[i]), kLogFloor));
-        ball_figure.add(
-            rows, fmt::format("using 1:2 with lines title '{}{} ({})'", job.method, setting, d.verdict()));
+        Series& figure = ball_figures[job.method.starts_with("game") ? "game" : "other"];
+        figure.add(rows, fmt::format("using 1:2 with lines {} lw 2 title '{}{} ({})'",
+                                     series_style(figure.count()), job.method, setting, d.verdict()));
       }
       // The rigid figure shows each method at the coarsest step or the tightest tolerance.
       if (std::string& rows = rigid_rows[job.method];
@@ -127,11 +127,12 @@ int program(int argc, char** argv) {
       if (!rows.empty())
         rigid_figure.add(rows, fmt::format("using 1:3:xtic(2) with linespoints title '{}'", method));
     files.add_table("drift", table);
-    render({"ball_energy", ball_figure.data(),
-            logy("|E + dissipated - E_0| / E_0") +
-                fmt::format("set xlabel 't [s]'\nset key outside below\nset yrange [{:g}:*]\nplot {}",
-                            kLogFloor, ball_figure.plot())},
-           files);
+    for (const auto& [group, figure] : ball_figures)
+      render({"ball_energy_" + group, figure.data(),
+              logy("|E + dissipated - E_0| / E_0") +
+                  fmt::format("set xlabel 't [s]'\nset key outside below\nset yrange [{:g}:*]\nplot {}",
+                              kLogFloor, figure.plot())},
+             files);
     if (!rigid_figure.empty())
       render(
           {"rigid_energy", rigid_figure.data(),

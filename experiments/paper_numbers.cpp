@@ -56,10 +56,10 @@ std::string lookup(const fs::path& results, const json& n) {
   }
   if (!found->count(column)) throw std::runtime_error(fmt::format("{}: no column '{}'", file, column));
   const std::string& cell = found->at(column);
-  const std::string format = n.value("format", "");
-  const double scale = n.value("scale", 1.0);
-  if (format.empty() && scale != 1.0) throw std::runtime_error(fmt::format("{}: a scale needs a format", file));
-  return format.empty() ? cell : fmt::format(fmt::runtime(format), scale * std::stod(cell));
+  const std::string format = n.value("format", "{}");  // a scale without a format prints the product whole
+  return n.contains("format") || n.contains("scale")
+             ? fmt::format(fmt::runtime(format), n.value("scale", 1.0) * std::stod(cell))
+             : cell;
 }
 
 // Numbers in scientific notation read better as a x 10^b in the text.
