@@ -59,6 +59,8 @@ int program(int argc, char** argv) {
       throw std::runtime_error("the rigid reference did not reach the requested bounces");
     Table table({"k_N_per_m", "impact_time_error_s", "order_time", "apex_height_error_rel", "order_apex",
                  "rhs_evals"});
+    table.set_latex_header({"$k$ [N/m]", "$\\max|T_n - T_n^{\\mathrm{rigid}}|$ [s]", "order",
+                            "$\\max|h_n - h_n^{\\mathrm{rigid}}|/h_0$", "order", "evaluations"});
     std::vector<double> ks, time_err, apex_err;
     const std::vector<double> grid = log_grid(k_min, k_max, per_decade);
     Progress progress("convergence_k", grid.size());

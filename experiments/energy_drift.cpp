@@ -1,8 +1,7 @@
 // energy_drift — how much energy each method invents or destroys over long runs.
 // Ball drop with e = 1 (Hooke spring k = --k for the penalty methods, m = 1 kg, h0 = 1 m) for --bounces
 // bounces of the rigid solution, and every rigid-body scene (the pair's Kelvin–Voigt spring, impulses and
-// dashpots booked by the energy ledger). Each method runs at every step in --dts (fixed-step) or
-// tolerance in --rtols (adaptive, atol = rtol / 100).
+// dashpots booked by the energy ledger). Each method runs at every --dts (fixed-step) or --rtols.
 // Energy error: (E + dissipated - E0) / |E0| at every sample (> 0: the method invents energy). The drift rate
 // is the least-squares slope (GSL) of that error against time; the verdict is "gains" or "loses" when the
 // final error exceeds 1e-10 in size, else "conserves". Outputs in --out (default results/energy_drift):
@@ -122,10 +121,11 @@ int program(int argc, char** argv) {
         rows += fmt::format("{},{},{}\n", std::count(rows.begin(), rows.end(), '\n'), job.system,
                             std::max(max_error, kLogFloor));
     }
-    Series rigid_figure;
+    Series rigid_figure;  // scenes are categories: points, no lines between them
     for (const auto& [method, rows] : rigid_rows)
       if (!rows.empty())
-        rigid_figure.add(rows, fmt::format("using 1:3:xtic(2) with linespoints title '{}'", method));
+        rigid_figure.add(rows, fmt::format("using 1:3:xtic(2) with points {} title '{}'",
+                                           series_style(rigid_figure.count()), method));
     files.add_table("drift", table);
     for (const auto& [group, figure] : ball_figures)
       render({"ball_energy_" + group, figure.data(),

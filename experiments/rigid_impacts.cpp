@@ -11,7 +11,7 @@
 //                     head-on scene, whose L is zero, still has a scale)
 //   energy            (E + dissipated - E0) / E0 (the ledger's numerical part)
 // Outputs in --out (default results/rigid_impacts): conservation.{csv,md,tex},
-// conservation.{png,pdf,gp} (largest error over the scenes against step or tolerance),
+// conservation.{png,pdf,gp} (largest error over the scenes against the step and the tolerance),
 // meta.json. Exit codes: 0, 1 solver failure, 2 bad input.
 #include "contact_ode/analysis/table.hpp"
 #include "contact_ode/models/rigid/rigid_scenes.hpp"
@@ -109,7 +109,8 @@ int program(int argc, char** argv) {
         }
       }
     }
-    // Three panels side by side: each error against step (game) or tolerance (the others).
+    // Three panels side by side: the game methods' errors against the step (bottom axis), the
+    // others' against the tolerance (top axis): two axes, never one axis meaning both.
     std::string data, plot = "set multiplot layout 1,3\n";
     std::vector<std::string> blocks;
     for (const auto& [method, by_value] : worst) {
@@ -122,13 +123,16 @@ int program(int argc, char** argv) {
     const char* titles[] = {"momentum", "angular momentum", "energy"};
     for (int q = 0; q < 3; ++q) {
       plot += fmt::format(
-          "set title '{}'\nset logscale xy\nset format x '10^{{%L}}'\nset format y '10^{{%L}}'\nset xlabel "
-          "'dt [s] or rtol'\n"
+          "set title '{}'\nset logscale xyx2\nset format x '10^{{%L}}'\nset format x2 '10^{{%L}}'\nset "
+          "format y "
+          "'10^{{%L}}'\nset xlabel 'dt [s] (game)'\nset x2label 'rtol (the others)'\nset x2tics\nset xtics "
+          "nomirror\n"
           "set grid\nset yrange [1e-17:*]\n{}\nplot ",
           titles[q], q == 0 ? "set key top left font ',8'" : "unset key");
       for (std::size_t b = 0; b < blocks.size(); ++b)
-        plot += fmt::format("{}'data.csv' index {} using 1:{} with linespoints title '{}'", b ? ", " : "", b,
-                            q + 2, blocks[b]);
+        plot += fmt::format("{}'data.csv' index {} using 1:{} axes {} with linespoints {} title '{}'",
+                            b ? ", " : "", b, q + 2, method_info(blocks[b]).fixed_step ? "x1y1" : "x2y1",
+                            series_style(b), blocks[b]);
       plot += "\n";
     }
     plot += "unset multiplot";

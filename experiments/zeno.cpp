@@ -44,6 +44,8 @@ int program(int argc, char** argv) {
 
     Table table({"method", "status", "contacts", "rest_time_s", "zeno_time_s", "final_height_m",
                  "static_deflection_m", "min_height_m", "rhs_evals"});
+    table.set_latex_header({"method", "status", "contacts", "rest at [s]", "$t_\\infty$ [s]",
+                            "final height [m]", "$mg/k$ [m]", "lowest [m]", "evaluations"});
     Series heights;
     const std::vector<std::string> methods = {"event-exact", "event-ode", "penalty", "game-symplectic",
                                               "game-symplectic-spring"};
