@@ -123,11 +123,11 @@ int program(int argc, char** argv) {
     }
     Table exponents({"law", "penetration_exponent", "penetration_exponent_sd", "duration_exponent",
                      "duration_exponent_sd", "expected"});
+    exponents.set_latex_header({"law", "penetration", "sd", "duration", "sd", "expected"});
     for (const auto& law : kLaws) {
       if (fit_k[law].size() < 2) continue;
       const PowerFit p = fit_power_law(fit_k[law], fit_pen[law]), d = fit_power_law(fit_k[law], fit_dur[law]);
-      exponents.add_row({law, p.exponent, p.exponent_sd, d.exponent, d.exponent_sd,
-                         std::string("-1/2 (V sqrt(m/k), pi sqrt(m/k))")});
+      exponents.add_row({law, p.exponent, p.exponent_sd, d.exponent, d.exponent_sd, std::string("-1/2")});
     }
     files.add_table("k_sweep", table);
     files.add_table("exponents", exponents);
