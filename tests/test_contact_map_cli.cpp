@@ -22,8 +22,12 @@ TEST_F(ContactMapCli, EachSchemeErrsAsItsAmplificationSays) {
     // Undamped: explicit Euler multiplies the energy by 1 + (w dt)^2 at each of the ~pi / (w dt)
     // contact steps, so e ~ exp(pi w dt / 2) > 1; implicit Euler divides by it, e ~ exp(-pi w dt / 2).
     // At the smallest step the first-order term pi w dt / 2 dominates: within a factor of two.
-    if (scheme == "game-euler-spring") EXPECT_GT(rel, 0) << wdt;
-    if (scheme == "game-implicit-spring") EXPECT_LT(rel, 0) << wdt;
+    if (scheme == "game-euler-spring") {
+      EXPECT_GT(rel, 0) << wdt;
+    }
+    if (scheme == "game-implicit-spring") {
+      EXPECT_LT(rel, 0) << wdt;
+    }
     if (wdt == 0.01 && (scheme == "game-euler-spring" || scheme == "game-implicit-spring")) {
       EXPECT_GT(std::abs(rel), 0.5 * M_PI * wdt / 2) << scheme;
       EXPECT_LT(std::abs(rel), 2 * M_PI * wdt / 2) << scheme;
@@ -40,11 +44,14 @@ TEST_F(ContactMapCli, EachSchemeErrsAsItsAmplificationSays) {
       EXPECT_GT(ok1 * 1.5, 0.2807);
     }
     // The first-order schemes lose or gain pi w dt / 2 per contact: 1 % is out of reach at w dt >= 0.01.
-    if (row["scheme"] == "game-euler-spring" || row["scheme"] == "game-implicit-spring")
+    if (row["scheme"] == "game-euler-spring" || row["scheme"] == "game-implicit-spring") {
       EXPECT_TRUE(std::isnan(ok1));
+    }
     // The soft step sets the exit speed by its restitution target, apart from the spring: within 1 %
     // at every step on the map (the paper's reading of Box2D's design).
-    if (row["scheme"] == "soft-step") EXPECT_EQ(ok1, 4.0) << row["zeta"];
+    if (row["scheme"] == "soft-step") {
+      EXPECT_EQ(ok1, 4.0) << row["zeta"];
+    }
   }
   for (const char* f : {"explicit.png", "semi_implicit.pdf", "implicit.png", "soft.pdf", "steps.tex"})
     EXPECT_TRUE(fs::exists(dir_ / "cm" / f)) << f;
