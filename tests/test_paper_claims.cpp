@@ -44,25 +44,13 @@ TEST(PaperClaims, PenetrationAndDurationScaleAsKToTheMinusHalf) {
   EXPECT_NEAR(cell("k_sweep/exponents.csv", {{"law", "hooke"}}, "duration_exponent"), -0.5, 0.005);
 }
 
-// "The cost per contact of every adaptive code, explicit or implicit, is flat in k ... and an explicit
-// RKF45 pair resolves it in less CPU time than BDF" (a stability-bound code would show k^(1/2)).
+// "The cost per contact of every adaptive code, explicit or implicit, is flat in k" (a code whose step
+// were bound by stability in the contact would show k^(1/2)). The CPU times the text quotes beside it
+// are measurements, not claims a test could time: speed belongs in the benchmarks.
 TEST(PaperClaims, AResolvedContactIsNotStiff) {
   for (const char* name : {"cvode-bdf", "cvode-adams", "arkode-erk", "gsl-rkf45", "gsl-rk8pd", "arkode-dirk"})
     EXPECT_LT(std::abs(cell("contact_cost/exponents.csv", {{"integrator", name}}, "rhs_exponent")), 0.05)
         << name;
-  const auto cpu = [](const char* name) {
-    return cell("contact_cost/cost.csv", {{"integrator", name}, {"k_N_per_m", "1e6"}}, "cpu_s_per_contact");
-  };
-  EXPECT_LT(cpu("gsl-rkf45"), cpu("cvode-bdf"));
-  // The text: the same on the whole ball and the chain at rtol 1e-6.
-  for (const char* problem : {"ball", "chain"}) {
-    const auto solve = [&](const char* name) {
-      return cell("work_precision/work_precision.csv",
-                  {{"problem", problem}, {"paradigm", "penalty"}, {"integrator", name}, {"value", "1e-6"}},
-                  "cpu_time_s");
-    };
-    EXPECT_LT(solve("gsl-rkf45"), solve("cvode-bdf")) << problem;
-  }
 }
 
 // "Scored against the rigid body, the penalty ball keeps an error of 0.211 at k = 1e4 however tight
