@@ -179,6 +179,16 @@ RunResult run_event_driven(const MechanicalSystem& model, const AnalyticFlight& 
   double t_leg = 0.0, tau_now = 0.0;  // leg start, and the current time measured from it
   Vector y_leg = model.initial_state(), y = y_leg;
   bool any_rest = false;
+  // Each contact's impact and apex times on the current leg, computed once per leg (the leg's
+  // outputs and apexes do not change them).
+  std::vector<double> leg_impact(nc), leg_apex(nc);
+  const auto start_leg = [&] {
+    for (std::size_t i = 0; i < nc; ++i) {
+      leg_impact[i] = flight.time_to_impact(i, y_leg);
+      leg_apex[i] = flight.time_to_apex(i, y_leg);
+    }
+  };
+  start_leg();
 
   SolverStats own;
   double t = 0.0;
@@ -189,7 +199,7 @@ RunResult run_event_driven(const MechanicalSystem& model, const AnalyticFlight& 
       std::size_t which = nc;
       bool impact = false;
       for (std::size_t i = 0; i < nc && !any_rest; ++i) {
-        const double ti = flight.time_to_impact(i, y_leg), ta = flight.time_to_apex(i, y_leg);
+        const double ti = leg_impact[i], ta = leg_apex[i];
         if (ta > tau_now && ta < tau) {
           tau = ta;
           which = i;
@@ -215,6 +225,7 @@ RunResult run_event_driven(const MechanicalSystem& model, const AnalyticFlight& 
         t_leg = t;
         tau_now = 0.0;
         y_leg = y;
+        start_leg();
         own.steps += 1;
         own.events += 1;
       } else {

@@ -95,8 +95,8 @@ class ContactGeometry {
   // the release. Counting it until the overlap closes would book it as numerical drift instead.
   double engaged_elastic_energy(std::size_t count, ConstVectorRef y) const {
     double E = 0;
-    for (std::size_t i = 0; i < count; ++i)
-      if (switching(i, y) > 0) E += elastic_energy(i, y);
+    for (std::size_t i = 0; i < count; ++i)  // (every law's switching is at most the overlap -gap,
+      if (gap(i, y) < 0 && switching(i, y) > 0) E += elastic_energy(i, y);  // so open contacts skip it)
     return E;
   }
 };
