@@ -41,7 +41,7 @@ using Points = std::map<bool, std::map<std::string, std::vector<ConvergencePoint
 
 int program(int argc, char** argv) {
   double k = 1e4, t_final = 1.5, dt_max = 2e-3, tol_min = 1e-10;
-  long halvings = 6, heights = 5;
+  long halvings = 6, heights = 3;
   std::string integrators = "all";
   Experiment app("convergence_dt",
                  "Observed orders of every integrator on the penalty ball drop, kinks located or not.",

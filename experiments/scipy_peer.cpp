@@ -40,7 +40,8 @@ std::vector<ScipyRun> run_scipy_peer(const ScipyDrop& d) {
                                     {"--h0", d.h0},
                                     {"--v0", d.v0},
                                     {"--t-end", d.t_end},
-                                    {"--repeats", static_cast<double>(d.repeats)}})
+                                    {"--repeats", static_cast<double>(d.repeats)},
+                                    {"--budget", d.budget_s}})
     argv.insert(argv.end(), {flag, fmt::format("{}", value)});
   const int code = run_process(argv, {}, log);
   const std::string out = read_text(log);
@@ -52,7 +53,7 @@ std::vector<ScipyRun> run_scipy_peer(const ScipyDrop& d) {
     const auto j = nlohmann::json::parse(line);
     runs.push_back({j.at("method"), j.at("rtol"), j.at("atol"), j.at("y"), j.at("v"),
                     j.at("apexes").get<std::vector<double>>(), j.at("nfev"), j.at("njev"), j.at("cpu_s"),
-                    j.at("cpu_min_s"), j.at("cpu_max_s")});
+                    j.at("cpu_min_s"), j.at("cpu_max_s"), j.at("repeats")});
   }
   if (runs.size() != d.methods.size() * d.rtols.size())
     throw std::runtime_error(fmt::format("the SciPy peer printed {} results, expected {}:\n{}", runs.size(),
@@ -61,10 +62,10 @@ std::vector<ScipyRun> run_scipy_peer(const ScipyDrop& d) {
 }
 
 std::vector<ScoredScipyRun> scipy_on_ball(const Problem& ball, double k, const std::vector<double>& rtols,
-                                          int repeats) {
+                                          int repeats, double budget_s) {
   std::vector<ScoredScipyRun> scored;
-  for (const ScipyRun& p :
-       run_scipy_peer({.k = k, .t_end = ball.t_end, .rtols = rtols, .repeats = repeats})) {
+  for (const ScipyRun& p : run_scipy_peer(
+           {.k = k, .t_end = ball.t_end, .rtols = rtols, .repeats = repeats, .budget_s = budget_s})) {
     RunResult r;  // the peer's final state, as a run
     r.samples.push_back({.t = ball.t_end, .y = Vector{{p.y, p.v}}, .energy = 0, .dissipated = 0});
     scored.push_back({p, ball.error(r, false), ball.error(r, true)});

@@ -17,6 +17,7 @@ struct ScipyRun {
   std::vector<double> apexes;          // heights of the apexes [m]
   long nfev, njev;                     // right-hand sides and Jacobians
   double cpu_s, cpu_min_s, cpu_max_s;  // per solve: median, min, max over the repeats
+  int repeats;                         // solves timed
 };
 
 struct ScipyDrop {
@@ -24,6 +25,7 @@ struct ScipyDrop {
   std::vector<double> rtols{1e-6};
   double atol_ratio = 1e-2;  // atol = rtol * atol_ratio
   int repeats = 1;
+  double budget_s = 0;  // > 0: at least 3 (at most `repeats`) solves, stopping once they took this long
   std::vector<std::string> methods{"BDF", "Radau", "LSODA", "RK45"};
 };
 
@@ -34,13 +36,13 @@ std::vector<ScipyRun> run_scipy_peer(const ScipyDrop& drop);
 
 // The peer on the work-precision ball (problems.hpp: Hooke spring k, to the problem's t_end) at
 // each rtol (atol = rtol / 100), each run scored by the problem's own errors of its final state,
-// its CPU time the median of `repeats` solves.
+// its CPU time the median of 3 to `repeats` solves, as many as fit in `budget_s` (0: all `repeats`).
 struct ScoredScipyRun {
   ScipyRun run;
   double error;           // against the spring model (the problem's closed form)
   double error_physical;  // against the rigid ball (the physical reference)
 };
 std::vector<ScoredScipyRun> scipy_on_ball(const Problem& ball, double k, const std::vector<double>& rtols,
-                                          int repeats = 1);
+                                          int repeats = 1, double budget_s = 0);
 
 }  // namespace contact

@@ -95,6 +95,7 @@ class ArkIntegrator final : public sundials::IntegratorBase {
       // At a fixed step a stalled Newton iteration cannot be rescued by a smaller step, so it
       // gets more iterations than ARKODE's default 3 before the step is declared failed.
       check(ARKStepSetMaxNonlinIters(m, 10), "ARKStepSetMaxNonlinIters");
+      check(ARKStepSetPredictorMethod(m, 1), "ARKStepSetPredictorMethod");
     }
 
     const auto& jac = imex_ ? data_.sys.implicit_jacobian : data_.sys.jacobian;

@@ -7,7 +7,8 @@ Ball of mass m dropped from h0 onto the floor y = 0; while y < 0 the linear law
 F = -k y - c v pushes (unclamped, as the project's "kelvin-voigt"; c = 0 is Hooke).
 Prints one JSON object per (method, rtol): the final state at t_end, the apex heights, the
 right-hand-side and Jacobian evaluations, and the CPU time per solve (median of --repeats, with
-min and max). Needs NumPy and SciPy (Debian: python3-scipy; run with /usr/bin/python3).
+min and max; with --budget, at least three and at most --repeats solves, stopping once they have
+taken --budget seconds, as the project's time_cpu_within). Needs NumPy and SciPy (Debian: python3-scipy; run with /usr/bin/python3).
 """
 import argparse
 import json
@@ -68,24 +69,27 @@ def main():
     p.add_argument("--v0", type=float, default=0.0)
     p.add_argument("--t-end", type=float, default=1.5)
     p.add_argument("--repeats", type=int, default=1)
+    p.add_argument("--budget", type=float, default=0.0, help="CPU seconds after which repeats stop (0: none)")
     a = p.parse_args()
     for name, value, low in (("--k", a.k, 0.0), ("--m", a.m, 0.0), ("--t-end", a.t_end, 0.0)):
         if not value > low:
             sys.exit(f"scipy_peer: {name}: value '{value}' is out of range; accepted range (0, inf)")
     if a.repeats < 1:
         sys.exit(f"scipy_peer: --repeats: value '{a.repeats}' is out of range; accepted range [1, inf)")
+    if not a.budget >= 0:
+        sys.exit(f"scipy_peer: --budget: value '{a.budget}' is out of range; accepted range [0, inf)")
     for method in a.methods.split(","):
         for rtol in (float(r) for r in a.rtols.split(",")):
             atol = a.atol if a.atol is not None else rtol * a.atol_ratio
             times = []
-            for _ in range(a.repeats):
+            while len(times) < a.repeats and (a.budget == 0 or len(times) < 3 or sum(times) < a.budget):
                 start = time.process_time()
                 y, apexes, nfev, njev = drop(method, rtol, atol, a.m, a.g, a.k, a.c, a.h0, a.v0, a.t_end)
                 times.append(time.process_time() - start)
             print(json.dumps({"method": method, "rtol": rtol, "atol": atol, "y": float(y[0]), "v": float(y[1]),
                               "apexes": apexes, "nfev": nfev, "njev": njev,
                               "cpu_s": statistics.median(times), "cpu_min_s": min(times),
-                              "cpu_max_s": max(times), "repeats": a.repeats}))
+                              "cpu_max_s": max(times), "repeats": len(times)}))
 
 
 if __name__ == "__main__":

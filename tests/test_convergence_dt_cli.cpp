@@ -32,7 +32,7 @@ TEST_F(ConvergenceDtCli, LocatedSwitchesRestoreTheOrderTheKinkTakes) {
   for (auto& row : csv_table(slurp(dir_ / "cd" / "orders.csv"))) o[row["integrator"]] = row;
   const auto num = [&](const std::string& name, const char* column) { return std::stod(o[name][column]); };
   // Located: every switch is a step end and the method shows its order p over the fit's range
-  // (the five finest rows with 1e-9 < max error < 1e-2, max over five drop heights, so over the
+  // (the five finest rows with 1e-9 < max error < 1e-2, max over three drop heights, so over the
   // kinks' phases in the step); 0.3 covers what is left of the pre-asymptotic spread.
   for (const char* name : {"velocity-verlet", "gsl-rkf45"})
     EXPECT_NEAR(num(name, "fixed_order_located"), num(name, "order"), 0.3) << name;
