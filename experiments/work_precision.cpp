@@ -39,10 +39,8 @@
 using namespace contact;
 
 namespace {
-
 constexpr double kFloor = 1e-16;
 constexpr double kBudget = 0.02;  // CPU seconds of timed solves per point, ours and SciPy's
-
 }  // namespace
 
 int program(int argc, char** argv) {
