@@ -11,8 +11,9 @@
 // t in [0, 3] s, dt = 1 ms, rtol = 1e-8, atol = 1e-10.
 // Outputs in --out (default results/ball_drop): comparison.{csv,md,tex}, contacts.csv,
 // apexes.csv, samples.csv, stats.csv, heights.{png,pdf,gp}, meta.json; with --sweep,
-// sweep.{csv,md,tex}, penetration.{png,pdf,gp} (first penetration against k) and meta.json.
-// Exit codes: 0 success, 1 solver failure (status, time reached and message on stderr), 2 bad input.
+// sweep.{csv,md,tex}, penetration.{png,pdf,gp} (first penetration against k) and meta.json; under mpirun the
+// sweep's runs go over the ranks. Exit codes: 0 success, 1 solver failure (status, time reached and message
+// on stderr), 2 bad input.
 #include "ball_drop_setup.hpp"
 #include "contact_ode/analysis/run_tables.hpp"
 #include "contact_ode/models/law_registry.hpp"
@@ -125,7 +126,7 @@ int program(int argc, char** argv) {
           "--k-max: value '{:g}' is below --k-min = {:g}; accepted range [k-min, inf)", o.k_max, o.k_min));
     validate(method_for(o, "penalty").integrator);
     if (o.sweep)
-      run_sweep(o, files);
+      run_sweep(o, app, files);
     else
       run_single(o, files);
   });

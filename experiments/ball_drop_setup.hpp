@@ -4,6 +4,7 @@
 #include "contact_ode/analysis/references.hpp"
 #include "contact_ode/integrators/method_registry.hpp"
 #include "contact_ode/models/contact_law.hpp"
+#include "experiment.hpp"
 #include "output.hpp"
 
 #include <string>
@@ -45,6 +46,7 @@ SpringContact closed_form_contact(const BallDropOptions& o, double k);
 std::string ball_references(const BallDropOptions& o);
 
 void run_single(const BallDropOptions& o, OutputSet& out);
-void run_sweep(const BallDropOptions& o, OutputSet& out);
+// Under mpirun the sweep's (k, method) runs are dealt over the ranks (Experiment::share).
+void run_sweep(const BallDropOptions& o, Experiment& app, OutputSet& out);
 
 }  // namespace contact

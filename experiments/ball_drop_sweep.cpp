@@ -14,7 +14,7 @@
 
 namespace contact {
 
-void run_sweep(const BallDropOptions& o, OutputSet& out) {
+void run_sweep(const BallDropOptions& o, Experiment& app, OutputSet& out) {
   const std::vector<double> ks = log_grid(o.k_min, o.k_max, o.per_decade);
 
   std::vector<std::string> columns{"k_N_per_m", "method", "omega_dt", "closed_form_penetration_m",
@@ -29,8 +29,8 @@ void run_sweep(const BallDropOptions& o, OutputSet& out) {
     if (!method_info(name).uses_contact_law) runs.emplace_back(std::nan(""), method_info(name));
 
   Progress progress("ball_drop sweep", runs.size());
-  std::map<std::string, std::string> penetration;  // method -> "k,first penetration,closed form" lines
-  for (const auto& [k, m] : runs) {
+  const auto results = app.share(runs.size(), [&](std::size_t i) -> nlohmann::json {
+    const auto& [k, m] = runs[i];
     progress.step(fmt::format("k = {:g}, {}", k, m.name));
     const RunResult r = run_ball(o, m.name, std::isnan(k) ? o.k : k);
     // A sweep charts where methods break, so a failed run is a row, not the end of the sweep;
@@ -42,10 +42,18 @@ void run_sweep(const BallDropOptions& o, OutputSet& out) {
                                  game && !std::isnan(k) ? std::sqrt(k / o.m) * o.dt : std::nan(""),
                                  ref.max_penetration, ref.duration};
     for (auto& c : metric_cells(r)) row.push_back(std::move(c));
-    sweep.add_row(std::move(row));
-    if (!std::isnan(k) && !r.contacts.empty())
-      penetration[m.name] +=
-          fmt::format("{},{},{}\n", k, r.contacts.front().max_penetration, ref.max_penetration);
+    const bool first = !std::isnan(k) && !r.contacts.empty();
+    return {
+        {"row", row_to_json(row)},
+        {"penetration",
+         first ? fmt::format("{},{},{}\n", k, r.contacts.front().max_penetration, ref.max_penetration) : ""}};
+  });
+  if (!results) return;                            // another MPI rank: its share is done
+  std::map<std::string, std::string> penetration;  // method -> "k,first penetration,closed form" lines
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    sweep.add_row(row_from_json((*results)[i].at("row")));
+    const auto line = (*results)[i].at("penetration").get<std::string>();
+    if (!line.empty()) penetration[runs[i].second.name] += line;
   }
   Series series;
   for (const auto& [name, rows] : penetration)

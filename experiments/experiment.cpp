@@ -115,4 +115,19 @@ bool report(const RunResult& r, const std::string& what) {
   return r.ok();
 }
 
+nlohmann::json row_to_json(const std::vector<Table::Cell>& row) {
+  nlohmann::json cells = nlohmann::json::array();
+  for (const auto& cell : row) std::visit([&](const auto& v) { cells.push_back(v); }, cell);
+  return cells;
+}
+
+std::vector<Table::Cell> row_from_json(const nlohmann::json& cells) {
+  std::vector<Table::Cell> row;
+  for (const auto& c : cells)
+    row.push_back(c.is_string()           ? Table::Cell(c.get<std::string>())
+                  : c.is_number_integer() ? Table::Cell(c.get<long>())
+                                          : Table::Cell(c.get<double>()));
+  return row;
+}
+
 }  // namespace contact

@@ -13,6 +13,8 @@
 #include "cli.hpp"
 #include "output.hpp"
 
+#include "contact_ode/analysis/table.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <functional>
@@ -59,5 +61,9 @@ RunResult require(RunResult r, const std::string& what);
 // For sweeps, where a failed run is a row rather than the end: prints that same line on stderr
 // when r failed, and returns whether it succeeded.
 bool report(const RunResult& r, const std::string& what);
+
+// A table row through share(): its cells as JSON (strings, integers and doubles keep their kind).
+nlohmann::json row_to_json(const std::vector<Table::Cell>& row);
+std::vector<Table::Cell> row_from_json(const nlohmann::json& cells);
 
 }  // namespace contact

@@ -112,9 +112,7 @@ int program(int argc, char** argv) {
       const WorkJob& job = jobs[i];
       const auto& r = (*results)[i];
       std::vector<Table::Cell> row{job.problem->name, job.paradigm, job.integrator, job.setting, job.value};
-      for (std::size_t c = 0; c < r.size(); ++c)
-        row.push_back(r[c].is_number_integer() ? Table::Cell(r[c].get<long>())
-                                               : Table::Cell(r[c].get<double>()));
+      for (auto& cell : row_from_json(r)) row.push_back(std::move(cell));
       add(job.problem->name, job.paradigm, job.integrator, row, r[4].get<double>(), r[0].get<double>());
     }
     const std::string missing = scipy_peer_missing();
