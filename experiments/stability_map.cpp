@@ -8,7 +8,8 @@
 // multiplies the oscillator's energy by (1 + (w dt)^2) every step in contact; semi-implicit Euler
 // keeps it within (1 + w dt/2)/(1 - w dt/2) of the entry value below w dt = 2 and is unstable above.
 // Outputs in --out (default results/stability_map): stability.{csv,md,tex},
-// restitution.{png,pdf,gp}, meta.json. Exit codes: 0, 1 failure, 2 bad input.
+// restitution.{png,pdf,gp}, meta.json; under mpirun the (k, scheme, w dt) runs are dealt over the
+// ranks. Exit codes: 0, 1 failure, 2 bad input.
 #include "contact_ode/analysis/table.hpp"
 #include "contact_ode/integrators/game_step.hpp"
 #include "contact_ode/models/ball_drop.hpp"
@@ -39,41 +40,46 @@ int program(int argc, char** argv) {
     const double m = 1.0, V = 1.0;
     Table table(
         {"k_N_per_m", "scheme", "omega_dt", "dt_s", "restitution", "energy_ratio", "reference_bound"});
-    std::string data;
     const std::vector<double> ks = {1e2, 1e4, 1e6};
-    Progress progress("stability_map", ks.size() * 2 * static_cast<std::size_t>(points));
-    for (std::size_t ki = 0; ki < ks.size(); ++ki) {
+    const FixedStepScheme schemes[] = {FixedStepScheme::ExplicitEuler, FixedStepScheme::SemiImplicitEuler};
+    const auto per_k = 2 * static_cast<std::size_t>(points);
+    Progress progress("stability_map", ks.size() * per_k);
+    const auto results = app.share(ks.size() * per_k, [&](std::size_t i) -> nlohmann::json {
+      const std::size_t ki = i / per_k;
+      const auto scheme = schemes[i % per_k / static_cast<std::size_t>(points)];
+      const auto j = static_cast<double>(i % static_cast<std::size_t>(points));
       const double k = ks[ki], w = std::sqrt(k / m);
-      for (auto scheme : {FixedStepScheme::ExplicitEuler, FixedStepScheme::SemiImplicitEuler}) {
-        for (long j = 0; j < points; ++j) {
-          const double wdt =
-              0.01 * std::pow(wdt_max / 0.01, static_cast<double>(j) / static_cast<double>(points - 1));
-          const double dt = wdt / w;
-          progress.step(fmt::format("k = {:g} {} w dt = {:.3g}", k, to_string(scheme), wdt));
-          const double h0 = 0.5 * V * dt;
-          const BallDrop model({m, 0.0, h0, -V, 1.0, Hooke{k}});
-          // Long enough for the slowest contact (about pi/w plus the steps it takes) to end.
-          const double t_end = h0 / V + 20 * M_PI / w + 10 * dt;
-          const RunResult r =
-              run_game(model, {.dt = dt, .scheme = scheme, .resolution = GameResolution::Spring},
-                       {.t_end = t_end, .sample_dt = t_end});
-          double e = std::nan(""), ratio = std::nan("");
-          if (r.ok() && !r.contacts.empty() && r.contacts.front().closed()) {
-            e = r.contacts.front().restitution();
-            ratio = e * e;  // kinetic energy out over in: the spring holds none once the ball has left
-          } else if (!r.ok() || (!r.contacts.empty() && !r.contacts.front().closed())) {
-            e = ratio = std::numeric_limits<double>::infinity();  // unstable: never let go, or blew up
-          }
-          const double bound =
-              scheme == FixedStepScheme::SemiImplicitEuler
-                  ? (wdt < 2 ? (1 + wdt / 2) / (1 - wdt / 2) : std::numeric_limits<double>::infinity())
-                  : std::nan("");
-          table.add_row({k, std::string(to_string(scheme)), wdt, dt, e, ratio, bound});
-          if (std::isfinite(e))
-            data +=
-                fmt::format("{},{},{},{}\n", ki, scheme == FixedStepScheme::ExplicitEuler ? 0 : 1, wdt, e);
-        }
+      const double wdt = 0.01 * std::pow(wdt_max / 0.01, j / static_cast<double>(points - 1));
+      const double dt = wdt / w;
+      progress.step(fmt::format("k = {:g} {} w dt = {:.3g}", k, to_string(scheme), wdt));
+      const double h0 = 0.5 * V * dt;
+      const BallDrop model({m, 0.0, h0, -V, 1.0, Hooke{k}});
+      // Long enough for the slowest contact (about pi/w plus the steps it takes) to end.
+      const double t_end = h0 / V + 20 * M_PI / w + 10 * dt;
+      const RunResult r = run_game(model, {.dt = dt, .scheme = scheme, .resolution = GameResolution::Spring},
+                                   {.t_end = t_end, .sample_dt = t_end});
+      double e = std::nan(""), ratio = std::nan("");
+      if (r.ok() && !r.contacts.empty() && r.contacts.front().closed()) {
+        e = r.contacts.front().restitution();
+        ratio = e * e;  // kinetic energy out over in: the spring holds none once the ball has left
+      } else if (!r.ok() || (!r.contacts.empty() && !r.contacts.front().closed())) {
+        e = ratio = std::numeric_limits<double>::infinity();  // unstable: never let go, or blew up
       }
+      const double bound =
+          scheme == FixedStepScheme::SemiImplicitEuler
+              ? (wdt < 2 ? (1 + wdt / 2) / (1 - wdt / 2) : std::numeric_limits<double>::infinity())
+              : std::nan("");
+      return row_to_json({k, std::string(to_string(scheme)), wdt, dt, e, ratio, bound});
+    });
+    if (!results) return;  // another MPI rank: its share is done
+    std::string data;
+    for (std::size_t i = 0; i < results->size(); ++i) {
+      const auto row = row_from_json((*results)[i]);
+      const double wdt = std::get<double>(row[2]), e = std::get<double>(row[4]);
+      if (std::isfinite(e))
+        data += fmt::format("{},{},{},{}\n", i / per_k, i % per_k < static_cast<std::size_t>(points) ? 0 : 1,
+                            wdt, e);
+      table.add_row(row);
     }
     std::string plot =
         "set logscale xy\nset xlabel 'omega dt'\nset ylabel 'effective restitution (exit / entry speed)'\n"
