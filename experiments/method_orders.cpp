@@ -11,7 +11,8 @@
 // the contact and keep their own order (1 for the Euler family) while dt is well below the
 // contact time pi sqrt(m/k) (31 ms at the default k).
 // Outputs in --out (default results/method_orders): errors.{csv,md,tex}, orders.{csv,md,tex},
-// errors.{png,pdf,gp}, meta.json. Exit codes: 0, 1 solver failure, 2 bad input.
+// errors.{png,pdf,gp}, meta.json; under mpirun the (method, dt) runs are dealt over the ranks.
+// Exit codes: 0, 1 solver failure, 2 bad input.
 #include "contact_ode/analysis/fit.hpp"
 #include "contact_ode/analysis/table.hpp"
 #include "contact_ode/integrators/method_registry.hpp"
@@ -65,23 +66,33 @@ int program(int argc, char** argv) {
     Table errors({"method", "reference", "dt_s", "error", "observed_order", "rhs_evals"});
     Table orders({"method", "reference", "fitted_order", "finest_error"});
     Series figure;
-    Progress progress("method_orders", chosen.size() * static_cast<std::size_t>(halvings + 1));
-    for (const auto& name : chosen) {
-      const bool rigid = !method_info(name).uses_contact_law;
-      const std::string reference = rigid ? "rigid" : "spring";
+    const auto per_method = static_cast<std::size_t>(halvings + 1);
+    const auto step = [&](std::size_t i) {
+      return dt_max / std::pow(2.0, static_cast<double>(i % per_method));
+    };
+    Progress progress("method_orders", chosen.size() * per_method);
+    const auto results = app.share(chosen.size() * per_method, [&](std::size_t i) -> nlohmann::json {
+      const std::string& name = chosen[i / per_method];
+      const double dt = step(i);
+      progress.step(fmt::format("{} dt = {:g}", name, dt));
+      const RunResult r =
+          require(solve(*ball.model, {.name = name, .dt = dt}, {.t_end = t_final, .sample_dt = t_final}),
+                  fmt::format("{} (dt = {:g})", name, dt));
+      return {ball.error(r, !method_info(name).uses_contact_law), r.stats.rhs_evals};
+    });
+    if (!results) return;  // another MPI rank: its share is done
+    for (std::size_t m = 0; m < chosen.size(); ++m) {
+      const std::string& name = chosen[m];
+      const std::string reference = method_info(name).uses_contact_law ? "spring" : "rigid";
       std::vector<ConvergencePoint> points;
       std::string rows;
-      for (long j = 0; j <= halvings; ++j) {
-        const double dt = dt_max / std::pow(2.0, static_cast<double>(j));
-        progress.step(fmt::format("{} dt = {:g}", name, dt));
-        const RunResult r =
-            require(solve(*ball.model, {.name = name, .dt = dt}, {.t_end = t_final, .sample_dt = t_final}),
-                    fmt::format("{} (dt = {:g})", name, dt));
-        const double err = ball.error(r, rigid);
+      for (std::size_t i = m * per_method; i < (m + 1) * per_method; ++i) {
+        const double dt = step(i), err = (*results)[i][0].get<double>();
+        const long rhs = (*results)[i][1].get<long>();
         const double order =
             points.empty() ? std::nan("") : observed_order(points.back().step, points.back().error, dt, err);
-        points.push_back({dt, err, r.stats.rhs_evals});
-        errors.add_row({name, reference, dt, err, order, r.stats.rhs_evals});
+        points.push_back({dt, err, rhs});
+        errors.add_row({name, reference, dt, err, order, rhs});
         rows += fmt::format("{},{}\n", dt, std::max(err, kFloor));
       }
       orders.add_row({name, reference, fitted_order(points, kFloor, kFitRows), points.back().error});
