@@ -12,7 +12,7 @@
 //   energy            (E + dissipated - E0) / E0 (the ledger's numerical part)
 // Outputs in --out (default results/rigid_impacts): conservation.{csv,md,tex},
 // conservation.{png,pdf,gp} (largest error over the scenes against the step and the tolerance),
-// meta.json. Exit codes: 0, 1 solver failure, 2 bad input.
+// meta.json; under mpirun the runs are dealt over the ranks. Exit: 0, 1 solver failure, 2 bad input.
 #include "contact_ode/analysis/table.hpp"
 #include "contact_ode/models/rigid/rigid_scenes.hpp"
 #include "experiment.hpp"
@@ -39,6 +39,11 @@ constexpr double kFloor = 1e-17;  // errors drawn on a log axis
 
 struct Totals {
   Vec3 p = Vec3::Zero(), L = Vec3::Zero();
+};
+
+struct Case {
+  std::string scene, method;
+  double value;
 };
 
 Totals totals(const std::vector<RigidBody>& bodies) {
@@ -68,16 +73,15 @@ int program(int argc, char** argv) {
     const double lever = SceneParams{}.radius;
     const auto scene_list = cli::split_list(scenes);
     const auto& methods = kRigidMethods;
-    std::size_t total = 0;
-    for (const auto& method : methods)
-      total += scene_list.size() * (method_info(method).fixed_step ? dts.size() : rtols.size());
-
+    std::vector<Case> cases;
+    for (const auto& name : scene_list)
+      for (const auto& method : methods)
+        for (double v : method_info(method).fixed_step ? dts : rtols) cases.push_back({name, method, v});
     Table table({"scene", "method", "setting", "value", "momentum_error_rel", "angular_momentum_error_rel",
                  "energy_error_rel", "contacts", "rhs_evals"});
-    // method -> setting value -> largest error over the scenes (momentum, angular momentum, energy)
-    std::map<std::string, std::map<double, std::array<double, 3>>> worst;
-    Progress progress("rigid_impacts", total);
-    for (const auto& name : scene_list) {
+    Progress progress("rigid_impacts", cases.size());
+    const auto results = app.share(cases.size(), [&](std::size_t i) -> nlohmann::json {
+      const auto& [name, method, v] = cases[i];
       const SceneInfo& info = rigid_scene(name);
       const RigidScene scene = info.make({});
       const Totals before = totals(scene.bodies());
@@ -90,24 +94,25 @@ int program(int argc, char** argv) {
       // The momentum that would carry the initial kinetic energy with the scene's total mass: a scale
       // that is not zero when the bodies' momenta cancel (the box spinning in place).
       const double p_scale = std::sqrt(2 * mass * scene.energy(scene.initial_state()));
-      for (const auto& method : methods) {
-        const bool fixed = method_info(method).fixed_step;
-        for (double v : fixed ? dts : rtols) {
-          progress.step(fmt::format("{} {} {:g}", name, method, v));
-          const RunResult r =
-              require(solve(scene, with_setting(rigid_method(method), v),
-                            {.t_end = info.t_end, .sample_dt = info.t_end}),
-                      fmt::format("{} {} ({} = {:g})", name, method, fixed ? "dt" : "rtol", v));
-          const Totals after = totals(scene.bodies_at(r.samples.back().y));
-          const std::array<double, 3> err = {
-              (after.p - before.p).norm() / p_scale, (after.L - before.L).norm() / L_scale,
-              (r.samples.back().energy + r.samples.back().dissipated - r.energy0) / r.energy0};
-          table.add_row({name, method, std::string(fixed ? "dt" : "rtol"), v, err[0], err[1], err[2],
-                         static_cast<long>(r.contacts.size()), r.stats.rhs_evals});
-          auto& w = worst[method][v];
-          for (int i = 0; i < 3; ++i) w[i] = std::max(w[i], std::abs(err[i]));
-        }
-      }
+      const bool fixed = method_info(method).fixed_step;
+      progress.step(fmt::format("{} {} {:g}", name, method, v));
+      const RunResult r = require(
+          solve(scene, with_setting(rigid_method(method), v), {.t_end = info.t_end, .sample_dt = info.t_end}),
+          fmt::format("{} {} ({} = {:g})", name, method, fixed ? "dt" : "rtol", v));
+      const Totals after = totals(scene.bodies_at(r.samples.back().y));
+      return row_to_json({name, method, std::string(fixed ? "dt" : "rtol"), v,
+                          (after.p - before.p).norm() / p_scale, (after.L - before.L).norm() / L_scale,
+                          (r.samples.back().energy + r.samples.back().dissipated - r.energy0) / r.energy0,
+                          static_cast<long>(r.contacts.size()), r.stats.rhs_evals});
+    });
+    if (!results) return;  // another MPI rank: its share is done
+    // method -> setting value -> largest error over the scenes (momentum, angular momentum, energy)
+    std::map<std::string, std::map<double, std::array<double, 3>>> worst;
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+      const auto row = row_from_json((*results)[i]);
+      table.add_row(row);
+      auto& w = worst[cases[i].method][cases[i].value];
+      for (int q = 0; q < 3; ++q) w[q] = std::max(w[q], std::abs(std::get<double>(row[4 + q])));
     }
     // Three panels side by side: the game methods' errors against the step (bottom axis), the
     // others' against the tolerance (top axis): two axes, never one axis meaning both.

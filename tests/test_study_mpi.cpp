@@ -55,9 +55,9 @@ TEST_F(StudyMpi, TwoRanksWriteWhatOneProcessWrites) {
 
 // k_sweep's (law, k) cases, convergence_dt's (integrator, location, step) cases, ball_drop
 // --sweep's (k, method) runs, stability_map's (k, scheme, w dt) runs, energy_drift's (system,
-// method, setting) runs and method_orders' (method, dt) runs dealt over three ranks (uneven shares): the
-// tables are the serial run's, cell for cell but CPU times, since each case is the same computation wherever
-// it runs; rank 0 alone writes.
+// method, setting) runs, method_orders' (method, dt) and rigid_impacts' (scene, method, setting) runs dealt
+// over three ranks (uneven shares): the tables are the serial run's, cell for cell but CPU times, since each
+// case is the same computation wherever it runs; rank 0 alone writes.
 TEST_F(StudyMpi, ASweepsCasesOverRanksGiveTheSerialTables) {
   const std::vector<std::pair<std::string, std::string>> sweeps = {
       {K_SWEEP_EXE, "--k-min 1e3 --k-max 1e5"},
@@ -65,7 +65,8 @@ TEST_F(StudyMpi, ASweepsCasesOverRanksGiveTheSerialTables) {
       {BALL_DROP_EXE, "--sweep --k-min 1e3 --k-max 1e5 --per-decade 1 --t-end 1"},
       {STABILITY_MAP_EXE, "--points 7"},
       {ENERGY_DRIFT_EXE, "--bounces 3 --dts 1e-3 --rtols 1e-6 --rigid-dts 1e-4 --rigid-rtols 1e-6"},
-      {METHOD_ORDERS_EXE, "--halvings 2"}};
+      {METHOD_ORDERS_EXE, "--halvings 2"},
+      {RIGID_IMPACTS_EXE, "--dts 1e-4 --rtols 1e-6 --scene snooker,wedge"}};
   for (const auto& [exe, args] : sweeps) {
     const std::string name = fs::path(exe).filename().string();
     const Outcome serial = run(exe, args + " --out " + name + "-serial");
