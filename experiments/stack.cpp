@@ -8,7 +8,8 @@
 // second (right-hand sides and wall time). A run that fails is a row with its status, and said
 // on stderr: event-driven impulses cannot hold a column that rests from the start.
 // Outputs in --out (default results/stack): stack.{csv,md,tex}, cost.{png,pdf,gp} (wall time per
-// simulated second against n), sink.{png,pdf,gp}, meta.json. Exit codes: 0, 1, 2 bad input.
+// simulated second against n), sink.{png,pdf,gp}, meta.json; under mpirun the (n, method) runs are
+// dealt over the ranks. Exit codes: 0, 1, 2 bad input.
 #include "contact_ode/analysis/metrics.hpp"
 #include "contact_ode/analysis/table.hpp"
 #include "contact_ode/integrators/method_registry.hpp"
@@ -62,25 +63,35 @@ int program(int argc, char** argv) {
     Table table({"balls", "method", "status", "top_sink_m", "closed_form_sink_m", "max_penetration_m",
                  "jitter_mps", "energy_drift_rel", "rhs_evals", "rhs_per_sim_s", "wall_s_per_sim_s"});
     std::map<std::string, std::string> cost, sink;  // method -> "n,value" lines
-    Progress progress("stack", chosen.size() * balls.size());
-    for (const double n : balls) {
+    const std::size_t per_n = chosen.size();
+    Progress progress("stack", per_n * balls.size());
+    const auto results = app.share(per_n * balls.size(), [&](std::size_t i) -> nlohmann::json {
+      const double n = balls[i / per_n];
+      const std::string& name = chosen[i % per_n];
       const auto column = make_scene("ball-stack", {{"n", n}, {"m", kM}, {"g", kG}, {"k", k}}, law);
-      for (const auto& name : chosen) {
-        progress.step(fmt::format("{} balls, {}", n, name));
-        const RunResult r =
-            solve(*column, {.name = name, .dt = dt}, {.t_end = t_end, .sample_dt = t_end / 200});
-        const bool ok = report(r, fmt::format("stack: {} balls, {}", n, name));
-        const double nan = std::nan(""), top = ok ? -r.samples.back().y[r.samples.back().y.size() - 2] : nan;
-        const double exact = method_info(name).uses_contact_law ? kM * kG * n * (n + 1) / (2 * k) : 0.0;
-        const RunMetrics m = compute_metrics(r);
-        const double wall = r.stats.wall_time_s / t_end;
-        table.add_row({n, name, std::string(to_string(r.status)), top, exact, ok ? m.max_penetration : nan,
-                       ok ? jitter(r) : nan, ok ? m.max_energy_drift : nan, r.stats.rhs_evals,
-                       static_cast<double>(r.stats.rhs_evals) / t_end, wall});
-        if (!ok) continue;
-        cost[name] += fmt::format("{},{}\n", n, std::max(wall, 1e-7));
-        sink[name] += fmt::format("{},{}\n", n, std::max(std::abs(top), kFloor));
-      }
+      progress.step(fmt::format("{} balls, {}", n, name));
+      const RunResult r =
+          solve(*column, {.name = name, .dt = dt}, {.t_end = t_end, .sample_dt = t_end / 200});
+      const bool ok = report(r, fmt::format("stack: {} balls, {}", n, name));
+      const double nan = std::nan(""), top = ok ? -r.samples.back().y[r.samples.back().y.size() - 2] : nan;
+      const double exact = method_info(name).uses_contact_law ? kM * kG * n * (n + 1) / (2 * k) : 0.0;
+      const RunMetrics m = compute_metrics(r);
+      return {
+          {"ok", ok},
+          {"row",
+           row_to_json({n, name, std::string(to_string(r.status)), top, exact, ok ? m.max_penetration : nan,
+                        ok ? jitter(r) : nan, ok ? m.max_energy_drift : nan, r.stats.rhs_evals,
+                        static_cast<double>(r.stats.rhs_evals) / t_end, r.stats.wall_time_s / t_end})}};
+    });
+    if (!results) return;  // another MPI rank: its share is done
+    for (std::size_t i = 0; i < results->size(); ++i) {
+      const auto row = row_from_json((*results)[i].at("row"));  // top sink: column 3, wall: 10
+      table.add_row(row);
+      if (!(*results)[i].at("ok").get<bool>()) continue;
+      const std::string& name = chosen[i % per_n];
+      const double n = balls[i / per_n];
+      cost[name] += fmt::format("{},{}\n", n, std::max(std::get<double>(row[10]), 1e-7));
+      sink[name] += fmt::format("{},{}\n", n, std::max(std::abs(std::get<double>(row[3])), kFloor));
     }
     files.add_table("stack", table);
     for (const auto& [figure, lines, ylabel] :
