@@ -8,8 +8,8 @@
 // event-ode-reversed (the same, highest first: the rule's order-dependence).
 // Outputs in --out (default results/rigid_scenes): runs.{csv,md,tex} (one row per scene and
 // method), observables.csv (scene, method, quantity, value), penetration.{png,pdf,gp} (largest
-// penetration per scene and method), meta.json.
-// Exit codes: 0 success, 1 solver failure, 2 bad input (option, value, accepted range).
+// penetration per scene and method), meta.json; under mpirun the (scene, method) runs are dealt
+// over the ranks. Exit codes: 0 success, 1 solver failure, 2 bad input (option, value, accepted range).
 #include "contact_ode/models/rigid/rigid_scenes.hpp"
 #include "contact_ode/analysis/metrics.hpp"
 #include "contact_ode/analysis/rigid_observables.hpp"
@@ -72,29 +72,41 @@ int program(int argc, char** argv) {
     const auto scene_list = cli::chosen(scenes, rigid_scene_names());
     const auto method_list = cli::split_list(methods);
     Progress progress("rigid_scenes", scene_list.size() * method_list.size());
-    int failures = 0;
-    std::map<std::string, std::string> penetration;  // method -> "scene index,scene,max penetration" lines
-    for (const auto& name : scene_list) {
+    const std::size_t per_scene = method_list.size();
+    const auto results = app.share(scene_list.size() * per_scene, [&](std::size_t i) -> nlohmann::json {
+      const std::string &name = scene_list[i / per_scene], &method = method_list[i % per_scene];
       const SceneInfo& info = rigid_scene(name);
       const RigidScene scene = info.make(p);
-      for (const auto& method : method_list) {
-        progress.step(name + " " + method);
-        Method mt{.name = method, .dt = dt};
-        mt.integrator.rtol = rtol;
-        mt.integrator.atol = atol;
-        const RunResult r = solve(scene, mt, {.t_end = info.t_end, .sample_dt = info.t_end});
-        if (!report(r, fmt::format("rigid_scenes: {} {}", name, method))) {
-          ++failures;
-          continue;
-        }
-        const RunMetrics m = compute_metrics(r);
-        penetration[method] +=
-            fmt::format("{},{},{}\n", &name - scene_list.data(), name, std::max(m.max_penetration, 1e-12));
-        runs.add_row({name, method, std::string(to_string(r.status)), static_cast<long>(m.contacts),
-                      m.max_penetration, m.max_energy_drift, r.stats.rhs_evals, r.stats.wall_time_s});
-        for (const auto& [quantity, value] : observe(name, scene, r))
-          observables.add_row({name, method, quantity, value});
+      progress.step(name + " " + method);
+      Method mt{.name = method, .dt = dt};
+      mt.integrator.rtol = rtol;
+      mt.integrator.atol = atol;
+      const RunResult r = solve(scene, mt, {.t_end = info.t_end, .sample_dt = info.t_end});
+      if (!report(r, fmt::format("rigid_scenes: {} {}", name, method))) return nullptr;
+      const RunMetrics m = compute_metrics(r);
+      nlohmann::json quantities = nlohmann::json::array();
+      for (const auto& [quantity, value] : observe(name, scene, r)) quantities.push_back({quantity, value});
+      return {{"row",
+               row_to_json({name, method, std::string(to_string(r.status)), static_cast<long>(m.contacts),
+                            m.max_penetration, m.max_energy_drift, r.stats.rhs_evals, r.stats.wall_time_s})},
+              {"observables", quantities}};
+    });
+    if (!results) return;  // another MPI rank: its share is done
+    int failures = 0;
+    std::map<std::string, std::string> penetration;  // method -> "scene index,scene,max penetration" lines
+    for (std::size_t i = 0; i < results->size(); ++i) {
+      const auto& result = (*results)[i];
+      if (result.is_null()) {
+        ++failures;
+        continue;
       }
+      const std::string &name = scene_list[i / per_scene], &method = method_list[i % per_scene];
+      const auto row = row_from_json(result.at("row"));  // max penetration: column 4
+      penetration[method] +=
+          fmt::format("{},{},{}\n", i / per_scene, name, std::max(std::get<double>(row[4]), 1e-12));
+      runs.add_row(row);
+      for (const auto& obs : result.at("observables"))
+        observables.add_row({name, method, obs[0].get<std::string>(), obs[1].get<double>()});
     }
     fmt::print("Rigid scenes (k = {:g} N/m, game dt = {:g} s, rtol = {:g})\n\n{}\n{}", p.k, dt, rtol,
                runs.to_markdown(), observables.to_markdown());

@@ -55,12 +55,12 @@ TEST_F(StudyMpi, TwoRanksWriteWhatOneProcessWrites) {
   EXPECT_NE(slurp(dir_ / "mpi" / "study.json").find("\"ranks\": 2"), std::string::npos);
 }
 
-// k_sweep's (law, k) cases, convergence_dt's (integrator, location, step) cases, ball_drop
-// --sweep's (k, method) runs, stability_map's (k, scheme, w dt) runs, energy_drift's (system,
-// method, setting) runs, method_orders' (method, dt), rigid_impacts' (scene, method, setting) and stack's (n,
-// method) runs (event-ode's failures among them: rows, whichever rank ran them) dealt over three ranks
-// (uneven shares): the tables are the serial run's, cell for cell but CPU times, since each case is the same
-// computation wherever it runs; rank 0 alone writes.
+// Every sweeping experiment's cases (k_sweep's (law, k), convergence_dt's (integrator, location,
+// step), ball_drop --sweep's (k, method), stability_map's (k, scheme, w dt), energy_drift's and
+// rigid_impacts' (system, method, setting), method_orders' (method, dt), stack's (n, method) and
+// rigid_scenes' (scene, method); stack's event-ode failures among them, rows whichever rank ran
+// them) dealt over three ranks (uneven shares): the tables are the serial run's, cell for cell but
+// CPU times, since each case is the same computation wherever it runs; rank 0 alone writes.
 TEST_F(StudyMpi, ASweepsCasesOverRanksGiveTheSerialTables) {
   const std::vector<std::pair<std::string, std::string>> sweeps = {
       {K_SWEEP_EXE, "--k-min 1e3 --k-max 1e5"},
@@ -70,7 +70,8 @@ TEST_F(StudyMpi, ASweepsCasesOverRanksGiveTheSerialTables) {
       {ENERGY_DRIFT_EXE, "--bounces 3 --dts 1e-3 --rtols 1e-6 --rigid-dts 1e-4 --rigid-rtols 1e-6"},
       {METHOD_ORDERS_EXE, "--halvings 2"},
       {RIGID_IMPACTS_EXE, "--dts 1e-4 --rtols 1e-6 --scene snooker,wedge"},
-      {STACK_EXE, "--balls 1,2 --t-end 0.2 --methods penalty,game-symplectic,event-ode"}};
+      {STACK_EXE, "--balls 1,2 --t-end 0.2 --methods penalty,game-symplectic,event-ode"},
+      {RIGID_SCENES_EXE, "--scene snooker,cradle --method penalty,game-symplectic,event-ode"}};
   for (const auto& [exe, args] : sweeps) {
     const std::string name = fs::path(exe).filename().string();
     const Outcome serial = run(exe, args + " --out " + name + "-serial");
