@@ -6,15 +6,14 @@
 //   penalty-linear Hooke springs k = --k under CVODE BDF (rtol 1e-10, switches located)
 //   penalty-hertz  Hertz springs F = K delta^(3/2), K = (4/3) E* sqrt(R*) for steel on steel
 //                  (E = 200 GPa, nu = 0.3, R* = r/2), under the same CVODE settings
-// Reported at the end (every contact open): each ball's velocity, the share of the initial kinetic
-// energy carried by the last ball, and the energy error of the run. Sequential impulses give the
-// textbook answer (the last ball leaves at 1 m/s, the rest stop) whatever the spacing; touching
-// linear springs disperse the pulse over several balls; Hertz contacts come close to the textbook
-// answer; any gap larger than the contact's compression separates the collisions into binary
-// ones, each an exact exchange.
-// Outputs in --out (default results/newton_cradle): velocities.{csv,md,tex},
-// final_velocities.{png,pdf,gp} (touching balls), energy_share.{png,pdf,gp} (against spacing),
-// meta.json. Exit codes: 0, 1 solver failure, 2 bad input.
+// Reported at the end (every contact open): each ball's velocity, the last ball's share of the
+// initial kinetic energy, and the run's energy error. Sequential impulses give the textbook answer
+// (the last ball leaves at 1 m/s, the rest stop) whatever the spacing; touching linear springs
+// disperse the pulse; Hertz contacts come close to the textbook; a gap larger than the compression
+// separates the collisions into binary, exact exchanges. Outputs in --out (default
+// results/newton_cradle): velocities.{csv,md,tex}, final_velocities.{png,pdf,gp} (touching balls),
+// energy_share.{png,pdf,gp} (against spacing), meta.json; under mpirun the (method, spacing) runs
+// are dealt over the ranks. Exit codes: 0, 1 solver failure, 2 bad input.
 #include "contact_ode/analysis/metrics.hpp"
 #include "contact_ode/analysis/references.hpp"
 #include "contact_ode/analysis/table.hpp"
@@ -30,6 +29,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 using namespace contact;
 
@@ -68,65 +68,65 @@ int program(int argc, char** argv) {
     for (const char* c : {"last_ball_energy_share", "energy_error_rel", "contacts", "rhs_evals"})
       columns.emplace_back(c);
     Table table(columns);
+    const std::size_t per_method = spacings.size();
+    Progress progress("newton_cradle", methods.size() * per_method);
+    const auto results = app.share(methods.size() * per_method, [&](std::size_t i) -> nlohmann::json {
+      const std::string& method = methods[i / per_method];
+      const double spacing = spacings[i % per_method];
+      progress.step(fmt::format("{} spacing {:g}", method, spacing));
+      const BallChain chain({.n = n,
+                             .m = m,
+                             .v0 = v0,
+                             .approach = approach,
+                             .spacing = spacing,
+                             .law = method == "penalty-hertz" ? ContactLaw{HuntCrossley{hertz_k, 1.5, 0.0}}
+                                                              : ContactLaw{Hooke{k}}});
+      const double t_end =
+          (approach + static_cast<double>(n) * spacing) / v0 + 10.0 * static_cast<double>(n) * contact_time;
+      // The rows' labels name the law for the penalty runs; the registry's methods run them.
+      Method mt{.name = method == "event"                ? "event-ode"
+                        : method == "game"               ? "game-symplectic"
+                        : method.starts_with("penalty-") ? "penalty"
+                                                         : method,
+                .dt = dt};
+      if (mt.name == "penalty") mt.integrator = {.rtol = 1e-10, .atol = 1e-14, .max_steps = 10000000};
+      const RunResult r = require(solve(chain, mt, {.t_end = t_end, .sample_dt = t_end}),
+                                  fmt::format("{} (spacing {:g} m)", method, spacing));
+      // The velocities are final only once every contact has opened again; a time-stepping
+      // method may end with balls clumped together, touching at one velocity, which is final too.
+      if (method_info(mt.name).family != "time-stepping" &&
+          std::any_of(r.contacts.begin(), r.contacts.end(),
+                      [](const ContactRecord& c) { return !c.closed(); }))
+        throw std::runtime_error(fmt::format("{} (spacing {:g} m): a contact is still open at t = {:g} s",
+                                             method, spacing, t_end));
+      const Vector& y = r.samples.back().y;
+      const double last = y[static_cast<Eigen::Index>(2 * n - 1)];
+      std::vector<Table::Cell> row = {method, spacing};
+      for (std::size_t b = 0; b < n; ++b) row.emplace_back(y[static_cast<Eigen::Index>(2 * b + 1)]);
+      row.insert(row.end(), {0.5 * m * last * last / (0.5 * m * v0 * v0), 0.0 - energy_drifts(r).back(),
+                             static_cast<long>(r.contacts.size()), r.stats.rhs_evals});
+      return row_to_json(row);
+    });
+    if (!results) return;  // another MPI rank: its share is done
     Series share_figure, velocities;
-    Progress progress("newton_cradle", methods.size() * spacings.size());
-    for (const auto& method : methods) {
-      std::string shares;  // "spacing,share" lines
-      for (double spacing : spacings) {
-        progress.step(fmt::format("{} spacing {:g}", method, spacing));
-        const BallChain chain({.n = n,
-                               .m = m,
-                               .v0 = v0,
-                               .approach = approach,
-                               .spacing = spacing,
-                               .law = method == "penalty-hertz" ? ContactLaw{HuntCrossley{hertz_k, 1.5, 0.0}}
-                                                                : ContactLaw{Hooke{k}}});
-        const double t_end =
-            (approach + static_cast<double>(n) * spacing) / v0 + 10.0 * static_cast<double>(n) * contact_time;
-        // The rows' labels name the law for the penalty runs; the registry's methods run them.
-        Method mt{.name = method == "event"                ? "event-ode"
-                          : method == "game"               ? "game-symplectic"
-                          : method.starts_with("penalty-") ? "penalty"
-                                                           : method,
-                  .dt = dt};
-        if (mt.name == "penalty") {
-          mt.integrator.rtol = 1e-10;
-          mt.integrator.atol = 1e-14;
-          mt.integrator.max_steps = 10000000;
-        }
-        const RunResult r = require(solve(chain, mt, {.t_end = t_end, .sample_dt = t_end}),
-                                    fmt::format("{} (spacing {:g} m)", method, spacing));
-        // The velocities are final only once every contact has opened again; a time-stepping
-        // method may end with balls clumped together, touching at one velocity, which is final too.
-        if (method_info(mt.name).family != "time-stepping" &&
-            std::any_of(r.contacts.begin(), r.contacts.end(),
-                        [](const ContactRecord& c) { return !c.closed(); })) {
-          throw std::runtime_error(fmt::format("{} (spacing {:g} m): a contact is still open at t = {:g} s",
-                                               method, spacing, t_end));
-        }
-        const Vector& y = r.samples.back().y;
-        const double e0 = 0.5 * m * v0 * v0;
-        const double last = y[static_cast<Eigen::Index>(2 * n - 1)];
-        const double share = 0.5 * m * last * last / e0;
-        std::vector<Table::Cell> row = {method, spacing};
-        for (std::size_t b = 0; b < n; ++b) row.emplace_back(y[static_cast<Eigen::Index>(2 * b + 1)]);
-        row.insert(row.end(), {share, 0.0 - energy_drifts(r).back(), static_cast<long>(r.contacts.size()),
-                               r.stats.rhs_evals});
-        table.add_row(row);
-        shares += fmt::format("{},{}\n", std::max(spacing, kZeroSpacing), share);
-        if (spacing == spacings.front()) {
-          std::string rows;
-          for (std::size_t b = 0; b < n; ++b)
-            rows += fmt::format("{},{}\n", b, y[static_cast<Eigen::Index>(2 * b + 1)]);
-          // Bars of the methods side by side around each ball's index.
-          const double offset = 0.15 * (static_cast<double>(&method - methods.data()) -
-                                        0.5 * static_cast<double>(methods.size() - 1));
-          velocities.add(rows,
-                         fmt::format("using ($1 + {}):2 with impulses lw 6 title '{}'", offset, method));
-        }
+    std::map<std::string, std::string> shares;  // method -> "spacing,share" lines
+    for (std::size_t i = 0; i < results->size(); ++i) {
+      const auto row = row_from_json((*results)[i]);  // ball b's velocity: column 2 + b; share: 2 + n
+      const std::string& method = methods[i / per_method];
+      const double spacing = spacings[i % per_method];
+      table.add_row(row);
+      shares[method] += fmt::format("{},{}\n", std::max(spacing, kZeroSpacing), std::get<double>(row[2 + n]));
+      if (spacing == spacings.front()) {
+        std::string rows;
+        for (std::size_t b = 0; b < n; ++b) rows += fmt::format("{},{}\n", b, std::get<double>(row[2 + b]));
+        // Bars of the methods side by side around each ball's index.
+        const double offset =
+            0.15 * (static_cast<double>(i / per_method) - 0.5 * static_cast<double>(methods.size() - 1));
+        velocities.add(rows, fmt::format("using ($1 + {}):2 with impulses lw 6 title '{}'", offset, method));
       }
-      share_figure.add(shares, fmt::format("using 1:2 with linespoints title '{}'", method));
     }
+    for (const auto& method : methods)
+      share_figure.add(shares[method], fmt::format("using 1:2 with linespoints title '{}'", method));
     files.add_table("velocities", table);
     render({"final_velocities", velocities.data(),
             fmt::format("set xlabel 'ball'\nset ylabel 'final velocity [m/s]'\nset xrange [-0.5:{}]\nset "

@@ -57,10 +57,10 @@ TEST_F(StudyMpi, TwoRanksWriteWhatOneProcessWrites) {
 
 // Every sweeping experiment's cases (k_sweep's (law, k), convergence_dt's (integrator, location,
 // step), ball_drop --sweep's (k, method), stability_map's (k, scheme, w dt), energy_drift's and
-// rigid_impacts' (system, method, setting), method_orders' (method, dt), stack's (n, method) and
-// rigid_scenes' (scene, method); stack's event-ode failures among them, rows whichever rank ran
-// them) dealt over three ranks (uneven shares): the tables are the serial run's, cell for cell but
-// CPU times, since each case is the same computation wherever it runs; rank 0 alone writes.
+// rigid_impacts' (system, method, setting), method_orders' (method, dt), stack's (n, method),
+// rigid_scenes' (scene, method) and newton_cradle's (method, spacing); stack's event-ode failures among them,
+// rows whichever rank ran them) dealt over three ranks (uneven shares): the tables are the serial run's, cell
+// for cell but CPU times, since each case is the same computation wherever it runs; rank 0 alone writes.
 TEST_F(StudyMpi, ASweepsCasesOverRanksGiveTheSerialTables) {
   const std::vector<std::pair<std::string, std::string>> sweeps = {
       {K_SWEEP_EXE, "--k-min 1e3 --k-max 1e5"},
@@ -71,7 +71,8 @@ TEST_F(StudyMpi, ASweepsCasesOverRanksGiveTheSerialTables) {
       {METHOD_ORDERS_EXE, "--halvings 2"},
       {RIGID_IMPACTS_EXE, "--dts 1e-4 --rtols 1e-6 --scene snooker,wedge"},
       {STACK_EXE, "--balls 1,2 --t-end 0.2 --methods penalty,game-symplectic,event-ode"},
-      {RIGID_SCENES_EXE, "--scene snooker,cradle --method penalty,game-symplectic,event-ode"}};
+      {RIGID_SCENES_EXE, "--scene snooker,cradle --method penalty,game-symplectic,event-ode"},
+      {NEWTON_CRADLE_EXE, "--balls 3 --spacings 0,1e-4"}};
   for (const auto& [exe, args] : sweeps) {
     const std::string name = fs::path(exe).filename().string();
     const Outcome serial = run(exe, args + " --out " + name + "-serial");
