@@ -82,11 +82,13 @@ class ArkIntegrator final : public sundials::IntegratorBase {
     check(ARKStepSetUserData(m, &data_), "ARKStepSetUserData");
     check(ARKStepSetOrder(m, kOrder), "ARKStepSetOrder");
     check(ARKStepSetInterpolantDegree(m, kInterpolantDegree), "ARKStepSetInterpolantDegree");
-    // A fresh Newton matrix every step. With ARKODE's default (a rebuild every 20 steps) the
-    // matrix kept an old gamma = h a_ii and stage errors leaked past the convergence test:
-    // measured on the stiff spring (w = 316 rad/s), errors 30 to 16000 times the tolerance and
-    // not decreasing with it; rebuilt each step they follow the tolerance (test_integrators).
-    check(ARKStepSetLSetupFrequency(m, 1), "ARKStepSetLSetupFrequency");
+    // A fresh Newton matrix every step of an adaptive run. With ARKODE's default (a rebuild every 20 steps)
+    // the matrix kept an old gamma = h a_ii and stage errors leaked past the convergence test: measured on
+    // the stiff spring (w = 316 rad/s), errors 30 to 16000 times the tolerance and not decreasing with it;
+    // rebuilt each step they follow the tolerance (test_integrators). At a fixed step gamma never changes,
+    // and ARKODE's default serves: convergence_dt's DIRK and IMEX rows then agree to 1.2e-5 relative with 6 %
+    // fewer right-hand sides.
+    check(ARKStepSetLSetupFrequency(m, o.dt > 0 ? 0 : 1), "ARKStepSetLSetupFrequency");
     check(ARKStepSStolerances(m, o.rtol, o.atol), "ARKStepSStolerances");
     check(ARKStepSetMaxNumSteps(m, o.max_steps), "ARKStepSetMaxNumSteps");
     if (o.max_step > 0) check(ARKStepSetMaxStep(m, o.max_step), "ARKStepSetMaxStep");
