@@ -42,11 +42,12 @@ int program(int argc, char** argv) {
         {"k_N_per_m", "scheme", "omega_dt", "dt_s", "restitution", "energy_ratio", "reference_bound"});
     const std::vector<double> ks = {1e2, 1e4, 1e6};
     const FixedStepScheme schemes[] = {FixedStepScheme::ExplicitEuler, FixedStepScheme::SemiImplicitEuler};
-    const auto per_k = 2 * static_cast<std::size_t>(points);
+    const auto per_k = 2 * static_cast<std::size_t>(points);  // case i: k i / per_k, scheme_of(i)
+    const auto scheme_of = [&](std::size_t i) { return i % per_k / static_cast<std::size_t>(points); };
     Progress progress("stability_map", ks.size() * per_k);
     const auto results = app.share(ks.size() * per_k, [&](std::size_t i) -> nlohmann::json {
       const std::size_t ki = i / per_k;
-      const auto scheme = schemes[i % per_k / static_cast<std::size_t>(points)];
+      const auto scheme = schemes[scheme_of(i)];
       const auto j = static_cast<double>(i % static_cast<std::size_t>(points));
       const double k = ks[ki], w = std::sqrt(k / m);
       const double wdt = 0.01 * std::pow(wdt_max / 0.01, j / static_cast<double>(points - 1));
@@ -76,9 +77,7 @@ int program(int argc, char** argv) {
     for (std::size_t i = 0; i < results->size(); ++i) {
       const auto row = row_from_json((*results)[i]);
       const double wdt = std::get<double>(row[2]), e = std::get<double>(row[4]);
-      if (std::isfinite(e))
-        data += fmt::format("{},{},{},{}\n", i / per_k, i % per_k < static_cast<std::size_t>(points) ? 0 : 1,
-                            wdt, e);
+      if (std::isfinite(e)) data += fmt::format("{},{},{},{}\n", i / per_k, scheme_of(i), wdt, e);
       table.add_row(row);
     }
     std::string plot =

@@ -2,6 +2,7 @@
 #include "contact_ode/analysis/contact_measurement.hpp"
 #include "contact_ode/analysis/references.hpp"
 #include "contact_ode/models/contact_law.hpp"
+#include "contact_ode/models/law_registry.hpp"
 
 #include <gtest/gtest.h>
 
@@ -46,6 +47,18 @@ TEST(ContactLaw, ForcesDerivativesAndSwitchingFunctions) {
   const ContactLaw unclamped = KelvinVoigt{1e3, 10.0, false};
   EXPECT_DOUBLE_EQ(switching(unclamped, 0.01, -2.0), 0.01);  // on while overlapping, even pulling
   EXPECT_DOUBLE_EQ(force(unclamped, 0.01, -2.0), -10.0);
+}
+
+// Every registered law pushes only while the bodies overlap: its switching function never exceeds
+// the overlap d, so switching > 0 implies d > 0. ContactGeometry::engaged_elastic_energy skips open
+// contacts (gap >= 0) on that promise, without asking the law.
+TEST(ContactLaw, EveryLawSwitchesOnlyWhileOverlapping) {
+  for (const auto& name : law_names()) {
+    const ContactLaw law = make_law(name, {});
+    for (double d : {-1e-2, -1e-6, 0.0, 1e-6, 1e-2})
+      for (double dd : {-10.0, -0.1, 0.0, 0.1, 10.0})
+        EXPECT_LE(switching(law, d, dd), d) << name << " at d = " << d << ", d' = " << dd;
+  }
 }
 
 // The clamped restitution's closed form exceeds the unclamped target for every zeta in (0, 1)
