@@ -48,6 +48,9 @@ void Chain(benchmark::State& state, LinearSolverKind solver) {
   state.counters["rhs_evals"] = static_cast<double>(r.stats.rhs_evals);
   state.counters["jac_evals"] = static_cast<double>(r.stats.jac_evals);
   state.counters["linear_iters"] = static_cast<double>(r.stats.linear_iters);
+  state.counters["restarts"] = static_cast<double>(r.stats.restarts);
+  state.counters["events"] = static_cast<double>(r.stats.events);
+  state.counters["root_evals"] = static_cast<double>(r.stats.root_evals);
   state.counters["time_per_sim_s"] = seconds / static_cast<double>(state.iterations()) / kTEnd;
   if (!r.ok()) state.SkipWithError(r.message.c_str());
 }

@@ -25,15 +25,22 @@ RunResult run_penalty(const Dynamics& model, const PenaltyOptions& opt, const So
   OdeSystem base = mechanical_ode(model, modes_at);
   const double threshold = contact_threshold(opt.integrator);
   // Per contact: the switching function (offset towards the held mode), the gap rate (apexes and
-  // maximum penetration) and the gap (the overlap closing after a clamped law let go).
-  base.root_count = 3 * nc;
+  // maximum penetration) and, where a clamped law can let go while the bodies overlap, the gap
+  // (the overlap closing after the release). Where no law can, the switch is the closing, and a
+  // gap root would only stop the integrator once more per contact (a third of the root work of a
+  // long chain).
+  bool releasing = false;
+  for (std::size_t i = 0; i < nc; ++i) releasing = releasing || geo.releases_while_overlapping(i);
+  const std::size_t per = releasing ? 3 : 2;
+  base.root_count = per * nc;
   base.roots = [&](double, ConstVectorRef y, VectorRef g) {
     for (std::size_t i = 0; i < nc; ++i) {
+      const auto at = static_cast<Eigen::Index>(per * i);
       // Touching counts as the mode held (see contact_threshold).
       const double side = modes[i] == ContactMode::Penalty ? threshold : -threshold;
-      g[static_cast<Eigen::Index>(3 * i)] = geo.switching(i, y) + side;
-      g[static_cast<Eigen::Index>(3 * i + 1)] = geo.gap_rate(i, y);
-      g[static_cast<Eigen::Index>(3 * i + 2)] = geo.gap(i, y) + threshold;
+      g[at] = geo.switching(i, y) + side;
+      g[at + 1] = geo.gap_rate(i, y);
+      if (releasing) g[at + 2] = geo.gap(i, y) + threshold;
     }
   };
   // The energy ledger: the laws' dissipated power integrated as one more state.
@@ -63,7 +70,7 @@ RunResult run_penalty(const Dynamics& model, const PenaltyOptions& opt, const So
     const auto y = y_full.head(n);
     bool switched = false;
     for (std::size_t i = 0; i < nc; ++i) {
-      const int sw = roots[3 * i], rate = roots[3 * i + 1], closing = roots[3 * i + 2];
+      const int sw = roots[per * i], rate = roots[per * i + 1], closing = releasing ? roots[per * i + 2] : 0;
       const bool engaged = modes_at(y)[i] == ContactMode::Penalty;
       if (rate > 0 && engaged) rec.observe_penetration(i, -geo.gap(i, y));
       if (rate < 0 && !engaged) rec.apex(i, t, geo.gap(i, y), model.energy(y), y_full[n] + booked);

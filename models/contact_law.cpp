@@ -36,6 +36,9 @@ double dforce_drate(const ContactLaw& law, double d, double dd) {
 double switching(const ContactLaw& law, double d, double dd) {
   return std::visit([&](const auto& l) { return l.switching(d, dd); }, law);
 }
+bool releases_while_overlapping(const ContactLaw& law) {
+  return std::visit([](const auto& l) { return l.releases_while_overlapping(); }, law);
+}
 double stored_energy(const ContactLaw& law, double d) {
   return std::visit([&](const auto& l) { return l.stored_energy(d); }, law);
 }

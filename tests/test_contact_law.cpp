@@ -61,6 +61,26 @@ TEST(ContactLaw, EveryLawSwitchesOnlyWhileOverlapping) {
   }
 }
 
+// A law that says it cannot let go while overlapping has the overlap's sign as its switching
+// sign (penalty runs then drop the overlap's own root); one that says it can, does, at some rate.
+TEST(ContactLaw, ReleaseWhileOverlappingIsWhatTheSwitchingFunctionDoes) {
+  const std::vector<ContactLaw> laws = {Hooke{1e5}, KelvinVoigt{1e5, 50.0, false},
+                                        KelvinVoigt{1e5, 50.0, true}, HuntCrossley{1e9, 1.5, 0.0},
+                                        HuntCrossley{1e9, 1.5, 0.5}};
+  for (const ContactLaw& law : laws) {
+    bool released = false;
+    for (double d : {-1e-2, -1e-6, 1e-6, 1e-2})
+      for (double dd : {-1e3, -10.0, -0.1, 0.0, 0.1, 10.0}) {
+        const bool on = switching(law, d, dd) > 0;
+        if (!releases_while_overlapping(law)) {
+          EXPECT_EQ(on, d > 0) << describe(law) << " at d = " << d << ", d' = " << dd;
+        }
+        released = released || (d > 0 && !on);
+      }
+    EXPECT_EQ(released, releases_while_overlapping(law)) << describe(law);
+  }
+}
+
 // The clamped restitution's closed form exceeds the unclamped target for every zeta in (0, 1)
 // and meets it at the undamped end.
 TEST(ContactLaw, ClampedRestitutionFormulaLiesAboveTheTarget) {

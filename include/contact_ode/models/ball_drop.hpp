@@ -49,6 +49,9 @@ class BallDrop final : public MechanicalSystem,
   double switching(std::size_t, ConstVectorRef y) const override {
     return contact::switching(p_.law, -y[0], -y[1]);
   }
+  bool releases_while_overlapping(std::size_t) const override {
+    return contact::releases_while_overlapping(p_.law);
+  }
 
   double dissipated_power(std::size_t, ConstVectorRef y) const override {
     return contact::dissipated_power(p_.law, -y[0], -y[1]);

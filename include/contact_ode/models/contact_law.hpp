@@ -9,6 +9,9 @@
 //   dforce_drate(d, dd)     dF/d(delta_dot);
 //   switching(d, dd)        > 0 exactly while the law pushes [m]; its zeros are where the force
 //                           switches on or off, located by root finding;
+//   releases_while_overlapping()  whether the switching function can fall to zero while the
+//                           overlap d is still positive (a clamped law); when not, its sign is
+//                           the overlap's and the overlap's closing needs no root of its own;
 //   stored_energy(d)        elastic energy held in the spring [J];
 //   dissipated_power(d, dd) power the law's damping removes while it pushes [W] (energy ledger).
 #include <algorithm>
@@ -27,6 +30,7 @@ struct Hooke {
   double dforce_ddelta(double, double) const { return k; }
   double dforce_drate(double, double) const { return 0.0; }
   double switching(double d, double) const { return d; }
+  bool releases_while_overlapping() const { return false; }
   double stored_energy(double d) const { return d > 0 ? 0.5 * k * d * d : 0.0; }
   double dissipated_power(double, double) const { return 0.0; }
 };
@@ -48,6 +52,7 @@ struct KelvinVoigt {
   // Unclamped: on while overlapping. Clamped: on while overlapping *and* pushing; the second
   // condition k d + c dd > 0 is written as d + (c/k) dd > 0 so that both are lengths.
   double switching(double d, double dd) const { return no_pull ? std::min(d, d + (c / k) * dd) : d; }
+  bool releases_while_overlapping() const { return no_pull; }
   double stored_energy(double d) const { return d > 0 ? 0.5 * k * d * d : 0.0; }
   // Power the dashpot takes out while the law is on [W]: c delta_dot^2. (Unclamped, the dashpot
   // also acts at small negative delta near the end; the ledger counts it where the law is on.)
@@ -72,6 +77,7 @@ struct HuntCrossley {
   // On while overlapping and 1 + chi delta_dot > 0. The second factor is dimensionless; it is
   // scaled by 1 mm only to read as a length (a root's location does not depend on the scale).
   double switching(double d, double dd) const { return std::min(d, 1e-3 * (1.0 + chi * dd)); }
+  bool releases_while_overlapping() const { return chi != 0.0; }
   double stored_energy(double d) const { return d > 0 ? k * std::pow(d, n + 1.0) / (n + 1.0) : 0.0; }
   double dissipated_power(double d, double dd) const { return d > 0 ? k * chi * pow_n(d) * dd * dd : 0.0; }
 
@@ -124,6 +130,7 @@ double force(const ContactLaw& law, double d, double dd);
 double dforce_ddelta(const ContactLaw& law, double d, double dd);
 double dforce_drate(const ContactLaw& law, double d, double dd);
 double switching(const ContactLaw& law, double d, double dd);
+bool releases_while_overlapping(const ContactLaw& law);
 double stored_energy(const ContactLaw& law, double d);
 double dissipated_power(const ContactLaw& law, double d, double dd);
 double stiffness(const ContactLaw& law);

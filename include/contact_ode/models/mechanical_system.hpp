@@ -77,6 +77,9 @@ class ContactGeometry {
   virtual double gap_rate(std::size_t i, ConstVectorRef y) const = 0;
   // > 0 exactly while the penalty law of contact i pushes [m].
   virtual double switching(std::size_t i, ConstVectorRef y) const = 0;
+  // Whether contact i's law can let go while the bodies still overlap (see contact_law.hpp);
+  // if no contact's can, a penalty run needs no root for the overlap's closing.
+  virtual bool releases_while_overlapping(std::size_t) const { return true; }
   // Power contact i's penalty law dissipates while in Penalty mode [W] (the energy ledger).
   virtual double dissipated_power(std::size_t i, ConstVectorRef y) const = 0;
   // Elastic energy contact i's law holds at the present overlap, whether or not it pushes [J].
@@ -141,6 +144,9 @@ class OneLawSystem : public MechanicalSystem {
   explicit OneLawSystem(const ContactLaw& law) : law_(law) {}
   double switching(std::size_t i, ConstVectorRef y) const override {
     return contact::switching(law_, -gap(i, y), -gap_rate(i, y));
+  }
+  bool releases_while_overlapping(std::size_t) const override {
+    return contact::releases_while_overlapping(law_);
   }
   double dissipated_power(std::size_t i, ConstVectorRef y) const override {
     return contact::dissipated_power(law_, -gap(i, y), -gap_rate(i, y));

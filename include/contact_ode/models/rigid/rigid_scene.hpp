@@ -57,6 +57,9 @@ class RigidScene final : public MechanicalSystem, public NormalImpulses {
   double gap(std::size_t i, ConstVectorRef y) const override { return -contact(i, y).penetration; }
   double gap_rate(std::size_t i, ConstVectorRef y) const override;
   double switching(std::size_t i, ConstVectorRef y) const override;
+  bool releases_while_overlapping(std::size_t i) const override {
+    return contact::releases_while_overlapping(candidates_[i].law);
+  }
   double dissipated_power(std::size_t i, ConstVectorRef y) const override;
   double elastic_energy(std::size_t i, ConstVectorRef y) const override;
 
