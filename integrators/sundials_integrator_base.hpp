@@ -7,6 +7,7 @@
 #include "sundials_callbacks.hpp"
 #include "sundials_handles.hpp"
 #include "sundials_linear_solver.hpp"
+#include "sundials_vector_ops.hpp"
 
 #include <fmt/format.h>
 
@@ -64,6 +65,7 @@ class IntegratorBase : public Integrator {
     data_.sys = std::move(system);
     y_.reset(N_VNew_Serial(static_cast<sunindextype>(data_.sys.size), ctx_.get()));
     if (!y_) throw SolverFailure(Status::SolverError, t0, "N_VNew_Serial failed");
+    use_compiled_vector_ops(y_.get());  // before the solver clones it
     data_.map(y_.get()) = y0;
   }
   void check(int flag, const char* call) const {

@@ -1,0 +1,148 @@
+#include "sundials_vector_ops.hpp"
+
+#include <cmath>
+
+namespace contact::sundials {
+
+namespace {
+
+struct View {
+  sunindextype n;
+  sunrealtype* d;
+};
+View view(N_Vector v) { return {NV_LENGTH_S(v), NV_DATA_S(v)}; }
+
+// z = a x + b y, with the library's special cases (their roundings differ: c (x + y) is not
+// c x + c y).
+void linear_sum(sunrealtype a, N_Vector x, sunrealtype b, N_Vector y, N_Vector z) {
+  const auto [n, xd] = view(x);
+  sunrealtype* yd = NV_DATA_S(y);
+  sunrealtype* zd = NV_DATA_S(z);
+  auto axpy = [n](sunrealtype c, const sunrealtype* u, sunrealtype* w) {  // w += c u
+    if (c == 1.0)
+      for (sunindextype i = 0; i < n; ++i) w[i] += u[i];
+    else if (c == -1.0)
+      for (sunindextype i = 0; i < n; ++i) w[i] -= u[i];
+    else
+      for (sunindextype i = 0; i < n; ++i) w[i] += c * u[i];
+  };
+  if (b == 1.0 && z == y) return axpy(a, xd, yd);
+  if (a == 1.0 && z == x) return axpy(b, yd, xd);
+  if (a == 1.0 && b == 1.0) {
+    for (sunindextype i = 0; i < n; ++i) zd[i] = xd[i] + yd[i];
+  } else if ((a == 1.0 && b == -1.0) || (a == -1.0 && b == 1.0)) {
+    const sunrealtype* p = a == 1.0 ? xd : yd;  // p - q
+    const sunrealtype* q = a == 1.0 ? yd : xd;
+    for (sunindextype i = 0; i < n; ++i) zd[i] = p[i] - q[i];
+  } else if (a == 1.0 || b == 1.0) {  // c u + w
+    const sunrealtype c = a == 1.0 ? b : a;
+    const sunrealtype* u = a == 1.0 ? yd : xd;
+    const sunrealtype* w = a == 1.0 ? xd : yd;
+    for (sunindextype i = 0; i < n; ++i) zd[i] = c * u[i] + w[i];
+  } else if (a == -1.0 || b == -1.0) {  // c u - w
+    const sunrealtype c = a == -1.0 ? b : a;
+    const sunrealtype* u = a == -1.0 ? yd : xd;
+    const sunrealtype* w = a == -1.0 ? xd : yd;
+    for (sunindextype i = 0; i < n; ++i) zd[i] = c * u[i] - w[i];
+  } else if (a == b) {
+    for (sunindextype i = 0; i < n; ++i) zd[i] = a * (xd[i] + yd[i]);
+  } else if (a == -b) {
+    for (sunindextype i = 0; i < n; ++i) zd[i] = a * (xd[i] - yd[i]);
+  } else {
+    for (sunindextype i = 0; i < n; ++i) zd[i] = a * xd[i] + b * yd[i];
+  }
+}
+
+void constant(sunrealtype c, N_Vector z) {
+  const auto [n, zd] = view(z);
+  for (sunindextype i = 0; i < n; ++i) zd[i] = c;
+}
+
+void scale(sunrealtype c, N_Vector x, N_Vector z) {
+  const auto [n, xd] = view(x);
+  sunrealtype* zd = NV_DATA_S(z);
+  if (c == 1.0) {
+    if (z != x)
+      for (sunindextype i = 0; i < n; ++i) zd[i] = xd[i];
+  } else if (c == -1.0) {
+    for (sunindextype i = 0; i < n; ++i) zd[i] = -xd[i];
+  } else {
+    for (sunindextype i = 0; i < n; ++i) zd[i] = c * xd[i];
+  }
+}
+
+void prod(N_Vector x, N_Vector y, N_Vector z) {
+  const auto [n, xd] = view(x);
+  const sunrealtype* yd = NV_DATA_S(y);
+  sunrealtype* zd = NV_DATA_S(z);
+  for (sunindextype i = 0; i < n; ++i) zd[i] = xd[i] * yd[i];
+}
+
+void div(N_Vector x, N_Vector y, N_Vector z) {
+  const auto [n, xd] = view(x);
+  const sunrealtype* yd = NV_DATA_S(y);
+  sunrealtype* zd = NV_DATA_S(z);
+  for (sunindextype i = 0; i < n; ++i) zd[i] = xd[i] / yd[i];
+}
+
+void abs(N_Vector x, N_Vector z) {
+  const auto [n, xd] = view(x);
+  sunrealtype* zd = NV_DATA_S(z);
+  for (sunindextype i = 0; i < n; ++i) zd[i] = std::fabs(xd[i]);
+}
+
+void inv(N_Vector x, N_Vector z) {
+  const auto [n, xd] = view(x);
+  sunrealtype* zd = NV_DATA_S(z);
+  for (sunindextype i = 0; i < n; ++i) zd[i] = 1.0 / xd[i];
+}
+
+void add_const(N_Vector x, sunrealtype b, N_Vector z) {
+  const auto [n, xd] = view(x);
+  sunrealtype* zd = NV_DATA_S(z);
+  for (sunindextype i = 0; i < n; ++i) zd[i] = xd[i] + b;
+}
+
+// Sequential sums, as the library's: the compiler may not reorder them (no -ffast-math).
+sunrealtype weighted_square_sum(N_Vector x, N_Vector w) {
+  const auto [n, xd] = view(x);
+  const sunrealtype* wd = NV_DATA_S(w);
+  sunrealtype sum = 0.0;
+  for (sunindextype i = 0; i < n; ++i) {
+    const sunrealtype p = xd[i] * wd[i];
+    sum += p * p;
+  }
+  return sum;
+}
+
+sunrealtype wrms_norm(N_Vector x, N_Vector w) {
+  return std::sqrt(weighted_square_sum(x, w) / static_cast<sunrealtype>(NV_LENGTH_S(x)));
+}
+
+sunrealtype max_norm(N_Vector x) {
+  const auto [n, xd] = view(x);
+  sunrealtype m = 0.0;
+  for (sunindextype i = 0; i < n; ++i)
+    if (std::fabs(xd[i]) > m) m = std::fabs(xd[i]);
+  return m;
+}
+
+}  // namespace
+
+void use_compiled_vector_ops(N_Vector v) {
+  N_Vector_Ops ops = v->ops;
+  ops->nvlinearsum = linear_sum;
+  ops->nvconst = constant;
+  ops->nvscale = scale;
+  ops->nvprod = prod;
+  ops->nvdiv = div;
+  ops->nvabs = abs;
+  ops->nvinv = inv;
+  ops->nvaddconst = add_const;
+  ops->nvwrmsnorm = wrms_norm;
+  ops->nvwsqrsumlocal = weighted_square_sum;
+  ops->nvmaxnorm = max_norm;
+  ops->nvmaxnormlocal = max_norm;
+}
+
+}  // namespace contact::sundials
