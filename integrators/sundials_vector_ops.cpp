@@ -71,36 +71,35 @@ void scale(sunrealtype c, N_Vector x, N_Vector z) {
   }
 }
 
+// z_i = f(x_i) and z_i = f(x_i, y_i): element-wise maps, z may alias x or y.
+template <class F>
+void map(N_Vector x, N_Vector z, F f) {
+  const auto [n, xd] = view(x);
+  sunrealtype* zd = NV_DATA_S(z);
+  for (sunindextype i = 0; i < n; ++i) zd[i] = f(xd[i]);
+}
+template <class F>
+void map(N_Vector x, N_Vector y, N_Vector z, F f) {
+  const auto [n, xd] = view(x);
+  const sunrealtype* yd = NV_DATA_S(y);
+  sunrealtype* zd = NV_DATA_S(z);
+  for (sunindextype i = 0; i < n; ++i) zd[i] = f(xd[i], yd[i]);
+}
+
 void prod(N_Vector x, N_Vector y, N_Vector z) {
-  const auto [n, xd] = view(x);
-  const sunrealtype* yd = NV_DATA_S(y);
-  sunrealtype* zd = NV_DATA_S(z);
-  for (sunindextype i = 0; i < n; ++i) zd[i] = xd[i] * yd[i];
+  map(x, y, z, [](sunrealtype a, sunrealtype b) { return a * b; });
 }
-
 void div(N_Vector x, N_Vector y, N_Vector z) {
-  const auto [n, xd] = view(x);
-  const sunrealtype* yd = NV_DATA_S(y);
-  sunrealtype* zd = NV_DATA_S(z);
-  for (sunindextype i = 0; i < n; ++i) zd[i] = xd[i] / yd[i];
+  map(x, y, z, [](sunrealtype a, sunrealtype b) { return a / b; });
 }
-
 void abs(N_Vector x, N_Vector z) {
-  const auto [n, xd] = view(x);
-  sunrealtype* zd = NV_DATA_S(z);
-  for (sunindextype i = 0; i < n; ++i) zd[i] = std::fabs(xd[i]);
+  map(x, z, [](sunrealtype a) { return std::fabs(a); });
 }
-
 void inv(N_Vector x, N_Vector z) {
-  const auto [n, xd] = view(x);
-  sunrealtype* zd = NV_DATA_S(z);
-  for (sunindextype i = 0; i < n; ++i) zd[i] = 1.0 / xd[i];
+  map(x, z, [](sunrealtype a) { return 1.0 / a; });
 }
-
 void add_const(N_Vector x, sunrealtype b, N_Vector z) {
-  const auto [n, xd] = view(x);
-  sunrealtype* zd = NV_DATA_S(z);
-  for (sunindextype i = 0; i < n; ++i) zd[i] = xd[i] + b;
+  map(x, z, [b](sunrealtype a) { return a + b; });
 }
 
 // Sequential sums, as the library's: the compiler may not reorder them (no -ffast-math).
