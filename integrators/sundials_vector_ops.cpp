@@ -126,6 +126,31 @@ sunrealtype max_norm(N_Vector x) {
   return m;
 }
 
+// The fused operations CVODE and ARKODE use for their Nordsieck arrays and dense output. Without
+// them the library falls back to one scale and nvec - 1 linear sums, whose arithmetic is the same
+// (z = c0 X0, then z += c_i X_i; Z_i = a_i x + Y_i): one pass instead of nvec calls.
+int linear_combination(int nvec, sunrealtype* c, N_Vector* X, N_Vector z) {
+  scale(c[0], X[0], z);
+  const auto [n, zd] = view(z);
+  for (int k = 1; k < nvec; ++k) {
+    const sunrealtype* xd = NV_DATA_S(X[k]);
+    const sunrealtype ck = c[k];
+    for (sunindextype i = 0; i < n; ++i) zd[i] += ck * xd[i];
+  }
+  return 0;
+}
+
+int scale_add_multi(int nvec, sunrealtype* a, N_Vector x, N_Vector* Y, N_Vector* Z) {
+  const auto [n, xd] = view(x);
+  for (int k = 0; k < nvec; ++k) {
+    const sunrealtype* yd = NV_DATA_S(Y[k]);
+    sunrealtype* zd = NV_DATA_S(Z[k]);
+    const sunrealtype ak = a[k];
+    for (sunindextype i = 0; i < n; ++i) zd[i] = ak * xd[i] + yd[i];
+  }
+  return 0;
+}
+
 }  // namespace
 
 void use_compiled_vector_ops(N_Vector v) {
@@ -142,6 +167,8 @@ void use_compiled_vector_ops(N_Vector v) {
   ops->nvwsqrsumlocal = weighted_square_sum;
   ops->nvmaxnorm = max_norm;
   ops->nvmaxnormlocal = max_norm;
+  ops->nvlinearcombination = linear_combination;
+  ops->nvscaleaddmulti = scale_add_multi;
 }
 
 }  // namespace contact::sundials

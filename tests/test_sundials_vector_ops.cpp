@@ -101,6 +101,31 @@ TEST_F(VectorOps, ElementwiseOperationsAndNormsMatchTheLibrary) {
   EXPECT_EQ(N_VMaxNorm_Serial(lx.get()), N_VMaxNorm(cx.get()));
 }
 
+// The library's serial vectors leave the fused operations out (it then loops over scale and
+// linear sum); ours fuse them into one pass with the same arithmetic.
+TEST_F(VectorOps, FusedOperationsMatchTheLibrarysFallback) {
+  std::vector<double> c = {1.0, -1.0, 0.3, -2.5};
+  for (bool in_place : {false, true}) {
+    NVector l0 = library(x_), l1 = library(y_), l2 = library(w_), l3 = library(x_), lz = library(y_);
+    NVector c0 = compiled(x_), c1 = compiled(y_), c2 = compiled(w_), c3 = compiled(x_), cz = compiled(y_);
+    std::vector<N_Vector> LX = {l0.get(), l1.get(), l2.get(), l3.get()},
+                          CX = {c0.get(), c1.get(), c2.get(), c3.get()};
+    for (double c_first : {1.0, 0.7}) {
+      c[0] = c_first;
+      N_Vector lout = in_place ? LX[0] : lz.get(), cout = in_place ? CX[0] : cz.get();
+      ASSERT_EQ(N_VLinearCombination(4, c.data(), LX.data(), lout), 0);
+      ASSERT_EQ(N_VLinearCombination(4, c.data(), CX.data(), cout), 0);
+      EXPECT_TRUE(same(lout, cout)) << "linear combination, in place " << in_place << ", c0 = " << c_first;
+    }
+    std::vector<N_Vector> LZ = {lz.get(), l3.get()}, CZ = {cz.get(), c3.get()};
+    std::vector<N_Vector> LY = {l1.get(), l2.get()}, CY = {c1.get(), c2.get()};
+    ASSERT_EQ(N_VScaleAddMulti(2, c.data() + 1, l0.get(), LY.data(), in_place ? LY.data() : LZ.data()), 0);
+    ASSERT_EQ(N_VScaleAddMulti(2, c.data() + 1, c0.get(), CY.data(), in_place ? CY.data() : CZ.data()), 0);
+    for (int k = 0; k < 2; ++k)
+      EXPECT_TRUE(same(in_place ? LY[k] : LZ[k], in_place ? CY[k] : CZ[k])) << "scale add multi " << k;
+  }
+}
+
 TEST_F(VectorOps, ClonesInheritTheCompiledOperations) {
   NVector v = compiled(x_);
   NVector clone(N_VClone(v.get()));
