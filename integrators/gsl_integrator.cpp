@@ -30,8 +30,6 @@ class GslIntegrator final : public SteppingIntegrator {
         fixed_dt_(o.dt),
         analytic_(o.jacobian == JacobianMode::Analytic && static_cast<bool>(sys_.jacobian)),
         n_(static_cast<std::size_t>(y0.size())),
-        f_a_(y0.size()),
-        f_b_(y0.size()),
         fd_(y0.size()) {
     gsl_sys_ = {&GslIntegrator::function, &GslIntegrator::jacobian, n_, this};
     const double h0 = o.dt > 0 ? o.dt : 1e-6;
@@ -112,7 +110,6 @@ class GslIntegrator final : public SteppingIntegrator {
                           fmt::format("GSL {}: {} (step size {:g})", type_->name, gsl_strerror(status), h_));
     }
     tb_ = t;
-    have_f_b_ = false;
   }
 
   void dense(double t, VectorRef y) override {
@@ -126,17 +123,11 @@ class GslIntegrator final : public SteppingIntegrator {
         return;
       ++dense_fallbacks_;  // e.g. bsimp's extrapolation did not converge: y is not a solution
     }
-    // Cubic Hermite on [ta, tb] from the end values and slopes.
-    if (!have_f_b_) {
-      f(ta_, ya_, f_a_);
-      f(tb_, yb_, f_b_);
-      have_f_b_ = true;
-    }
-    const double H = tb_ - ta_, s = h / H;
-    const double h00 = (1 + 2 * s) * (1 - s) * (1 - s), h10 = s * (1 - s) * (1 - s);
-    const double h01 = s * s * (3 - 2 * s), h11 = s * s * (s - 1);
-    y = h00 * ya_ + h10 * H * f_a_ + h01 * yb_ + h11 * H * f_b_;
+    hermite(t, y);  // the step's cubic Hermite
   }
+
+  bool dense_is_interpolant() const override { return multistep_; }
+  bool steps_may_cross_twice() const override { return type_ == gsl_odeiv2_step_bsimp; }
 
   void restarted() override { gsl_odeiv2_driver_reset(driver_.get()); }
 
@@ -151,8 +142,7 @@ class GslIntegrator final : public SteppingIntegrator {
   double h_ = 0, max_step_ = 0;
   long failed_ = 0, jac_evals_ = 0, dense_fallbacks_ = 0;
   SparseMatrix J_;
-  Vector f_a_, f_b_, fd_;
-  bool have_f_b_ = false;
+  Vector fd_;
 };
 
 }  // namespace

@@ -1,10 +1,11 @@
 #include "stepping_integrator.hpp"
 
 #include "contact_ode/integrators/gsl_handles.hpp"
+#include "sign_change.hpp"
 
 #include <fmt/format.h>
-#include <gsl/gsl_errno.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -15,6 +16,8 @@ SteppingIntegrator::SteppingIntegrator(OdeSystem system, double t0, ConstVectorR
   gsl::report_errors_by_return_code();
   g_.resize(static_cast<Eigen::Index>(sys_.root_count));
   g_hi_ = g_;
+  f_a_.resize(y0.size());
+  f_b_.resize(y0.size());
   if (sys_.root_count > 0) eval_roots(t0, y0, g_);
 }
 
@@ -28,6 +31,7 @@ void SteppingIntegrator::reinit(double t, ConstVectorRef y) {
   ya_ = yb_ = y_ = y;
   if (sys_.root_count > 0) eval_roots(t, y, g_);
   counts_.restarts += 1;
+  have_slopes_ = false;
   restarted();
 }
 
@@ -63,6 +67,7 @@ SteppingIntegrator::Outcome SteppingIntegrator::advance(double t_out) {
     ta_ = tb_;
     ya_ = yb_;
     step(t_out);
+    have_slopes_ = false;
     ++counts_.steps;
     if (!yb_.allFinite())
       throw SolverFailure(
@@ -73,12 +78,6 @@ SteppingIntegrator::Outcome SteppingIntegrator::advance(double t_out) {
 
 namespace {
 
-struct RootProblem {
-  std::function<double(double)> g;
-};
-
-double call_root_problem(double t, void* p) { return static_cast<RootProblem*>(p)->g(t); }
-
 // +1 if g rose through zero (or reached it) from a negative value, -1 if it fell, else 0.
 int crossing(double g_lo, double g_hi) {
   if (g_lo < 0 && g_hi >= 0) return 1;
@@ -88,36 +87,71 @@ int crossing(double g_lo, double g_hi) {
 
 }  // namespace
 
+void SteppingIntegrator::hermite(double t, VectorRef y) {
+  if (!have_slopes_) {
+    f(ta_, ya_, f_a_);
+    f(tb_, yb_, f_b_);
+    have_slopes_ = true;
+  }
+  const double H = tb_ - ta_, s = (t - ta_) / H;
+  const double h00 = (1 + 2 * s) * (1 - s) * (1 - s), h10 = s * (1 - s) * (1 - s);
+  const double h01 = s * s * (3 - 2 * s), h11 = s * s * (s - 1);
+  y = h00 * ya_ + h10 * H * f_a_ + h01 * yb_ + h11 * H * f_b_;
+}
+
 bool SteppingIntegrator::locate_root(double t_hi, ConstVectorRef y_hi, Outcome& out) {
   eval_roots(t_hi, y_hi, g_hi_);
   const std::size_t n = sys_.root_count;
   auto allowed = [&](std::size_t i, int dir) {
     return dir != 0 && (directions_.empty() || directions_[i] == 0 || directions_[i] == dir);
   };
+  // CVODE's root tolerance: 100 ulps of t.
+  const double tol = 100 * std::numeric_limits<double>::epsilon() * std::max(std::abs(t_), std::abs(t_hi));
   double t_root = std::numeric_limits<double>::infinity();
   Vector y(y_.size()), g(static_cast<Eigen::Index>(n));
-  gsl::RootSolver brent(gsl_root_fsolver_alloc(gsl_root_fsolver_brent));
-  if (!brent) throw SolverFailure(Status::SolverError, t_, "gsl_root_fsolver_alloc failed");
   for (std::size_t i = 0; i < n; ++i) {
     const auto k = static_cast<Eigen::Index>(i);
-    if (!allowed(i, crossing(g_[k], g_hi_[k]))) continue;
-    RootProblem problem{[&, k](double t) {
+    int dir = crossing(g_[k], g_hi_[k]);
+    double hi = t_hi, g_at_hi = g_hi_[k];
+    if (!allowed(i, dir) && steps_may_cross_twice()) {
+      // No sign change at the ends, but the step may hold two crossings (out and back): look
+      // inside on the step's Hermite, and confirm a change it shows on dense().
+      for (int j = 1; j < kInteriorChecks && !allowed(i, dir); ++j) {
+        const double s = t_ + (t_hi - t_) * j / kInteriorChecks;
+        hermite(s, y);
+        eval_roots(s, y, g);
+        if (!allowed(i, crossing(g_[k], g[k]))) continue;
+        dense(s, y);
+        eval_roots(s, y, g);
+        dir = crossing(g_[k], g[k]);
+        hi = s;
+        g_at_hi = g[k];
+      }
+    }
+    if (!allowed(i, dir)) continue;
+    double guess = std::numeric_limits<double>::quiet_NaN(), slope = guess;
+    if (!dense_is_interpolant()) {
+      auto on_hermite = [&](double t) {
+        hermite(t, y);
+        eval_roots(t, y, g);
+        return g[k];
+      };
+      const double gh_lo = on_hermite(t_), gh_hi = on_hermite(hi);
+      if (crossing(gh_lo, gh_hi) == dir) {
+        guess = narrow_sign_change(on_hermite, {t_, gh_lo, hi, gh_hi}, tol).hi;
+        const double d = 1e-4 * (hi - t_);
+        const double a = std::max(t_, guess - d), c = std::min(hi, guess + d);
+        slope = (on_hermite(c) - on_hermite(a)) / (c - a);
+      }
+    }
+    auto on_dense = [&](double t) {
       dense(t, y);
       eval_roots(t, y, g);
       return g[k];
-    }};
-    gsl_function fn{call_root_problem, &problem};
-    double lo = t_, hi = t_hi;
-    if (gsl_root_fsolver_set(brent.get(), &fn, lo, hi) != GSL_SUCCESS) continue;
-    for (int iter = 0; iter < 200; ++iter) {
-      gsl_root_fsolver_iterate(brent.get());
-      lo = gsl_root_fsolver_x_lower(brent.get());
-      hi = gsl_root_fsolver_x_upper(brent.get());
-      // Stop at ~100 ulps of t, CVODE's own root tolerance.
-      if (gsl_root_test_interval(lo, hi, 0.0, 100 * std::numeric_limits<double>::epsilon()) == GSL_SUCCESS)
-        break;
-    }
-    t_root = std::min(t_root, hi);  // the bracket's upper end: g already has its new sign there
+    };
+    // The bracket's upper end: g already has its new sign there.
+    t_root =
+        std::min(t_root, narrow_sign_change(on_dense, {t_, g_[k], hi, g_at_hi}, tol, guess, 200, slope).hi);
   }
   if (!std::isfinite(t_root)) return false;
   dense(t_root, y);
