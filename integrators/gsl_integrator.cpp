@@ -128,6 +128,7 @@ class GslIntegrator final : public SteppingIntegrator {
 
   bool dense_is_interpolant() const override { return multistep_; }
   bool steps_may_cross_twice() const override { return type_ == gsl_odeiv2_step_bsimp; }
+  void step_shortened(double h) override { h_ = std::min(h_, h); }
 
   void restarted() override { gsl_odeiv2_driver_reset(driver_.get()); }
 

@@ -32,10 +32,13 @@ class SteppingIntegrator : public Integrator {
   // Whether dense() is a cheap interpolant already (then roots are located on it directly).
   virtual bool dense_is_interpolant() const { return false; }
   // Whether one step may span more than half an oscillation of a contact (an extrapolation
-  // method's steps can: bsimp's span ~1.5 of P1's), so that a root function can cross zero and
-  // back inside it; the step is then also checked at kInteriorChecks - 1 inner points.
+  // method's can: bsimp's spanned ~1.5 of P1's, several at k = 1e8), so that a root function
+  // could cross zero and back between the step's ends unseen. Such a step is retaken shorter
+  // until its cubic Hermite follows its dense output (shorten_until_hermite_is_faithful), when
+  // there are roots to find (without, a long accurate step is what the method is for).
   virtual bool steps_may_cross_twice() const { return false; }
-  static constexpr int kInteriorChecks = 8;
+  // Told when a step was cut to length h (the next step should not propose much more).
+  virtual void step_shortened(double /*h*/) {}
 
   // The cubic Hermite interpolant of the step from its end values and slopes (computed once).
   void hermite(double t, VectorRef y);
@@ -55,6 +58,7 @@ class SteppingIntegrator : public Integrator {
   void eval_roots(double t, ConstVectorRef y, Vector& g);
   // A root in (t_, t_hi] given the state there; fills out and moves (t_, y_) to it.
   bool locate_root(double t_hi, ConstVectorRef y_hi, Outcome& out);
+  void shorten_until_hermite_is_faithful();
 
   double t_;
   Vector y_, g_, g_hi_, f_a_, f_b_;
