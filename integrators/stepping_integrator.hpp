@@ -58,6 +58,8 @@ class SteppingIntegrator : public Integrator {
   void eval_roots(double t, ConstVectorRef y, Vector& g);
   // A root in (t_, t_hi] given the state there; fills out and moves (t_, y_) to it.
   bool locate_root(double t_hi, ConstVectorRef y_hi, Outcome& out);
+  // step() from (ta_, ya_), then the checks every step gets: slopes dropped, a finite state.
+  void take_step(double t_limit);
   void shorten_until_hermite_is_faithful();
 
   double t_;
