@@ -1,6 +1,7 @@
 #include "contact_ode/models/rigid/rigid_contacts.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
 namespace contact::rigid {
 
@@ -66,48 +67,59 @@ RigidContact sphere_cuboid(const std::vector<RigidBody>& bodies, std::size_t a, 
   return make(bodies, a, b, box.position + R * q + (R * out_of_box) * (0.5 * pen), n, pen);
 }
 
-// One candidate per vertex of cuboid a against plane b.
-std::vector<RigidContact> cuboid_plane(const std::vector<RigidBody>& bodies, std::size_t a, std::size_t b) {
+// Vertex k of cuboid a against plane b.
+RigidContact cuboid_plane(const std::vector<RigidBody>& bodies, std::size_t a, std::size_t b, std::size_t k) {
   const Plane& p = std::get<Plane>(bodies[b].shape);
-  std::vector<RigidContact> out;
-  for (const Vec3& v : vertices(bodies[a])) {
-    const double pen = p.offset - p.normal.dot(v);
-    out.push_back(make(bodies, a, b, v + p.normal * (0.5 * pen), -p.normal, pen));
-  }
-  return out;
+  const Vec3 v = vertex(bodies[a], static_cast<int>(k));
+  const double pen = p.offset - p.normal.dot(v);
+  return make(bodies, a, b, v + p.normal * (0.5 * pen), -p.normal, pen);
 }
 
 }  // namespace
 
-std::vector<Vec3> vertices(const RigidBody& body) {
+Vec3 vertex(const RigidBody& body, int i) {
   const Vec3 h = std::get<Cuboid>(body.shape).half_extents;
-  const Mat3 R = body.orientation.toRotationMatrix();
+  const Vec3 corner((i & 1) ? h[0] : -h[0], (i & 2) ? h[1] : -h[1], (i & 4) ? h[2] : -h[2]);
+  return body.position + body.orientation.toRotationMatrix() * corner;
+}
+
+std::vector<Vec3> vertices(const RigidBody& body) {
   std::vector<Vec3> out;
-  for (int i = 0; i < 8; ++i) {
-    const Vec3 corner((i & 1) ? h[0] : -h[0], (i & 2) ? h[1] : -h[1], (i & 4) ? h[2] : -h[2]);
-    out.push_back(body.position + R * corner);
-  }
+  for (int i = 0; i < 8; ++i) out.push_back(vertex(body, i));
   return out;
 }
 
-std::vector<RigidContact> contact_candidates(const std::vector<RigidBody>& bodies, std::size_t a,
-                                             std::size_t b) {
+std::size_t candidate_count(const RigidBody& a, const RigidBody& b) {
+  const auto is_sphere = [](const RigidBody& body) { return std::holds_alternative<Sphere>(body.shape); };
+  const auto is_cuboid = [](const RigidBody& body) { return std::holds_alternative<Cuboid>(body.shape); };
+  const auto is_plane = [](const RigidBody& body) { return std::holds_alternative<Plane>(body.shape); };
+  if (is_sphere(a) || is_sphere(b)) return 1;  // against any shape: one closest point
+  if ((is_cuboid(a) && is_plane(b)) || (is_plane(a) && is_cuboid(b))) return 8;  // one per vertex
+  return 0;                                                                      // not needed
+}
+
+RigidContact contact_candidate(const std::vector<RigidBody>& bodies, std::size_t a, std::size_t b,
+                               std::size_t k) {
   const Shape &A = bodies[a].shape, &B = bodies[b].shape;
   const bool as = std::holds_alternative<Sphere>(A), bs = std::holds_alternative<Sphere>(B);
   const bool ac = std::holds_alternative<Cuboid>(A), bc = std::holds_alternative<Cuboid>(B);
   const bool ap = std::holds_alternative<Plane>(A), bp = std::holds_alternative<Plane>(B);
-  if (as && bs) return {sphere_sphere(bodies, a, b)};
-  if (as && bp) return {sphere_plane(bodies, a, b)};
-  if (ap && bs) return {flip(bodies, sphere_plane(bodies, b, a))};
-  if (as && bc) return {sphere_cuboid(bodies, a, b)};
-  if (ac && bs) return {flip(bodies, sphere_cuboid(bodies, b, a))};
-  if (ac && bp) return cuboid_plane(bodies, a, b);
-  if (ap && bc) {
-    auto out = cuboid_plane(bodies, b, a);
-    for (auto& c : out) c = flip(bodies, c);
-    return out;
-  }
-  return {};
+  if (as && bs) return sphere_sphere(bodies, a, b);
+  if (as && bp) return sphere_plane(bodies, a, b);
+  if (ap && bs) return flip(bodies, sphere_plane(bodies, b, a));
+  if (as && bc) return sphere_cuboid(bodies, a, b);
+  if (ac && bs) return flip(bodies, sphere_cuboid(bodies, b, a));
+  if (ac && bp) return cuboid_plane(bodies, a, b, k);
+  if (ap && bc) return flip(bodies, cuboid_plane(bodies, b, a, k));
+  throw std::invalid_argument("contact_candidate: no contact between these shapes");
+}
+
+std::vector<RigidContact> contact_candidates(const std::vector<RigidBody>& bodies, std::size_t a,
+                                             std::size_t b) {
+  std::vector<RigidContact> out;
+  for (std::size_t k = 0; k < candidate_count(bodies[a], bodies[b]); ++k)
+    out.push_back(contact_candidate(bodies, a, b, k));
+  return out;
 }
 
 }  // namespace contact::rigid

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <stdexcept>
+#include <tuple>
 
 namespace contact::rigid {
 
@@ -19,8 +20,8 @@ RigidScene::RigidScene(std::string name, std::vector<RigidBody> bodies, Vec3 gra
       const double inv = bodies_[a].inverse_mass + bodies_[b].inverse_mass;
       if (inv == 0) continue;  // two static bodies
       const ContactLaw law = law_for(pair_restitution(bodies_[a], bodies_[b]), 1.0 / inv);
-      const auto list = contact_candidates(bodies_, a, b);
-      for (std::size_t k = 0; k < list.size(); ++k) candidates_.push_back({a, b, k, law});
+      for (std::size_t k = 0; k < candidate_count(bodies_[a], bodies_[b]); ++k)
+        candidates_.push_back({a, b, k, law});
     }
 }
 
@@ -28,27 +29,46 @@ RigidScene::RigidScene(std::string name, std::vector<RigidBody> bodies, Vec3 gra
     : RigidScene(std::move(name), std::move(bodies), std::move(gravity),
                  [law](double, double) { return law; }) {}
 
+RigidBody RigidScene::body_at(std::size_t j, ConstVectorRef y) const {
+  RigidBody body = bodies_[j];
+  const auto s = y.segment(static_cast<Eigen::Index>(j) * kStride, kStride);
+  body.position = s.segment<3>(0);
+  body.orientation = Quat(s[3], s[4], s[5], s[6]).normalized();
+  body.velocity = s.segment<3>(7);
+  body.angular_velocity = s.segment<3>(10);
+  return body;
+}
+
 std::vector<RigidBody> RigidScene::bodies_at(ConstVectorRef y) const {
-  std::vector<RigidBody> out = bodies_;
-  for (std::size_t i = 0; i < out.size(); ++i) {
-    const auto s = y.segment(static_cast<Eigen::Index>(i) * kStride, kStride);
-    out[i].position = s.segment<3>(0);
-    out[i].orientation = Quat(s[3], s[4], s[5], s[6]).normalized();
-    out[i].velocity = s.segment<3>(7);
-    out[i].angular_velocity = s.segment<3>(10);
-  }
+  std::vector<RigidBody> out;
+  out.reserve(bodies_.size());
+  for (std::size_t j = 0; j < bodies_.size(); ++j) out.push_back(body_at(j, y));
   return out;
 }
 
+void RigidScene::store_body(std::size_t j, const RigidBody& body, VectorRef y) const {
+  auto s = y.segment(static_cast<Eigen::Index>(j) * kStride, kStride);
+  const Quat& q = body.orientation;
+  s.segment<3>(0) = body.position;
+  s.segment<4>(3) << q.w(), q.x(), q.y(), q.z();
+  s.segment<3>(7) = body.velocity;
+  s.segment<3>(10) = body.angular_velocity;
+}
+
 void RigidScene::store(const std::vector<RigidBody>& bodies, VectorRef y) const {
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
-    auto s = y.segment(static_cast<Eigen::Index>(i) * kStride, kStride);
-    const Quat& q = bodies[i].orientation;
-    s.segment<3>(0) = bodies[i].position;
-    s.segment<4>(3) << q.w(), q.x(), q.y(), q.z();
-    s.segment<3>(7) = bodies[i].velocity;
-    s.segment<3>(10) = bodies[i].angular_velocity;
-  }
+  for (std::size_t j = 0; j < bodies.size(); ++j) store_body(j, bodies[j], y);
+}
+
+RigidScene::Local RigidScene::local(std::size_t i, ConstVectorRef y) const {
+  const Candidate& c = candidates_[i];
+  Local l{{body_at(c.a, y), body_at(c.b, y)}, {}};
+  l.contact = contact_candidate(l.bodies, 0, 1, c.k);
+  return l;
+}
+
+void RigidScene::store_local(std::size_t i, const Local& l, VectorRef y) const {
+  store_body(candidates_[i].a, l.bodies[0], y);
+  store_body(candidates_[i].b, l.bodies[1], y);
 }
 
 Mask RigidScene::position_mask() const {
@@ -74,26 +94,29 @@ std::vector<std::string> RigidScene::state_labels() const {
 
 RigidContact RigidScene::contact(std::size_t i, const std::vector<RigidBody>& bodies) const {
   const Candidate& c = candidates_[i];
-  return contact_candidates(bodies, c.a, c.b)[c.k];
+  return contact_candidate(bodies, c.a, c.b, c.k);
 }
 
-RigidContact RigidScene::contact(std::size_t i, ConstVectorRef y) const { return contact(i, bodies_at(y)); }
+RigidContact RigidScene::contact(std::size_t i, ConstVectorRef y) const {
+  RigidContact c = local(i, y).contact;
+  std::tie(c.a, c.b) = pair(i);  // the scene's indices, not the local pair's
+  return c;
+}
 
 double RigidScene::gap_rate(std::size_t i, ConstVectorRef y) const {
-  const auto bodies = bodies_at(y);
-  return normal_velocity(bodies, contact(i, bodies));
+  const Local l = local(i, y);
+  return normal_velocity(l.bodies, l.contact);
 }
 
 double RigidScene::switching(std::size_t i, ConstVectorRef y) const {
-  const auto bodies = bodies_at(y);
-  const RigidContact c = contact(i, bodies);
-  return contact::switching(candidates_[i].law, c.penetration, -normal_velocity(bodies, c));
+  const Local l = local(i, y);
+  return contact::switching(candidates_[i].law, l.contact.penetration, -normal_velocity(l.bodies, l.contact));
 }
 
 double RigidScene::dissipated_power(std::size_t i, ConstVectorRef y) const {
-  const auto bodies = bodies_at(y);
-  const RigidContact c = contact(i, bodies);
-  return contact::dissipated_power(candidates_[i].law, c.penetration, -normal_velocity(bodies, c));
+  const Local l = local(i, y);
+  return contact::dissipated_power(candidates_[i].law, l.contact.penetration,
+                                   -normal_velocity(l.bodies, l.contact));
 }
 
 void RigidScene::rhs(double, ConstVectorRef y, const ContactModes& modes, VectorRef ydot) const {
@@ -159,7 +182,7 @@ double RigidScene::energy(ConstVectorRef y) const {
 }
 
 double RigidScene::elastic_energy(std::size_t i, ConstVectorRef y) const {
-  return stored_energy(candidates_[i].law, contact(i, y).penetration);
+  return stored_energy(candidates_[i].law, local(i, y).contact.penetration);
 }
 
 double RigidScene::restitution(std::size_t i) const {
@@ -167,41 +190,40 @@ double RigidScene::restitution(std::size_t i) const {
 }
 
 void RigidScene::project(std::size_t i, VectorRef y) const {
-  auto bodies = bodies_at(y);
-  rigid::project(bodies, contact(i, bodies), ProjectionShare::InverseMass);
-  store(bodies, y);
+  Local l = local(i, y);
+  rigid::project(l.bodies, l.contact, ProjectionShare::InverseMass);
+  store_local(i, l, y);
 }
 
 void RigidScene::apply_impulse(std::size_t i, double e, VectorRef y) const {
-  auto bodies = bodies_at(y);
-  rigid::apply_impulse(bodies, contact(i, bodies), e);
-  store(bodies, y);
+  Local l = local(i, y);
+  rigid::apply_impulse(l.bodies, l.contact, e);
+  store_local(i, l, y);
 }
 
 double RigidScene::inverse_mass(std::size_t i, ConstVectorRef y) const {
-  const auto bodies = bodies_at(y);
-  return normal_inverse_mass(bodies, contact(i, bodies));
+  const Local l = local(i, y);
+  return normal_inverse_mass(l.bodies, l.contact);
 }
 
 void RigidScene::apply_normal_impulse(std::size_t i, double lambda, VectorRef y) const {
-  auto bodies = bodies_at(y);
-  rigid::apply_normal_impulse(bodies, contact(i, bodies), lambda);
-  store(bodies, y);
+  Local l = local(i, y);
+  rigid::apply_normal_impulse(l.bodies, l.contact, lambda);
+  store_local(i, l, y);
 }
 
 void RigidScene::apply_normal_displacement(std::size_t i, double dlambda, VectorRef y) const {
-  auto bodies = bodies_at(y);
-  rigid::apply_normal_displacement(bodies, contact(i, bodies), dlambda);
-  store(bodies, y);
+  Local l = local(i, y);
+  rigid::apply_normal_displacement(l.bodies, l.contact, dlambda);
+  store_local(i, l, y);
 }
 
 void RigidScene::settle(std::size_t i, VectorRef y) const {
   // A perfectly inelastic impulse removes the approach; projection removes the overlap.
-  auto bodies = bodies_at(y);
-  const RigidContact c = contact(i, bodies);
-  rigid::apply_impulse(bodies, c, 0.0);
-  rigid::project(bodies, c, ProjectionShare::InverseMass);
-  store(bodies, y);
+  Local l = local(i, y);
+  rigid::apply_impulse(l.bodies, l.contact, 0.0);
+  rigid::project(l.bodies, l.contact, ProjectionShare::InverseMass);
+  store_local(i, l, y);
 }
 
 }  // namespace contact::rigid

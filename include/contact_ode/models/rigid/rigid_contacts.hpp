@@ -24,12 +24,21 @@ struct RigidContact {
   Vec3 r_a = Vec3::Zero(), r_b = Vec3::Zero();
 };
 
-// Every candidate between bodies a and b (indices into `bodies`); empty for pairs no scene needs
-// (cuboid-cuboid, plane-plane).
+// How many candidates bodies a and b have: 1 for a pair with a sphere, 8 for cuboid-plane, 0 for
+// pairs no scene needs (cuboid-cuboid, plane-plane).
+std::size_t candidate_count(const RigidBody& a, const RigidBody& b);
+
+// Candidate k < candidate_count of bodies a and b (indices into `bodies`): what one contact's
+// queries need, without computing the pair's others.
+RigidContact contact_candidate(const std::vector<RigidBody>& bodies, std::size_t a, std::size_t b,
+                               std::size_t k);
+
+// Every candidate between bodies a and b; empty for pairs no scene needs.
 std::vector<RigidContact> contact_candidates(const std::vector<RigidBody>& bodies, std::size_t a,
                                              std::size_t b);
 
-// World positions of a cuboid's eight vertices.
+// World position of a cuboid's vertex i in [0, 8) (bit j of i: the + side along axis j), and all eight.
+Vec3 vertex(const RigidBody& cuboid, int i);
 std::vector<Vec3> vertices(const RigidBody& cuboid);
 
 }  // namespace contact::rigid

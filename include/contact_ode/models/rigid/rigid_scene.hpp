@@ -81,6 +81,18 @@ class RigidScene final : public MechanicalSystem, public NormalImpulses {
     std::size_t a, b, k;  // bodies, and which of their candidates (a cuboid vertex)
     ContactLaw law;       // the pair's
   };
+  // Candidate i's two bodies alone (at 0 and 1) and their contact in those indices. A query about
+  // one contact copies two bodies, not the scene: the root functions ask about every contact, and
+  // copying every body for each made a scene's root evaluation cost O(bodies x contacts).
+  struct Local {
+    std::vector<RigidBody> bodies;
+    RigidContact contact;
+  };
+  Local local(std::size_t i, ConstVectorRef y) const;
+  void store_local(std::size_t i, const Local& l, VectorRef y) const;
+  RigidBody body_at(std::size_t j, ConstVectorRef y) const;
+  void store_body(std::size_t j, const RigidBody& body, VectorRef y) const;
+
   std::string name_;
   std::vector<RigidBody> bodies_;
   Vec3 gravity_;
