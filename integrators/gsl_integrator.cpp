@@ -28,6 +28,7 @@ class GslIntegrator final : public SteppingIntegrator {
         type_(step_type(o.method)),
         multistep_(type_ == gsl_odeiv2_step_msbdf),
         fixed_dt_(o.dt),
+        atol_(o.atol),
         analytic_(o.jacobian == JacobianMode::Analytic && static_cast<bool>(sys_.jacobian)),
         n_(static_cast<std::size_t>(y0.size())),
         fd_(y0.size()) {
@@ -128,13 +129,14 @@ class GslIntegrator final : public SteppingIntegrator {
 
   bool dense_is_interpolant() const override { return multistep_; }
   bool steps_may_cross_twice() const override { return type_ == gsl_odeiv2_step_bsimp; }
+  double negligible_size() const override { return atol_; }
   void step_shortened(double h) override { h_ = std::min(h_, h); }
 
   void restarted() override { gsl_odeiv2_driver_reset(driver_.get()); }
 
   const gsl_odeiv2_step_type* type_;
   bool multistep_;
-  double fixed_dt_;
+  double fixed_dt_, atol_;
   bool analytic_;
   std::size_t n_;
   gsl_odeiv2_system gsl_sys_{};

@@ -83,17 +83,17 @@ void SteppingIntegrator::take_step(double t_limit) {
 
 void SteppingIntegrator::shorten_until_hermite_is_faithful() {
   // A step whose cubic Hermite misses its own dense output at the midpoint by more than 1 % (of
-  // each component's size over the step) spans too much of an oscillation for a root function's
-  // signs at its ends to tell whether it crossed zero: retake it to its midpoint until it does.
-  // A half-period of a contact's oscillation has a Hermite error of order one, a 1.4-radian step
-  // one of 1 %. Forty halvings leave 1e-12 of the step: the bound on the work.
+  // each component's size over the step, or of the method's absolute tolerance) spans too much of an
+  // oscillation for a root function's signs at its ends to tell whether it crossed zero: retake it to its
+  // midpoint until it does. A half-period of a contact's oscillation has a Hermite error of order one,
+  // a 1.4-radian step one of 1 %. Forty halvings leave 1e-12 of the step: the bound on the work.
   Vector y_mid(yb_.size()), y_herm(yb_.size());
   for (int halvings = 0; halvings < 40; ++halvings) {
     const double mid = 0.5 * (ta_ + tb_);
     hermite(mid, y_herm);
     dense(mid, y_mid);
     const Vector scale = ya_.cwiseAbs().cwiseMax(yb_.cwiseAbs()).cwiseMax(y_mid.cwiseAbs());
-    if (((y_mid - y_herm).cwiseAbs().array() <= 1e-2 * scale.array() + 1e-300).all()) return;
+    if (((y_mid - y_herm).cwiseAbs().array() <= 1e-2 * scale.array() + negligible_size()).all()) return;
     step_shortened(mid - ta_);
     restarted();     // the method's memory (GSL's evolve keeps the last step's end slope) is stale
     take_step(mid);  // retaken under the method's error control (dense() is a bare re-step)

@@ -37,6 +37,9 @@ class SteppingIntegrator : public Integrator {
   // until its cubic Hermite follows its dense output (shorten_until_hermite_is_faithful), when
   // there are roots to find (without, a long accurate step is what the method is for).
   virtual bool steps_may_cross_twice() const { return false; }
+  // The size below which a component counts as zero in that test (the method's absolute
+  // tolerance): a ball at rest has no size of its own to be 1 % of.
+  virtual double negligible_size() const { return 0.0; }
   // Told when a step was cut to length h (the next step should not propose much more).
   virtual void step_shortened(double /*h*/) {}
 
