@@ -98,6 +98,11 @@ class ArkIntegrator final : public sundials::IntegratorBase {
       // gets more iterations than ARKODE's default 3 before the step is declared failed.
       check(ARKStepSetMaxNonlinIters(m, 10), "ARKStepSetMaxNonlinIters");
       check(ARKStepSetPredictorMethod(m, 1), "ARKStepSetPredictorMethod");
+      // Each implicit stage's f_i from its converged Newton solution, not one more evaluation:
+      // half the right-hand sides of convergence_dt's fixed-step DIRK rows (480771 -> 240767 at
+      // dt = 3.1e-5 s), errors the same to 1e-3 relative, 12 % less CPU (ARKODE's own work stays).
+      // Not in adaptive runs, whose error estimate would then carry the Newton tolerance.
+      check(ARKStepSetDeduceImplicitRhs(m, SUNTRUE), "ARKStepSetDeduceImplicitRhs");
     }
 
     const auto& jac = imex_ ? data_.sys.implicit_jacobian : data_.sys.jacobian;
