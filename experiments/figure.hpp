@@ -37,6 +37,8 @@ class Series {
 // The line colour and point type of series i of a panel (i < 10): ten colours (Tableau 10) and ten
 // markers, so that no two of a panel's series look alike.
 std::string series_style(std::size_t i);
+// Its colour alone, for series drawn `with lines` (gnuplot warns at a point type there).
+std::string series_colour(std::size_t i);
 
 // The lines that start a log-log figure: both axes logarithmic with powers-of-ten ticks, the
 // axis labels (gnuplot text) and a grid.
