@@ -113,10 +113,9 @@ int program(int argc, char** argv) {
           (job.setting == "exact" || job.value == (job.setting == "dt" ? dts : rtols).front())) {
         const auto setting = job.setting == "exact" ? "" : fmt::format(" {}={:g}", job.setting, job.value);
         Series& figure = ball_figures[job.method.starts_with("game") ? "game" : "other"];
-        figure.add(
-            (*results)[i].at("curve").get<std::string>(),
-            fmt::format("using 1:2 with lines {} lw 2 title '{}{} ({})'", series_colour(figure.count()),
-                        job.method, setting, std::get<std::string>(row[9])));
+        figure.add((*results)[i].at("curve").get<std::string>(),
+                   fmt::format("using 1:2 with lines {} lw 2 title '{}{} ({})'", line_colour(figure.count()),
+                               job.method, setting, std::get<std::string>(row[9])));
       }
       // The rigid figure shows each method at the coarsest step or the tightest tolerance.
       if (std::string& rows = rigid_rows[job.method];

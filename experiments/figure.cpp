@@ -37,14 +37,14 @@ constexpr std::array<const char*, 10> kColours = {"#4e79a7", "#f28e2b", "#e15759
                                                   "#edc948", "#b07aa1", "#ff9da7", "#9c755f", "#000000"};
 }  // namespace
 
-std::string series_colour(std::size_t i) {
+std::string line_colour(std::size_t i) {
   if (i >= kColours.size()) throw std::invalid_argument(fmt::format("series {}: a panel has at most 10", i));
   return fmt::format("lc rgb '{}'", kColours[i]);
 }
 
 std::string series_style(std::size_t i) {
   static constexpr std::array<int, 10> kPoints = {1, 2, 4, 6, 8, 10, 12, 3, 5, 7};
-  return fmt::format("{} pt {}", series_colour(i), kPoints[i]);
+  return fmt::format("{} pt {}", line_colour(i), kPoints[i]);
 }
 
 Figure convergence_figure(const std::string& name, const std::string& xlabel, const std::string& ylabel,

@@ -38,7 +38,7 @@ class Series {
 // markers, so that no two of a panel's series look alike.
 std::string series_style(std::size_t i);
 // Its colour alone, for series drawn `with lines` (gnuplot warns at a point type there).
-std::string series_colour(std::size_t i);
+std::string line_colour(std::size_t i);
 
 // The lines that start a log-log figure: both axes logarithmic with powers-of-ten ticks, the
 // axis labels (gnuplot text) and a grid.
