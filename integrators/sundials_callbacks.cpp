@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <exception>
+#include <string_view>
 
 namespace contact::sundials {
 
@@ -115,6 +116,9 @@ int roots(sunrealtype t, N_Vector y, sunrealtype* gout, void* user) {
 void error_handler(int code, const char* module, const char* function, char* msg, void* user) {
   if (code >= 0) return;  // warnings are not failures
   data(user).solver_message = fmt::format("{}:{}: {}", module, function, msg);
+  // CVODE's cvRcheck2, ARKODE's arkRootCheck2: "Root found at and very near t".
+  const std::string_view f(function);
+  data(user).root_held_zero = f == "cvRcheck2" || f == "arkRootCheck2";
 }
 
 }  // namespace contact::sundials

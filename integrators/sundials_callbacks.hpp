@@ -15,9 +15,10 @@ namespace contact::sundials {
 
 struct CallbackData {
   OdeSystem sys;
-  SparseMatrix J;              // last analytic Jacobian (for copies and J v products)
-  std::string solver_message;  // the solver's last error message
-  std::string callback_error;  // why one of our callbacks refused
+  SparseMatrix J;               // last analytic Jacobian (for copies and J v products)
+  std::string solver_message;   // the solver's last error message
+  bool root_held_zero = false;  // that error: a root function zero at the last root and just after
+  std::string callback_error;   // why one of our callbacks refused
   bool non_finite = false;
 
   Eigen::Map<Vector> map(N_Vector v) const {
@@ -26,6 +27,7 @@ struct CallbackData {
   // Clears the refusal flags before a solver call, so only that call's refusals count.
   void clear() {
     non_finite = false;
+    root_held_zero = false;
     callback_error.clear();
   }
   // The SolverFailure for a negative return flag of CVODE or ARKODE.
