@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -84,6 +85,30 @@ class Impacts {
     last_[i] = t;
   }
 
+  // Contacts that start closed (gap <= 0), still (|gap rate| <= the rest speed) and pushed together
+  // by the free flight (the gap's acceleration < 0) start at rest: a ball released on the floor, a
+  // column of balls. Without this their first impact came after ~1e-26 s of sinking, with a bounce
+  // far below what the flight resolves, and the run ended unresolved. Found again after each, since
+  // a ball on a held one is pushed into it only once that one is held.
+  void rest_initial_contacts(VectorRef y) {
+    for (bool again = true; again;) {
+      again = false;
+      for (std::size_t i = 0; i < model_.contact_count() && !again; ++i) {
+        const double rate = model_.gap_rate(i, y);
+        if (resting(i) || model_.gap(i, y) > 0 || std::abs(rate) > opt_.rest_speed ||
+            !(gap_acceleration(i, y) < 0))
+          continue;
+        rec_.contact_begin(i, 0.0, rate);
+        const double before = model_.energy(y);
+        model_.settle(i, y);
+        modes_[i] = ContactMode::Resting;
+        rec_.contact_end(i, 0.0, model_.gap_rate(i, y));
+        rec_.add_dissipated(before - model_.energy(y));
+        again = true;
+      }
+    }
+  }
+
   // Contact `first` closed at t. Impulses are resolved one contact at a time (the sequential
   // rule): after each, every contact that still touches (gap <= 0) and approaches is resolved
   // next, lowest index first (highest with reverse_order), until none does. A row of touching balls thus
@@ -106,16 +131,21 @@ class Impacts {
   }
 
  private:
-  // How high the bounce leaving at y rises: v^2 / (2 |a|), with a the gap's acceleration in free
-  // flight, d/dt gap_rate = (gap_rate(y + h y') - gap_rate(y)) / h. The gap rate is linear in the
-  // velocities, and y' changes them at the rate of the applied forces, so for a ball the
-  // quotient is exactly -g; h = 1e-6 s keeps the error from rotating normals at O(h).
-  double bounce_height(std::size_t i, ConstVectorRef y) {
-    if (rest_height_ <= 0) return kInf;
+  // The gap's acceleration in free flight (the contacts' current modes), d/dt gap_rate =
+  // (gap_rate(y + h y') - gap_rate(y)) / h. The gap rate is linear in the velocities, and y'
+  // changes them at the rate of the applied forces, so for a ball the quotient is exactly -g;
+  // h = 1e-6 s keeps the error from rotating normals at O(h).
+  double gap_acceleration(std::size_t i, ConstVectorRef y) {
     constexpr double h = 1e-6;
     model_.rhs(0.0, y, modes_, ydot_);
     y_ahead_ = y + h * ydot_;
-    const double v = model_.gap_rate(i, y), a = (model_.gap_rate(i, y_ahead_) - v) / h;
+    return (model_.gap_rate(i, y_ahead_) - model_.gap_rate(i, y)) / h;
+  }
+
+  // How high the bounce leaving at y rises: v^2 / (2 |a|), a the gap's acceleration.
+  double bounce_height(std::size_t i, ConstVectorRef y) {
+    if (rest_height_ <= 0) return kInf;
+    const double v = model_.gap_rate(i, y), a = gap_acceleration(i, y);
     return a < 0 ? v * v / (-2 * a) : kInf;
   }
 
@@ -164,7 +194,9 @@ RunResult run_event_driven(const MechanicalSystem& model, const EventOptions& op
     }
     return impact;
   };
-  return contact::drive(std::move(sys), model.initial_state(), opt.integrator, rec, drive);
+  Vector y0 = model.initial_state();
+  impacts.rest_initial_contacts(y0);
+  return contact::drive(std::move(sys), y0, opt.integrator, rec, drive);
 }
 
 RunResult run_event_driven(const MechanicalSystem& model, const AnalyticFlight& flight,
@@ -177,8 +209,11 @@ RunResult run_event_driven(const MechanicalSystem& model, const AnalyticFlight& 
   // (never t - t_leg, which would lose the leg time's low bits to the absolute time), so samples
   // and apexes do not perturb the trajectory and impacts land on the surface to rounding.
   double t_leg = 0.0, tau_now = 0.0;  // leg start, and the current time measured from it
-  Vector y_leg = model.initial_state(), y = y_leg;
-  bool any_rest = false;
+  Vector y_leg = model.initial_state();
+  impacts.rest_initial_contacts(y_leg);
+  Vector y = y_leg;
+  bool any_rest =
+      std::ranges::any_of(impacts.modes(), [](ContactMode m) { return m == ContactMode::Resting; });
   // Each contact's impact and apex times on the current leg, computed once per leg (the leg's
   // outputs and apexes do not change them).
   std::vector<double> leg_impact(nc), leg_apex(nc);

@@ -106,6 +106,24 @@ TEST(EventDriven, PerfectlyInelasticBallStopsAtFirstImpact) {
   EXPECT_EQ(r.samples.back().y[0], 0.0);
 }
 
+// A ball released at rest on the floor stays there, under either flight, at every restitution:
+// its contact starts at rest (closed, still, pushed down by gravity). It used to sink for
+// ~1e-26 s, meet a bounce far below the flight's resolution and end the run as unresolved.
+TEST(EventDriven, BallReleasedOnTheFloorStaysThere) {
+  for (const double e : {0.0, 0.5, 1.0}) {
+    const BallDrop model = ball(e, 0.0);
+    for (const RunResult& r : {run_event_driven(model, options(), span(1.0)),
+                               run_event_driven(model, model, options(), span(1.0))}) {
+      ASSERT_TRUE(r.ok()) << e << ": " << r.message;
+      for (const auto& s : r.samples) {
+        EXPECT_EQ(s.y[0], 0.0) << e << " at " << s.t;
+        EXPECT_EQ(s.y[1], 0.0) << e << " at " << s.t;
+      }
+      EXPECT_TRUE(r.apexes.empty());
+    }
+  }
+}
+
 TEST(EventDriven, PerfectlyElasticBallReturnsToItsHeightForever) {
   const BallDrop model = ball(1.0);
   const RigidBounces ref(1.0, 0.0, 9.81, 1.0);

@@ -50,12 +50,7 @@ TEST(Registries, EveryMethodRunsEverySceneItCanAndRefusesTheOthersByName) {
       const SolveOptions span{.t_end = 1e-3, .sample_dt = 1e-3};
       if (m.can_run(*scene)) {
         const RunResult r = solve(*scene, method, span);
-        // Event-driven impulses cannot hold a column that rests from the start: every contact is
-        // closed without approaching, a bounce of zero height. It says so, as a typed status.
-        if (s.name == "ball-stack" && m.family == "event-driven")
-          EXPECT_EQ(r.status, Status::Unresolved) << m.name << ": " << r.message;
-        else
-          EXPECT_TRUE(r.ok()) << s.name << " " << m.name << ": " << r.message;
+        EXPECT_TRUE(r.ok()) << s.name << " " << m.name << ": " << r.message;
         EXPECT_EQ(r.method, m.name);
       } else {
         const std::string why = refusal([&] { solve(*scene, method, span); });
