@@ -18,6 +18,7 @@ std::string render(const Table::Cell& c, int digits) {
     std::string operator()(long v) const { return fmt::format("{}", v); }
     std::string operator()(double v) const {
       if (std::isnan(v)) return digits > 0 ? "—" : "nan";
+      v += 0.0;  // a zero's sign is an artefact of a negation (a sink of -y at y = 0): print 0
       return digits > 0 ? fmt::format("{:.{}g}", v, digits) : fmt::format("{:.17g}", v);
     }
   };

@@ -58,6 +58,14 @@ TEST(PaperInputs, CsvReadsBackWhatTablesWrite) {
   EXPECT_THROW(contact::read_csv(file), std::runtime_error);
 }
 
+// A negated zero (the stack's top sink -y at y = 0) prints as 0 in every format, not "-0".
+TEST(PaperInputs, ZeroPrintsWithoutASign) {
+  contact::Table t({"sink_m"});
+  t.add_row({-0.0});
+  EXPECT_EQ(t.to_csv(), "sink_m\n0\n");
+  EXPECT_EQ(t.to_markdown(4).find("-0"), std::string::npos) << t.to_markdown(4);
+}
+
 // A pivot spreads a long table by one column: each (row, across) pair's value lands in its cell,
 // the kept columns come from the row's first appearance, a missing pair is NaN.
 TEST(PaperInputs, PivotSpreadsALongTable) {
