@@ -12,6 +12,9 @@
 //                      ball), measured by a difference quotient of the gap rate along the flight;
 //   min_event_spacing  two impacts of one contact closer in time than this also mean rest;
 //   max_events         a hard cap: exceeding it ends the run with Status::ZenoLimit.
+// A contact that starts closed (gap <= 0), still (|gap rate| <= rest_speed) and pushed together by
+// the flight (the gap's acceleration < 0, with the contacts below it already held) starts at rest:
+// a ball released on the floor, a resting column.
 // The rest guards cost at most 2 v_rest / (g (1 - e)) of Zeno time for a ball under gravity,
 // with v_rest the larger of rest_speed and sqrt(2 g rest_height).
 // A numerical flight resolves a bounce only if it rises well above its absolute tolerance, so its
