@@ -37,11 +37,13 @@ double cell(const std::string& file, const Where& where, const std::string& colu
 
 }  // namespace
 
-// "The penalty contact lasts pi sqrt(m/k) and penetrates V sqrt(m/k)": exponents -1/2 within 0.005
-// (gravity's share g / (w V) < 2 % over the fit's range).
+// "The penalty contact lasts pi sqrt(m/k) and penetrates V sqrt(m/k)", and Section 4.1's "the
+// fitted exponents are within 0.002 of -1/2 for every law": gravity's share g / (w V) shifts them
+// (0.0011 measured for each law).
 TEST(PaperClaims, PenetrationAndDurationScaleAsKToTheMinusHalf) {
-  EXPECT_NEAR(cell("k_sweep/exponents.csv", {{"law", "hooke"}}, "penetration_exponent"), -0.5, 0.005);
-  EXPECT_NEAR(cell("k_sweep/exponents.csv", {{"law", "hooke"}}, "duration_exponent"), -0.5, 0.005);
+  for (const char* law : {"hooke", "kelvin-voigt", "kelvin-voigt-clamped"})
+    for (const char* column : {"penetration_exponent", "duration_exponent"})
+      EXPECT_NEAR(cell("k_sweep/exponents.csv", {{"law", law}}, column), -0.5, 0.002) << law << " " << column;
 }
 
 // "The cost per contact of every adaptive code, explicit or implicit, is flat in k" (a code whose step
