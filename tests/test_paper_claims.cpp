@@ -112,10 +112,10 @@ TEST(PaperClaims, EventDrivenImpulsesHoldTheRestingColumnExactly) {
     EXPECT_EQ(cell("stack/stack.csv", {{"balls", "16"}, {"method", method}}, "top_sink_m"), 0.0) << method;
 }
 
-// "The adaptive codes but one control their error either way ... The exception is ARKODE's DIRK
-// method": without location every other adaptive code's error falls with its tolerance (fitted
-// exponent above 0.5; 0.6 to 1.1 measured), DIRK's does not (0.04 measured, bound 0.2), and does
-// with location (1.1 measured, bound 0.8).
+// "Without location the error of every adaptive code but one still falls with its tolerance (fitted
+// exponents above one half) ... The exception is ARKODE's DIRK method": every other code's exponent
+// unlocated is above 0.5 (0.6 to 1.1 measured), DIRK's below 0.2 (0.04 measured), and DIRK's with
+// location above 0.8 (1.1 measured).
 TEST(PaperClaims, OnlyArkodeDirkLosesItsToleranceAcrossUnlocatedKinks) {
   const std::string orders = "convergence_dt/orders.csv";
   for (const char* name : {"cvode-bdf", "cvode-adams", "arkode-erk", "arkode-imex", "gsl-rk8pd", "gsl-rkf45",
