@@ -88,12 +88,16 @@ class Impacts {
   // Contacts that start closed (gap <= 0), still (|gap rate| <= the rest speed) and pushed together
   // by the free flight (the gap's acceleration < 0) start at rest: a ball released on the floor, a
   // column of balls. Without this their first impact came after ~1e-26 s of sinking, with a bounce
-  // far below what the flight resolves, and the run ended unresolved. Found again after each, since
-  // a ball on a held one is pushed into it only once that one is held.
+  // far below what the flight resolves, and the run ended unresolved. The flight is looked ahead
+  // again after each (a ball on a held one is pushed into it only once that one is held), and the
+  // scan repeats until a pass rests none: at most one pass per contact, one right-hand side per
+  // pass and per rest, so a chain of touching balls at rest costs one right-hand side, not one per
+  // contact.
   void rest_initial_contacts(VectorRef y) {
     for (bool again = true; again;) {
       again = false;
-      for (std::size_t i = 0; i < model_.contact_count() && !again; ++i) {
+      look_ahead(y);
+      for (std::size_t i = 0; i < model_.contact_count(); ++i) {
         const double rate = model_.gap_rate(i, y);
         if (resting(i) || model_.gap(i, y) > 0 || std::abs(rate) > opt_.rest_speed ||
             !(gap_acceleration(i, y) < 0))
@@ -105,6 +109,7 @@ class Impacts {
         rec_.contact_end(i, 0.0, model_.gap_rate(i, y));
         rec_.add_dissipated(before - model_.energy(y));
         again = true;
+        look_ahead(y);
       }
     }
   }
@@ -131,20 +136,26 @@ class Impacts {
   }
 
  private:
-  // The gap's acceleration in free flight (the contacts' current modes), d/dt gap_rate =
+  // y_ahead_ = y + h y' along the free flight (the contacts' current modes), h = 1e-6 s: what
+  // gap_acceleration() reads.
+  static constexpr double kAhead = 1e-6;
+  void look_ahead(ConstVectorRef y) {
+    model_.rhs(0.0, y, modes_, ydot_);
+    y_ahead_ = y + kAhead * ydot_;
+  }
+
+  // The gap's acceleration in free flight from the last look_ahead(y), d/dt gap_rate =
   // (gap_rate(y + h y') - gap_rate(y)) / h. The gap rate is linear in the velocities, and y'
   // changes them at the rate of the applied forces, so for a ball the quotient is exactly -g;
   // h = 1e-6 s keeps the error from rotating normals at O(h).
-  double gap_acceleration(std::size_t i, ConstVectorRef y) {
-    constexpr double h = 1e-6;
-    model_.rhs(0.0, y, modes_, ydot_);
-    y_ahead_ = y + h * ydot_;
-    return (model_.gap_rate(i, y_ahead_) - model_.gap_rate(i, y)) / h;
+  double gap_acceleration(std::size_t i, ConstVectorRef y) const {
+    return (model_.gap_rate(i, y_ahead_) - model_.gap_rate(i, y)) / kAhead;
   }
 
   // How high the bounce leaving at y rises: v^2 / (2 |a|), a the gap's acceleration.
   double bounce_height(std::size_t i, ConstVectorRef y) {
     if (rest_height_ <= 0) return kInf;
+    look_ahead(y);
     const double v = model_.gap_rate(i, y), a = gap_acceleration(i, y);
     return a < 0 ? v * v / (-2 * a) : kInf;
   }
