@@ -29,6 +29,7 @@ class GslIntegrator final : public SteppingIntegrator {
         multistep_(type_ == gsl_odeiv2_step_msbdf),
         fixed_dt_(o.dt),
         atol_(o.atol),
+        rtol_(o.rtol),
         analytic_(o.jacobian == JacobianMode::Analytic && static_cast<bool>(sys_.jacobian)),
         n_(static_cast<std::size_t>(y0.size())),
         fd_(y0.size()) {
@@ -90,10 +91,42 @@ class GslIntegrator final : public SteppingIntegrator {
     return J.allFinite() ? GSL_SUCCESS : GSL_EBADFUNC;
   }
 
+  // A restart at a contact switch changes the dynamics: the last step proposed (a flight's, up to
+  // seconds) can be far too long for the contact (milliseconds), and GSL cuts a rejected step by
+  // at most 5x, so P1's rk8pd spent four rejected trials at every impact.
+  void reinit(double t, ConstVectorRef y) override {
+    SteppingIntegrator::reinit(t, y);
+    restart_ = true;
+  }
+
+  // The starting step of Hairer, Norsett and Wanner (Solving ODEs I, II.4), in GSL's error norm
+  // (the largest scaled component), from one more right-hand side. h1: the step at which a method
+  // of order p errs by 1 % of the tolerance if f changes at its rate at the start; h0: one that
+  // changes y by 1 % of its size. At the start the step is the smaller of h1 and 100 h0; after a
+  // restart, the last proposal if h1 does not call it too long (h0 knows nothing of the order, and
+  // a contact point sits at a position near zero, which makes it tiny where an RK8 step on the
+  // exact parabola of a flight can be long).
+  double starting_step(bool at_restart) {
+    const Vector& f0 = start_slope();
+    const Vector scale = (atol_ + rtol_ * ya_.array().abs()).matrix();
+    const auto norm = [&](const Vector& v) { return (v.array() / scale.array()).abs().maxCoeff(); };
+    const double d0 = norm(ya_), d1 = norm(f0);
+    const double h0 = d0 < 1e-5 || d1 < 1e-5 ? 1e-6 : 0.01 * d0 / d1;
+    Vector f1(f0.size());
+    f(ta_ + h0, ya_ + h0 * f0, f1);
+    const double d2 = norm(f1 - f0) / h0, rate = std::max(d1, d2);
+    const int p = static_cast<int>(gsl_odeiv2_step_order(driver_->s));
+    const double h1 = rate <= 1e-15 ? std::max(1e-6, 1e-3 * h0) : std::pow(0.01 / rate, 1.0 / (p + 1));
+    return std::min(at_restart ? h_ : 100 * h0, h1);
+  }
+
   void step(double t_limit) override {
     double t = ta_;
     yb_ = ya_;
     auto* d = driver_.get();
+    if (fixed_dt_ <= 0 && (!started_ || restart_)) h_ = starting_step(started_);
+    started_ = true;
+    restart_ = false;
     // evolve_apply ignores the driver's hmax, so the limit is enforced here: no step beyond
     // ta + max_step, and no proposed step longer than it.
     if (max_step_ > 0) {
@@ -119,7 +152,9 @@ class GslIntegrator final : public SteppingIntegrator {
       y = ya_;
       gsl_odeiv2_step_reset(dense_step_.get());
       Vector yerr(y.size());
-      if (gsl_odeiv2_step_apply(dense_step_.get(), ta_, h, y.data(), yerr.data(), nullptr, nullptr,
+      // The start's slope is the same for every re-step of this step: evaluated once.
+      const double* slope = dense_step_->type->can_use_dydt_in ? start_slope().data() : nullptr;
+      if (gsl_odeiv2_step_apply(dense_step_.get(), ta_, h, y.data(), yerr.data(), slope, nullptr,
                                 &gsl_sys_) == GSL_SUCCESS)
         return;
       ++dense_fallbacks_;  // e.g. bsimp's extrapolation did not converge: y is not a solution
@@ -142,7 +177,8 @@ class GslIntegrator final : public SteppingIntegrator {
   gsl_odeiv2_system gsl_sys_{};
   gsl::Driver driver_;
   gsl::Step dense_step_;
-  double h_ = 0, max_step_ = 0;
+  double h_ = 0, max_step_ = 0, rtol_;
+  bool started_ = false, restart_ = false;  // a step taken; a restart since the last one
   long failed_ = 0, jac_evals_ = 0, dense_fallbacks_ = 0;
   SparseMatrix J_;
   Vector fd_;

@@ -31,7 +31,7 @@ void SteppingIntegrator::reinit(double t, ConstVectorRef y) {
   ya_ = yb_ = y_ = y;
   if (sys_.root_count > 0) eval_roots(t, y, g_);
   counts_.restarts += 1;
-  have_slopes_ = false;
+  have_start_slope_ = have_end_slope_ = false;
   restarted();
 }
 
@@ -74,7 +74,7 @@ SteppingIntegrator::Outcome SteppingIntegrator::advance(double t_out) {
 
 void SteppingIntegrator::take_step(double t_limit) {
   step(t_limit);
-  have_slopes_ = false;
+  have_start_slope_ = have_end_slope_ = false;
   if (!yb_.allFinite())
     throw SolverFailure(
         Status::NonFiniteState, ta_,
@@ -111,12 +111,16 @@ int crossing(double g_lo, double g_hi) {
 
 }  // namespace
 
+const Vector& SteppingIntegrator::start_slope() {
+  if (!have_start_slope_) f(ta_, ya_, f_a_);
+  have_start_slope_ = true;
+  return f_a_;
+}
+
 void SteppingIntegrator::hermite(double t, VectorRef y) {
-  if (!have_slopes_) {
-    f(ta_, ya_, f_a_);
-    f(tb_, yb_, f_b_);
-    have_slopes_ = true;
-  }
+  start_slope();
+  if (!have_end_slope_) f(tb_, yb_, f_b_);
+  have_end_slope_ = true;
   const double H = tb_ - ta_, s = (t - ta_) / H;
   const double h00 = (1 + 2 * s) * (1 - s) * (1 - s), h10 = s * (1 - s) * (1 - s);
   const double h01 = s * s * (3 - 2 * s), h11 = s * s * (s - 1);

@@ -45,6 +45,9 @@ class SteppingIntegrator : public Integrator {
 
   // The cubic Hermite interpolant of the step from its end values and slopes (computed once).
   void hermite(double t, VectorRef y);
+  // f(ta_, ya_), computed once per step: the Hermite's first slope, and the first stage of every
+  // re-step from the step's start (so that a dense() by re-stepping need not evaluate it again).
+  const Vector& start_slope();
 
   // The right-hand side, counted.
   void f(double t, ConstVectorRef y, VectorRef ydot) {
@@ -67,7 +70,7 @@ class SteppingIntegrator : public Integrator {
 
   double t_;
   Vector y_, g_, g_hi_, f_a_, f_b_;
-  bool have_slopes_ = false;
+  bool have_start_slope_ = false, have_end_slope_ = false;
   std::vector<int> directions_;
   long max_steps_;
 };
