@@ -167,7 +167,10 @@ class GslIntegrator final : public SteppingIntegrator {
   double negligible_size() const override { return atol_; }
   void step_shortened(double h) override { h_ = std::min(h_, h); }
 
-  void restarted() override { gsl_odeiv2_driver_reset(driver_.get()); }
+  void restarted() override {
+    failed_ += static_cast<long>(driver_->e->failed_steps);  // the reset zeroes GSL's count
+    gsl_odeiv2_driver_reset(driver_.get());
+  }
 
   const gsl_odeiv2_step_type* type_;
   bool multistep_;

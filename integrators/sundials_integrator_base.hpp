@@ -21,6 +21,7 @@ class IntegratorBase : public Integrator {
     Outcome out;
     data_.clear();
     int flag = evolve(t_out, out.t);
+    counters_stale_ = false;
     if (flag < 0 && data_.root_held_zero) {
       // A root function that is zero at the root just returned and still zero a little later
       // (the gap rate of two bodies moving exactly together: found in the 16-ball stack under
@@ -30,6 +31,7 @@ class IntegratorBase : public Integrator {
       reinit(t_, y());
       data_.clear();
       flag = evolve(t_out, out.t);
+      counters_stale_ = false;
     }
     if (flag < 0) {
       char* name = flag_name(flag);
@@ -49,6 +51,7 @@ class IntegratorBase : public Integrator {
   void reinit(double t, ConstVectorRef y) override {
     closed_ += segment_stats();  // re-initialising zeroes the solver's counters
     closed_.restarts += 1;
+    counters_stale_ = true;
     data_.map(y_.get()) = y;
     t_ = t;
     check(restart(t), "re-initialisation");
@@ -63,7 +66,7 @@ class IntegratorBase : public Integrator {
   ConstVectorRef y() const override { return data_.map(y_.get()); }
   SolverStats stats() const override {
     SolverStats s = closed_;
-    s += segment_stats();
+    if (!counters_stale_) s += segment_stats();
     return s;
   }
 
@@ -102,6 +105,10 @@ class IntegratorBase : public Integrator {
   LinearSystem linear_;
   std::vector<int> directions_;
   SolverStats closed_;
+  // After a re-initialisation the linear solver's counters (difference-quotient rhs, Jacobians,
+  // iterations) still hold the closed segment's until the next step's setup zeroes them: the
+  // segment counts nothing until the solver is called again.
+  bool counters_stale_ = false;
   double t_;
 };
 

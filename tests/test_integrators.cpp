@@ -197,6 +197,33 @@ TEST_P(AdaptiveTolerance, MaxStepIsHonoured) {
   EXPECT_GE(integrator->stats().steps, 100) << name;
 }
 
+// A restart (every contact switch) must neither lose nor repeat what the solver counted before
+// it: GSL's evolve zeroes its failed-step count on a reset, which hid every rejected step but the
+// last segment's; SUNDIALS zeroes its linear solvers' counters (difference-quotient rhs, Jacobians)
+// only at the next step, so a run that ended at a restart counted them twice. The rhs
+// y' = [t > 1/2] jumps at t = 1/2, where an error-controlled step is rejected at least once.
+TEST_P(AdaptiveTolerance, CountsSurviveARestart) {
+  const std::string name = GetParam();
+  OdeSystem sys;
+  sys.size = 1;
+  sys.rhs = [](double t, ConstVectorRef, VectorRef yd) { yd[0] = t > 0.5 ? 1.0 : 0.0; };
+  sys.implicit_rhs = [](double, ConstVectorRef, VectorRef yd) { yd[0] = 0.0; };  // for IMEX
+  IntegratorOptions o;
+  o.method = name;
+  o.rtol = o.atol = 1e-8;
+  auto integrator = make_integrator(o, std::move(sys), 0.0, Vector{{0.0}});
+  integrator->advance(1.0);
+  const SolverStats before = integrator->stats();
+  ASSERT_GT(before.failed_steps, 0) << name;
+  integrator->reinit(integrator->t(), integrator->y());
+  const SolverStats after = integrator->stats();
+  EXPECT_EQ(after.failed_steps, before.failed_steps) << name;
+  EXPECT_EQ(after.steps, before.steps) << name;
+  EXPECT_EQ(after.rhs_evals, before.rhs_evals) << name;
+  EXPECT_EQ(after.jac_evals, before.jac_evals) << name;
+  EXPECT_EQ(after.linear_iters, before.linear_iters) << name;
+}
+
 // At the study's working tolerance every adaptive method must still see every contact of P1
 // (Kelvin–Voigt tuned to e = 0.8, 3 s: six contacts), at k = 1e5 and 1e8, however long its steps:
 // an extrapolation step (gsl-bsimp) spanned more than half a contact's oscillation, so the switch
