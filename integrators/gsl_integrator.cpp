@@ -174,13 +174,13 @@ class GslIntegrator final : public SteppingIntegrator {
 
   const gsl_odeiv2_step_type* type_;
   bool multistep_;
-  double fixed_dt_, atol_;
+  double fixed_dt_, atol_, rtol_;
   bool analytic_;
   std::size_t n_;
   gsl_odeiv2_system gsl_sys_{};
   gsl::Driver driver_;
   gsl::Step dense_step_;
-  double h_ = 0, max_step_ = 0, rtol_;
+  double h_ = 0, max_step_ = 0;
   bool started_ = false, restart_ = false;  // a step taken; a restart since the last one
   long failed_ = 0, jac_evals_ = 0, dense_fallbacks_ = 0;
   SparseMatrix J_;
