@@ -6,7 +6,8 @@
 namespace contact {
 
 SignChange narrow_sign_change(const std::function<double(double)>& g, SignChange b, double tol, double guess,
-                              int max_evals, double guess_slope) {
+                              int max_evals, double guess_slope,
+                              const std::function<double(const SignChange&, double)>& refine) {
   if (!(b.g_lo != 0 && b.g_lo * b.g_hi <= 0) || !(b.lo < b.hi))
     throw std::invalid_argument("narrow_sign_change: [lo, hi] does not bracket a sign change");
   const double old_sign = b.g_lo > 0 ? 1.0 : -1.0;
@@ -34,6 +35,11 @@ SignChange narrow_sign_change(const std::function<double(double)>& g, SignChange
     } else {
       const double xe = at_lo ? b.hi : b.lo, ge = at_lo ? b.g_hi : b.g_lo;
       next = gx != ge ? secant(xe, ge, x, gx) : NAN;
+    }
+    // (Not where the secant already lands within tol/2: the closing step needs no model.)
+    if (refine && b.hi - b.lo > tol && !(std::abs(next - x) < 0.5 * tol)) {
+      const double better = refine(b, x);
+      if (std::isfinite(better)) next = better;
     }
     double step = next - x;
     // (The ends themselves are fine: a secant through an exact zero returns that zero, and the

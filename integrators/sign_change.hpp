@@ -6,6 +6,9 @@
 // not halve the bracket. An optional first guess (e.g. from an interpolant that costs nothing to
 // evaluate) saves the first, coarse steps, and an estimate of g' there (from the same interpolant)
 // turns the first step into a Newton step instead of a secant through a far end of the bracket.
+// An optional `refine`, called after each evaluation with the bracket and the point just evaluated,
+// may return a better estimate of the root than the secant's (NaN: none), e.g. from a model that
+// the evaluation has just made more accurate; it takes the secant's place as the next trial.
 #include <functional>
 #include <limits>
 
@@ -21,6 +24,7 @@ struct SignChange {
 // but still valid). Requires g_lo != 0 and g_hi zero or of the other sign.
 SignChange narrow_sign_change(const std::function<double(double)>& g, SignChange b, double tol,
                               double guess = std::numeric_limits<double>::quiet_NaN(), int max_evals = 200,
-                              double guess_slope = std::numeric_limits<double>::quiet_NaN());
+                              double guess_slope = std::numeric_limits<double>::quiet_NaN(),
+                              const std::function<double(const SignChange&, double)>& refine = {});
 
 }  // namespace contact

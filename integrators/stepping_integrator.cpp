@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -109,6 +110,32 @@ int crossing(double g_lo, double g_hi) {
   return 0;
 }
 
+// The quintic through (a, ya, fa), (m, ym, fm), (b, yb, fb) with those values and slopes:
+// Newton's divided differences on the doubled nodes a, a, m, m, b, b. Its error at t is
+// ~ (t - a)^2 (t - m)^2 (t - b)^2 y^(6) / 720, so near m far below the cubic Hermite's.
+class QuinticHermite {
+ public:
+  QuinticHermite(double a, const Vector& ya, const Vector& fa, double m, const Vector& ym, const Vector& fm,
+                 double b, const Vector& yb, const Vector& fb)
+      : z_{a, a, m, m, b, b} {
+    std::array<Vector, 5> d{fa, (ym - ya) / (m - a), fm, (yb - ym) / (b - m), fb};
+    c_[0] = ya;
+    c_[1] = d[0];
+    for (std::size_t order = 2; order <= 5; ++order) {
+      for (std::size_t i = 0; i + order <= 5; ++i) d[i] = (d[i + 1] - d[i]) / (z_[i + order] - z_[i]);
+      c_[order] = d[0];
+    }
+  }
+  void operator()(double t, VectorRef y) const {
+    y = c_[5];
+    for (std::size_t k = 5; k-- > 0;) y = y * (t - z_[k]) + c_[k];
+  }
+
+ private:
+  std::array<double, 6> z_;
+  std::array<Vector, 6> c_;
+};
+
 }  // namespace
 
 const Vector& SteppingIntegrator::start_slope() {
@@ -117,10 +144,15 @@ const Vector& SteppingIntegrator::start_slope() {
   return f_a_;
 }
 
-void SteppingIntegrator::hermite(double t, VectorRef y) {
-  start_slope();
+const Vector& SteppingIntegrator::end_slope() {
   if (!have_end_slope_) f(tb_, yb_, f_b_);
   have_end_slope_ = true;
+  return f_b_;
+}
+
+void SteppingIntegrator::hermite(double t, VectorRef y) {
+  start_slope();
+  end_slope();
   const double H = tb_ - ta_, s = (t - ta_) / H;
   const double h00 = (1 + 2 * s) * (1 - s) * (1 - s), h10 = s * (1 - s) * (1 - s);
   const double h01 = s * s * (3 - 2 * s), h11 = s * s * (s - 1);
@@ -162,9 +194,31 @@ bool SteppingIntegrator::locate_root(double t_hi, ConstVectorRef y_hi, Outcome& 
       eval_roots(t, y, g);
       return g[k];
     };
+    // After the first re-step (at the cubic's root), the root of the quintic through that point
+    // and the step's ends is the next trial, for one more rhs: inside a contact's oscillation the
+    // cubic of a long RK8 step is ~1e-6 s off, and the secant needed two more re-steps from there.
+    bool refined = false;
+    auto refine = [&](const SignChange& b, double x) -> double {
+      const double H = tb_ - ta_;
+      if (refined || dense_is_interpolant() || !(x - ta_ > 1e-6 * H && tb_ - x > 1e-6 * H))
+        return std::numeric_limits<double>::quiet_NaN();
+      refined = true;
+      const Vector y_x = y;  // on_dense left dense(x) there
+      Vector f_x(y.size());
+      f(x, y_x, f_x);
+      const QuinticHermite quintic(ta_, ya_, start_slope(), x, y_x, f_x, tb_, yb_, end_slope());
+      auto on_quintic = [&](double t) {
+        quintic(t, y);
+        eval_roots(t, y, g);
+        return g[k];
+      };
+      const double q_lo = on_quintic(b.lo), q_hi = on_quintic(b.hi);
+      if (crossing(q_lo, q_hi) != dir) return std::numeric_limits<double>::quiet_NaN();
+      return narrow_sign_change(on_quintic, {b.lo, q_lo, b.hi, q_hi}, tol).hi;
+    };
     // The bracket's upper end: g already has its new sign there.
-    t_root = std::min(t_root,
-                      narrow_sign_change(on_dense, {t_, g_[k], t_hi, g_hi_[k]}, tol, guess, 200, slope).hi);
+    t_root = std::min(
+        t_root, narrow_sign_change(on_dense, {t_, g_[k], t_hi, g_hi_[k]}, tol, guess, 200, slope, refine).hi);
   }
   if (!std::isfinite(t_root)) return false;
   dense(t_root, y);

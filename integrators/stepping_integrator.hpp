@@ -62,6 +62,7 @@ class SteppingIntegrator : public Integrator {
 
  private:
   void eval_roots(double t, ConstVectorRef y, Vector& g);
+  const Vector& end_slope();  // f(tb_, yb_), computed once per step
   // A root in (t_, t_hi] given the state there; fills out and moves (t_, y_) to it.
   bool locate_root(double t_hi, ConstVectorRef y_hi, Outcome& out);
   // step() from (ta_, ya_), then the checks every step gets: slopes dropped, a finite state.

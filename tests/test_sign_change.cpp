@@ -120,3 +120,41 @@ TEST(SignChange, RejectsAnIntervalWithoutASignChange) {
   EXPECT_THROW(narrow_sign_change(g, bracket(g, -1, 1), 1e-12), std::invalid_argument);
   EXPECT_THROW(narrow_sign_change(g, {1, -1, 0, 1}, 1e-12), std::invalid_argument);  // lo > hi
 }
+
+TEST(SignChange, ARefinedModelTakesTheSecantsPlace) {
+  // A model that knows the root to 1e-17 after the first evaluation (SteppingIntegrator's quintic
+  // through the first re-step): the next trial lands within tol/2 and one more closes the bracket,
+  // three evaluations in all; from a guess 1e-6 off the secant alone needs more.
+  const auto g = [](double t) { return std::cos(t) - t; };
+  const double tol = 100 * kEps, root = 0.7390851332151607, guess = root + 1e-6;
+  int asked = 0;
+  const auto model = [&](const SignChange& b, double x) {
+    ++asked;
+    EXPECT_TRUE(b.lo <= x && x <= b.hi);
+    return root;
+  };
+  const auto plain = narrow_sign_change(g, bracket(g, 0, 1), tol, guess);
+  const auto refined = narrow_sign_change(g, bracket(g, 0, 1), tol, guess, 200,
+                                          std::numeric_limits<double>::quiet_NaN(), model);
+  expect_valid(refined, g, 1);
+  EXPECT_LE(refined.hi - refined.lo, tol);
+  EXPECT_NEAR(refined.hi, root, tol);
+  EXPECT_LE(refined.evals, 3);
+  EXPECT_LT(refined.evals, plain.evals);
+  // Asked after the first evaluation only: after the second the secant already lands within tol/2.
+  EXPECT_EQ(asked, 1);
+}
+
+TEST(SignChange, AWrongModelCannotBreakTheBracket) {
+  // A model that points outside the bracket, or nowhere, is ignored (bisection or the secant).
+  const auto g = [](double t) { return std::cos(t) - t; };
+  const double tol = 100 * kEps;
+  for (const double answer : {-5.0, 7.0, std::numeric_limits<double>::quiet_NaN()}) {
+    const auto b = narrow_sign_change(g, bracket(g, 0, 1), tol, std::numeric_limits<double>::quiet_NaN(), 200,
+                                      std::numeric_limits<double>::quiet_NaN(),
+                                      [&](const SignChange&, double) { return answer; });
+    expect_valid(b, g, 1);
+    EXPECT_LE(b.hi - b.lo, tol) << answer;
+    EXPECT_LE(b.evals, 60) << answer;  // bisection's 46 plus its safeguard's slack
+  }
+}
