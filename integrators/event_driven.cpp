@@ -65,9 +65,12 @@ class Impacts {
     const double v_out = model_.gap_rate(i, y);
     // Resting by height stops a decaying cascade that was followed down to the flight's
     // resolution. A first bounce already that low, or one that does not decay (e = 1), was never
-    // resolved: resting there would drop its energy silently.
+    // resolved: resting there would drop its energy silently. Unless the impact itself stopped a
+    // resolved approach (e = 0, a plastic impact: it leaves slower than the rest speed what came
+    // in faster): that bounce is low by the physics, and resting drops no energy the law kept.
     const bool low = !unresolved && bounce_height(i, y) < rest_height_;
-    if (low && (last_[i] == -kInf || !(v_out < -v_in)))
+    const bool stopped = v_out < opt_.rest_speed && -v_in >= opt_.rest_speed;
+    if (low && !stopped && (last_[i] == -kInf || !(v_out < -v_in)))
       throw SolverFailure(
           Status::Unresolved, t,
           fmt::format("contact {}'s bounce rises {:.3g} m, below the {:g} m the flight resolves at "

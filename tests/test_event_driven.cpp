@@ -124,6 +124,30 @@ TEST(EventDriven, BallReleasedOnTheFloorStaysThere) {
   }
 }
 
+// A plastic impact (e = 0) stops the ball on the floor at the first impact time t0 = sqrt(2 h0/g),
+// its energy m g h0 all dissipated there. The numerical flight failed it as 'unresolved' (its
+// bounce rises 0 m, below what the flight resolves, and it was the contact's first), advising a
+// tighter absolute tolerance that could not help.
+TEST(EventDriven, PlasticImpactStopsTheBallAtTheFirstImpact) {
+  const BallDrop model = ball(0.0);
+  const RigidBounces ref(1.0, 0.0, 9.81, 0.0);
+  for (const RunResult& r : {run_event_driven(model, options(), span(1.0)),
+                             run_event_driven(model, model, options(), span(1.0))}) {
+    ASSERT_TRUE(r.ok()) << r.message;
+    ASSERT_EQ(r.contacts.size(), 1u);
+    // The numerical flight's impact time to its tolerance (as in CvodeFlightAgrees...).
+    EXPECT_NEAR(r.contacts[0].t_begin, ref.impact_time(1), 1e-8);
+    EXPECT_EQ(r.contacts[0].v_out, 0.0);
+    EXPECT_TRUE(r.apexes.empty());
+    const auto& last = r.samples.back();
+    EXPECT_EQ(last.t, 1.0);
+    EXPECT_EQ(last.y[0], 0.0);
+    EXPECT_EQ(last.y[1], 0.0);
+    // E0 = m g h0 = 9.81 J, all booked as dissipated (to the flight's tolerance in speed).
+    EXPECT_NEAR(last.dissipated, 9.81, 1e-8);
+  }
+}
+
 TEST(EventDriven, PerfectlyElasticBallReturnsToItsHeightForever) {
   const BallDrop model = ball(1.0);
   const RigidBounces ref(1.0, 0.0, 9.81, 1.0);
