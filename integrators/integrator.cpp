@@ -98,6 +98,13 @@ void validate(const IntegratorOptions& o) {
         fmt::format("--linear-solver: value '{}' applies only to implicit SUNDIALS methods (cvode-bdf, "
                     "cvode-adams, arkode-dirk, arkode-imex); {} uses none",
                     to_string(o.linear_solver), o.method));
+  // SUNDIALS forms difference-quotient Jacobians only in dense and band storage: KLU with one
+  // failed at the first step with an opaque 'linear solver init failed'.
+  if (o.linear_solver == LinearSolverKind::Klu && o.jacobian != JacobianMode::Analytic)
+    throw std::invalid_argument(
+        "--linear-solver: value 'klu' needs the analytic Jacobian (SUNDIALS forms no difference-quotient "
+        "Jacobian in sparse storage), but the difference-quotient one was chosen (--jacobian dq, or "
+        "the penalty-dq method); accepted with it: dense, band, gmres, gmres-band");
 }
 
 std::unique_ptr<Integrator> make_integrator(const IntegratorOptions& o, OdeSystem system, double t0,

@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include <cstdlib>
+#include <stdexcept>
 
 namespace contact::sundials {
 
@@ -86,6 +87,10 @@ class IntegratorBase : public Integrator {
   }
   // The analytic Jacobian's pattern (for sparse storage) and the linear system of the options.
   void make_linear_system(const IntegratorOptions& o, const OdeSystem::Jacobian& jac, ConstVectorRef y0) {
+    if (o.linear_solver == LinearSolverKind::Klu && !jac)
+      throw std::invalid_argument(
+          "--linear-solver: value 'klu' needs an analytic Jacobian, and this system provides none; "
+          "accepted for it: dense, band, gmres, gmres-band");
     if (o.jacobian == JacobianMode::Analytic && jac) jac(t_, y0, data_.J);
     linear_ = sundials::make_linear_system(o.linear_solver, y_.get(), data_.sys.bandwidth,
                                            static_cast<long>(data_.J.nonZeros()), ctx_.get());
