@@ -8,7 +8,12 @@
 #include "experiment.hpp"
 #include "sweep_setting.hpp"
 
+#include <fmt/format.h>
+
+#include <algorithm>
 #include <cmath>
+#include <numbers>
+#include <stdexcept>
 
 namespace contact {
 
@@ -131,6 +136,28 @@ std::vector<std::string> work_panels(const std::string& paradigm, const std::str
 double first_apex_error(const BallDropParams& p, const RunResult& r) {
   if (!r.ok() || r.apexes.empty()) return NAN;
   return std::abs(r.apexes.front().gap - RigidBounces(p.h0, p.v0, p.g, p.e).apex_height(1));
+}
+
+double first_bounce_window(const BallDropParams& p, double at_least) {
+  const LinearLaw law = linear_law(p.law);
+  const double w = std::sqrt(law.k / p.m), zeta = law.c / (2 * std::sqrt(law.k * p.m));
+  const double fall = std::sqrt(2 * p.h0 / p.g), V = p.g * fall;
+  const double contact = (std::numbers::pi + 2 * std::atan(p.g / (w * V))) / (w * std::sqrt(1 - zeta * zeta));
+  const double window = 2 * fall + 1.25 * contact + 0.05;
+  return std::isfinite(window) ? std::max(at_least, window) : at_least;
+}
+
+void require_first_bounce(const RunResult& r, const BallDropParams& p, double t_end,
+                          const std::string& what) {
+  if (!r.contacts.empty() && r.contacts.front().closed() && !r.apexes.empty()) return;
+  const double k = linear_law(p.law).k;
+  throw std::runtime_error(fmt::format(
+      "{}: no complete first bounce by t = {:.3g} s{}", what, t_end,
+      std::isfinite(k)
+          ? fmt::format(" (a soft damped spring can hold the ball: its static sag m g / k is {:.3g} "
+                        "m against h0 = {:g} m)",
+                        p.m * p.g / k, p.h0)
+          : std::string()));
 }
 
 std::vector<ScoredScene> engine_scenes(double k) {

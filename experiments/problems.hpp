@@ -76,6 +76,16 @@ std::vector<std::string> work_panels(const std::string& paradigm, const std::str
 // (RigidBounces in general) [m]; NaN when the run failed or did not bounce.
 double first_apex_error(const BallDropParams& p, const RunResult& r);
 
+// The simulated time a ball dropped from rest needs for its first contact and first apex: the
+// fall, 1.25 times the contact's duration as Hooke's exact form gives it with the damped frequency,
+// (pi + 2 atan(g / (w V))) / w_d, w_d = w sqrt(1 - zeta^2), and a rise no longer than the fall,
+// plus 0.05 s; never less than `at_least` (nor, for a nonlinear or overdamped law, more). A soft
+// spring holds the ball long: a fixed 1.6 s ended before the first bounce below k = 33 N/m.
+double first_bounce_window(const BallDropParams& p, double at_least);
+// Throws std::runtime_error unless r closed its first contact and reached its first apex, saying
+// by when (t_end) and how deep the spring sags (m g / k): a soft damped spring can hold the ball.
+void require_first_bounce(const RunResult& r, const BallDropParams& p, double t_end, const std::string& what);
+
 // The scenes the engines are compared on (experiments/engines.cpp), each scored against its
 // exact rigid answer:
 //   drop       ball-drop, 1 kg from 1 m, e = 0.8: the first apex against e^2 h0;

@@ -40,6 +40,22 @@ TEST_F(KSweepCli, ReportsClosedFormNumbersAndExponents) {
     EXPECT_TRUE(fs::exists(dir_ / "ks" / f)) << f;
 }
 
+// Below k = 33 N/m the first contact outlasted the fixed 1.6 s window and the sweep failed ('no
+// complete first bounce'); the window now follows the contact's closed-form duration. At k = 10
+// (w = 3.2 rad/s: the contact lasts 1.21 s) the Hooke row still matches its closed form.
+TEST_F(KSweepCli, SoftSpringsGetTheTimeTheirContactTakes) {
+  const Outcome r = run(K_SWEEP_EXE, "--k-min 10 --k-max 10 --per-decade 1 --out soft");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto table = csv_rows(slurp(dir_ / "soft" / "k_sweep.csv"));
+  ASSERT_EQ(table.size(), 1 + 3u);
+  for (std::size_t i = 1; i < table.size(); ++i) {
+    EXPECT_GT(std::stod(table[i][4]), 1.0) << table[i][1];  // contacts longer than a second
+    if (table[i][1] != "hooke") continue;
+    EXPECT_NEAR(std::stod(table[i][4]) / std::stod(table[i][5]), 1.0, 1e-6) << "duration";
+    EXPECT_NEAR(std::stod(table[i][2]) / std::stod(table[i][3]), 1.0, 1e-6) << "penetration";
+  }
+}
+
 TEST_F(KSweepCli, BadInputIsRefused) {
   expect_refused(K_SWEEP_EXE, {
                                   {"--k-min 0", "--k-min", "'0'", "(0, inf)"},
