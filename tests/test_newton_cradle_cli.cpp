@@ -117,6 +117,22 @@ TEST_F(NewtonCradleCli, ImpulsesExchangeExactlyAndSpringsConserveMomentumAndEner
   EXPECT_TRUE(fs::exists(dir_ / "nc" / "energy_share.png"));
 }
 
+// A game step longer than the gap (dt = 1e-5 s at 1 m/s against 1e-6 m) leaves the stopped balls
+// touching at one velocity, their contacts never reopened: the run failed 'a contact is still open'.
+// Those velocities are final, and still the exact exchange (the last ball at 1 m/s, the rest 0).
+TEST_F(NewtonCradleCli, AGameStepLongerThanTheGapEndsWithTheExchange) {
+  const Outcome r = run(NEWTON_CRADLE_EXE, "--balls 5 --dt 1e-5 --spacings 1e-6 --out long");
+  ASSERT_EQ(r.code, 0) << r.err;
+  int game = 0;
+  for (const auto& c : csv_rows(slurp(dir_ / "long" / "velocities.csv"))) {
+    if (c[0] != "game") continue;
+    ++game;
+    for (int b = 0; b < 4; ++b) EXPECT_EQ(std::stod(c[2 + static_cast<std::size_t>(b)]), 0.0) << b;
+    EXPECT_EQ(std::stod(c[6]), 1.0);
+  }
+  EXPECT_EQ(game, 1);
+}
+
 TEST_F(NewtonCradleCli, BadInputIsRefused) {
   expect_refused(NEWTON_CRADLE_EXE, {
                                         {"--balls 1", "--balls", "'1'", "[2, 1000]"},
