@@ -2,12 +2,13 @@
 // spring stiffens: is a resolved contact stiff?
 // The ball drop (m = 1 kg, g = 9.81 m/s^2, h0 = 1 m) on a Hooke spring k = --k-min ... --k-max
 // (--per-decade points per decade), switches root-located, to t = 1.6 s or, for soft springs, the
-// longer time the first contact and the first apex take (first_bounce_window), under each of --integrators at
-// rtol = --rtol (atol = rtol / 100). Per run: right- hand sides and steps per contact, CPU time per contact
-// (median of 3 to 10 solves within 20 ms), and the first apex's error against the closed form (no energy is
-// lost: the apex is h0). A contact lasting pi sqrt(m/k) is resolved by every error-controlled code in a
-// number of steps set by the tolerance, not by k: its stiffness (the spring's w) is the time scale being
-// followed, so an explicit code is stable at the steps its accuracy asks for anyway. The exponents of cost
+// longer time the first contact and the first apex take (first_bounce_window), under each of
+// --integrators at rtol = --rtol (atol = rtol / 100). Per run: right-hand sides and steps per
+// contact, CPU time per contact (median of 3 to 10 solves within 20 ms), and the first apex's error
+// against the closed form (no energy is lost: the apex is h0). A contact lasting pi sqrt(m/k) is
+// resolved by every error-controlled code in a number of steps set by the tolerance, not by k: its
+// stiffness (the spring's w) is the time scale being followed, so an explicit code is stable at the
+// steps its accuracy asks for anyway. The exponents of cost
 // against k, fitted by least squares in log-log (GSL) over the whole range, say how flat.
 // Under mpirun the (integrator, k) cases are dealt over the ranks.
 // Outputs in --out (default results/contact_cost): cost.{csv,md,tex}, exponents.{csv,md,tex},
