@@ -99,10 +99,12 @@ std::optional<std::vector<nlohmann::json>> Experiment::share(
   return results;
 }
 
-namespace {
-std::string failure(const RunResult& r, const std::string& what) {
-  return fmt::format("{}: {} at t = {:.9g} s: {}", what, to_string(r.status), r.t_reached, r.message);
+std::string failure_text(const RunResult& r) {
+  return fmt::format("{} at t = {:.9g} s: {}", to_string(r.status), r.t_reached, r.message);
 }
+
+namespace {
+std::string failure(const RunResult& r, const std::string& what) { return what + ": " + failure_text(r); }
 }  // namespace
 
 RunResult require(RunResult r, const std::string& what) {

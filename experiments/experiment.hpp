@@ -56,6 +56,8 @@ class Experiment : public cli::Options {
   std::unique_ptr<Ranks> ranks_;
 };
 
+// "<status> at t = ... s: <solver message>": how a failed run ended.
+std::string failure_text(const RunResult& r);
 // Throws std::runtime_error "<what>: <status> at t = ... s: <solver message>" unless r succeeded.
 RunResult require(RunResult r, const std::string& what);
 // For sweeps, where a failed run is a row rather than the end: prints that same line on stderr

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <stdexcept>
 
 namespace contact {
@@ -32,18 +33,31 @@ ErrorSpread error_over(const std::vector<Problem>& problems,
                        const std::function<RunResult(const Problem&)>& solve_one) {
   ErrorSpread out;
   const double cpu0 = cpu_seconds();
+  std::size_t runs = 0;
   for (const auto& problem : problems) {
     const RunResult r = solve_one(problem);
+    ++runs;
+    out.rhs += static_cast<double>(r.stats.rhs_evals);
+    if (!r.ok()) {
+      out.status = to_string(r.status);
+      out.failure = failure_text(r);
+      out.max = out.rms = std::nan("");
+      break;
+    }
     const double err = problem.error(r, false);
     out.max = std::max(out.max, err);
     out.rms += err * err;
-    out.rhs += static_cast<double>(r.stats.rhs_evals);
   }
-  const double n = static_cast<double>(problems.size());
+  const double n = static_cast<double>(runs);
   out.rms = std::sqrt(out.rms / n);
   out.rhs /= n;
   out.cpu_s = (cpu_seconds() - cpu0) / n;
   return out;
+}
+
+bool report(const ErrorSpread& r, const std::string& what) {
+  if (!r.ok()) std::cerr << what << ": " << r.failure << "\n";
+  return r.ok();
 }
 
 std::vector<Problem> ball_problems_over_heights(double k, double t_end, std::size_t count) {
@@ -86,7 +100,7 @@ namespace {
 Method method_with(const std::string& method, const std::string& integrator, double value) {
   Method m{.name = method};
   m.integrator.method = integrator;
-  m.integrator.max_steps = 10000000;
+  m.integrator.max_steps = kSweepMaxSteps;
   m.integrator = with_setting(m.integrator, !integrator_info(integrator).adaptive, value);
   return m;
 }
@@ -99,9 +113,7 @@ std::vector<WorkJob> work_precision_jobs(const std::vector<Problem>& problems,
   std::vector<WorkJob> jobs;
   for (const Problem& pr : problems) {
     // The largest fixed step is 1/16 of a contact (w dt = pi/16), halved `halvings` times.
-    std::vector<double> dts;
-    for (long j = 0; j <= halvings; ++j)
-      dts.push_back(pr.contact_duration / 16 / std::pow(2.0, static_cast<double>(j)));
+    const auto dts = halved_steps("--halvings", pr.contact_duration / 16, halvings, 0, pr.t_end);
     for (const auto& name : integrators) {
       const bool adaptive = integrator_info(name).adaptive;
       for (double v : adaptive ? tols : dts)

@@ -32,11 +32,18 @@ Problem ball_problem(double k, double t_end, double h0 = 1.0);
 
 // One setting's error over several problems of one kind (drops from several heights): the largest
 // and the RMS error (each problem's own `error`, against its spring model), and the mean
-// right-hand-side evaluations and CPU time per solve. JSON as {"max", "rms", "rhs", "cpu_s"}.
+// right-hand-side evaluations and CPU time per solve. A run that fails ends the setting: its
+// status ("ok" else the run's, e.g. "convergence-failure") and what the solver said, the errors
+// NaN (a failed run has no final state to score), the cost of the runs until then.
+// JSON as {"max", "rms", "rhs", "cpu_s", "status", "failure"}.
 struct ErrorSpread {
   double max = 0, rms = 0, rhs = 0, cpu_s = 0;
+  std::string status = "ok", failure;  // failure: "<status> at t = ... s: <solver's message>"
+  bool ok() const { return status == "ok"; }
 };
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ErrorSpread, max, rms, rhs, cpu_s)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ErrorSpread, max, rms, rhs, cpu_s, status, failure)
+// As report(RunResult) for a setting: "<what>: <failure>" on stderr if it failed; whether it ran.
+bool report(const ErrorSpread& r, const std::string& what);
 ErrorSpread error_over(const std::vector<Problem>& problems,
                        const std::function<RunResult(const Problem&)>& solve_one);
 

@@ -5,12 +5,38 @@
 #include "contact_ode/integrators/integrator.hpp"
 #include "contact_ode/integrators/method_registry.hpp"
 
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace contact {
 
 inline constexpr double kAtolPerRtol = 1e-2;
+// The most steps a sweep's run may take (its max_steps): a bound on the work of the finest step.
+inline constexpr long kSweepMaxSteps = 10000000;
+
+// The fixed steps of a sweep: dt_max / 2^j, j = 0 .. halvings. Refused (std::invalid_argument naming
+// `option`, the value and the accepted range from `least`) where the finest would take more than
+// kSweepMaxSteps steps over `span`: such a run could only fail, after minutes.
+inline std::vector<double> halved_steps(const std::string& option, double dt_max, long halvings, long least,
+                                        double span) {
+  const double most = std::floor(std::log2(static_cast<double>(kSweepMaxSteps) * dt_max / span));
+  const int h = static_cast<int>(std::min(halvings, 4096L));
+  if (static_cast<double>(halvings) > most)
+    throw std::invalid_argument(
+        fmt::format("{}: value '{}' makes the finest step {:.3g} s, {:.3g} steps over {:g} s (a run takes at "
+                    "most {:g}); accepted "
+                    "[{}, {:g}]",
+                    option, halvings, std::ldexp(dt_max, -h), std::ldexp(span / dt_max, h), span,
+                    static_cast<double>(kSweepMaxSteps), least, std::max(most, static_cast<double>(least))));
+  std::vector<double> steps;
+  for (int j = 0; j <= h; ++j) steps.push_back(std::ldexp(dt_max, -j));
+  return steps;
+}
 
 // `o` with dt = value (fixed_step), or with rtol = value and atol = value * kAtolPerRtol.
 inline IntegratorOptions with_setting(IntegratorOptions o, bool fixed_step, double value) {

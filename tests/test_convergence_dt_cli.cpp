@@ -118,5 +118,38 @@ TEST_F(ConvergenceDtCli, BadInputIsRefused) {
                                          {"--integrators rk5", "--integrators", "'rk5'", "rk4"},
                                          {"--tol-min 1e-20", "--tol-min", "'1e-20'", "[1e-14, 0.0001]"},
                                          {"--heights 0", "--heights", "'0'", "[1, 100]"},
+                                         // 2e-3 s / 2^40 to 1.5 s: 8e14 steps, past the runs' 1e7.
+                                         {"--halvings 40", "--halvings", "'40'", "[1, 13]"},
                                      });
+}
+
+// A run that fails is a row with its status, not the end of the study. ARKODE's SDIRK at a fixed
+// step w dt = 1.6 (k = 6.27e5 N/m, dt = 2 ms): with located switches every stage is an affine
+// equation in one contact mode, which Newton's method solves in one iteration; unlocated, the mode
+// follows each iterate, and at one of the three heights the iteration across the kink of
+// F = k max(-x, 0) fails and the fixed step cannot be shortened. That row used to end the whole
+// experiment (exit 1, no tables).
+TEST_F(ConvergenceDtCli, AFailedRunIsARowNotTheEnd) {
+  const Outcome r =
+      run(CONVERGENCE_DT_EXE, "--integrators arkode-dirk --k 6.27e5 --halvings 1 --tol-min 1e-4 --out cd");
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::map<std::pair<std::string, std::string>, contact::CsvRecord> rows;  // [events, dt]
+  for (auto& row : csv_table(slurp(dir_ / "cd" / "fixed_step.csv"))) rows[{row["events"], row["dt_s"]}] = row;
+  ASSERT_EQ(rows.size(), 4u);
+  const auto& failed = rows[{"unlocated", "0.002"}];
+  EXPECT_EQ(failed.at("status"), "convergence-failure");
+  EXPECT_TRUE(std::isnan(std::stod(failed.at("error_max"))));
+  EXPECT_NE(r.err.find("arkode-dirk unlocated (dt 0.002): convergence-failure at t = "), std::string::npos)
+      << r.err;
+  // The located rows at the same steps ran, and converge at SDIRK's order 4 or better (measured 3.5:
+  // at w dt = 1.6 the leading term does not dominate yet).
+  for (const char* dt : {"0.002", "0.001"}) {
+    const auto& located = rows[{"located", dt}];
+    EXPECT_EQ(located.at("status"), "ok") << dt;
+    EXPECT_LT(std::stod(located.at("error_max")), 2e-3) << dt;
+  }
+  // The failed row is no point of the fits: the unlocated fixed order has one row left, no fit.
+  const auto orders = csv_table(slurp(dir_ / "cd" / "orders.csv"));
+  ASSERT_EQ(orders.size(), 1u);
+  EXPECT_TRUE(std::isnan(std::stod(orders[0].at("fixed_order_unlocated"))));
 }

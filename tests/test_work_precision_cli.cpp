@@ -97,5 +97,7 @@ TEST_F(WorkPrecisionCli, BadInputIsRefused) {
                                          {"--chain-k -5", "--chain-k", "'-5'", "(0, inf)"},
                                          {"--problems moon", "--problems", "'moon'", "chain"},
                                          {"--repeats 2", "--repeats", "'2'", "[3, 1000]"},
+                                         // The ball's w dt = pi/16 halved 30 times: 8e11 steps.
+                                         {"--halvings 30", "--halvings", "'30'", "[0, 13]"},
                                      });
 }
