@@ -11,11 +11,11 @@ namespace contact {
 
 namespace {
 
-const ParameterInfo kStiffness{"k", "N/m", 1e5, "stiffness"};
-const ParameterInfo kPowerStiffness{"k", "N/m^n", 1e9, "stiffness K of K delta^n"};
-const ParameterInfo kMass{"m", "kg", 1.0, "effective mass the damping is tuned for"};
-const ParameterInfo kRestitution{"e", "", 0.8, "target restitution"};
-const ParameterInfo kSpeed{"v", "m/s", 1.0, "impact speed the damping is tuned at"};
+const ParameterInfo kStiffness{"k", "N/m", 1e5, "stiffness", kPositive};
+const ParameterInfo kPowerStiffness{"k", "N/m^n", 1e9, "stiffness K of K delta^n", kPositive};
+const ParameterInfo kMass{"m", "kg", 1.0, "effective mass the damping is tuned for", kPositive};
+const ParameterInfo kRestitution{"e", "", 0.8, "target restitution", kUnitInterval};
+const ParameterInfo kSpeed{"v", "m/s", 1.0, "impact speed the damping is tuned at", kPositive};
 
 LawInfo hunt_crossley(std::string name, std::string description, double n) {
   return {std::move(name),

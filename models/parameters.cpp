@@ -3,21 +3,35 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace contact {
+
+bool Range::contains(double v) const {
+  return std::isfinite(v) && (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
+}
+
+std::string Range::to_string() const {
+  return fmt::format("{}{:g}, {:g}{}", lo_open ? '(' : '[', lo, hi, hi_open ? ')' : ']');
+}
 
 ParameterValues resolve(const std::vector<ParameterInfo>& parameters, const ParameterValues& given,
                         const std::string& owner) {
   ParameterValues values;
   for (const auto& p : parameters) values[p.name] = p.default_value;
   for (const auto& [name, value] : given) {
-    if (!values.contains(name)) {
+    const auto p = std::find_if(parameters.begin(), parameters.end(),
+                                [&](const ParameterInfo& info) { return info.name == name; });
+    if (p == parameters.end()) {
       std::vector<std::string> names;
-      for (const auto& p : parameters) names.push_back(p.name);
+      for (const auto& info : parameters) names.push_back(info.name);
       throw std::invalid_argument(
           fmt::format("{}: parameter '{}' is not one of: {}", owner, name, fmt::join(names, ", ")));
     }
+    if (!p->accepted.contains(value))
+      throw std::invalid_argument(fmt::format("{}: parameter '{}' = {:g} is out of range; accepted range {}",
+                                              owner, name, value, p->accepted.to_string()));
     values[name] = value;
   }
   return values;

@@ -7,8 +7,8 @@ namespace contact {
 SceneEntry spring_mass_scene() {
   return {"spring-mass",
           "a mass on a bilateral linear spring, no contact (the fixed-step schemes' closed forms)",
-          {{"m", "kg", 1.0, "mass"},
-           {"k", "N/m", 1e4, "spring stiffness"},
+          {{"m", "kg", 1.0, "mass", kPositive},
+           {"k", "N/m", 1e4, "spring stiffness", kPositive},
            {"x0", "m", 1.0, "initial displacement"},
            {"v0", "m/s", 0.0, "initial velocity"}},
           false,

@@ -31,7 +31,8 @@ py::list parameters(const std::vector<ParameterInfo>& list) {
   py::list out;
   for (const auto& p : list)
     out.append(py::dict(py::arg("name") = p.name, py::arg("unit") = p.unit,
-                        py::arg("default") = p.default_value, py::arg("description") = p.description));
+                        py::arg("default") = p.default_value, py::arg("description") = p.description,
+                        py::arg("accepted") = p.accepted.to_string()));
   return out;
 }
 

@@ -78,6 +78,23 @@ TEST(Registries, UnknownNamesAndParametersAreRefusedWithWhatIsAccepted) {
   EXPECT_NE(refusal([] { make_scene("snooker", {}, "hooke"); }).find("fixes its own contact law"),
             std::string::npos);
   EXPECT_NE(refusal([] { make_scene("ball-chain", {{"n", 2.5}}); }).find("'n' = 2.5"), std::string::npos);
+  // Every parameter has a range: a massless ball, a restitution above one, a NaN anywhere.
+  EXPECT_NE(refusal([] {
+              make_scene("ball-drop", {{"m", 0.0}});
+            }).find("ball-drop: parameter 'm' = 0 is out of range; accepted range (0, inf)"),
+            std::string::npos);
+  EXPECT_NE(refusal([] {
+              make_scene("ball-stack", {{"e", 1.5}});
+            }).find("accepted range [0, 1]"),
+            std::string::npos);
+  EXPECT_NE(refusal([] {
+              make_scene("snooker", {{"radius", std::nan("")}});
+            }).find("'radius' = nan"),
+            std::string::npos);
+  EXPECT_NE(refusal([] {
+              make_scene("spring-mass", {{"x0", INFINITY}});
+            }).find("(-inf, inf)"),
+            std::string::npos);
   const auto ball = make_scene("ball-drop");
   EXPECT_NE(refusal([&] { solve(*ball, {.name = "game-symplectic", .dt = 0.0}); }).find("--dt: value '0'"),
             std::string::npos);

@@ -4,6 +4,7 @@ import csv
 import math
 import os
 import pathlib
+import re
 import runpy
 import subprocess
 
@@ -81,8 +82,27 @@ def test_bad_arguments_raise_value_error_naming_them():
         co.solve("ball-drop", "penalty", t_end=-1.0)
     with pytest.raises(ValueError, match="method: value 'nope' is not one of"):
         co.solve("ball-drop", "nope")
-    with pytest.raises(ValueError, match="cannot run scene"):
+    # The scene as the caller named it, not the model's internal name ("spring_mass").
+    with pytest.raises(ValueError, match="cannot run scene 'spring-mass'"):
         co.solve("spring-mass", "event-ode")
+
+
+def test_scene_parameters_outside_their_range_raise_value_error():
+    # Each used to reach the solvers: m = 0 tripped ODE's own mass assertion (a RuntimeError), a
+    # NaN or infinite value or a restitution above 1 failed mid-run as a non-finite state.
+    for scene, method, given, accepted in [
+        ("ball-drop", "ode", {"m": 0.0}, "(0, inf)"),
+        ("ball-drop", "penalty", {"e": 1.5}, "[0, 1]"),
+        ("ball-drop", "penalty", {"h0": -1.0}, "[0, inf)"),
+        ("spring-mass", "penalty", {"v0": math.inf}, "(-inf, inf)"),
+        ("cradle", "event-ode", {"k": math.nan}, "(0, inf)"),
+        ("ball-stack", "penalty", {"g": math.inf}, "[0, inf)"),
+    ]:
+        (name, value), = given.items()
+        with pytest.raises(ValueError, match=f"{scene}: parameter '{name}' = .* accepted range {re.escape(accepted)}"):
+            co.solve(scene, method, **given)
+    drop = {p["name"]: p for p in next(s for s in co.scenes() if s["name"] == "ball-drop")["parameters"]}
+    assert drop["e"]["accepted"] == "[0, 1]" and drop["v0"]["accepted"] == "(-inf, inf)"
 
 
 def test_solver_failure_raises_with_status_time_and_message():

@@ -39,7 +39,7 @@ class BallChain final : public OneLawSystem,
   explicit BallChain(BallChainParams p);
   const BallChainParams& params() const { return p_; }
 
-  std::string name() const override { return "ball_chain"; }
+  std::string name() const override { return "ball-chain"; }
   Mask position_mask() const override;
   std::size_t state_size() const override { return 2 * p_.n; }
   Vector initial_state() const override;

@@ -33,7 +33,7 @@ class BallDrop final : public MechanicalSystem,
   explicit BallDrop(BallDropParams p) : p_(std::move(p)) {}
   const BallDropParams& params() const { return p_; }
 
-  std::string name() const override { return "ball_drop"; }
+  std::string name() const override { return "ball-drop"; }
   Mask position_mask() const override { return Mask{{true, false}}; }
   std::size_t state_size() const override { return 2; }
   Vector initial_state() const override { return Vector{{p_.h0, p_.v0}}; }

@@ -28,7 +28,7 @@ class BallStack final : public OneLawSystem, public NormalImpulses, public Spher
   explicit BallStack(BallStackParams p);
   const BallStackParams& params() const { return p_; }
 
-  std::string name() const override { return "ball_stack"; }
+  std::string name() const override { return "ball-stack"; }
   Mask position_mask() const override;
   std::size_t state_size() const override { return 2 * p_.n; }
   Vector initial_state() const override;

@@ -1,23 +1,38 @@
 #pragma once
-// Named parameters with units and defaults, as registries (laws, scenes) describe them, and the
-// values a caller gives by name.
+// Named parameters with units, defaults and accepted ranges, as registries (laws, scenes) describe
+// them, and the values a caller gives by name.
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
 
 namespace contact {
 
+// The values a parameter accepts: finite, between lo and hi (an open end excludes its bound).
+struct Range {
+  double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
+  bool lo_open = true, hi_open = true;
+  bool contains(double v) const;
+  std::string to_string() const;  // "(0, inf)", "[0, 1]"
+};
+inline constexpr Range kAnyFinite{};
+inline constexpr Range kPositive{.lo = 0};
+inline constexpr Range kNonNegative{.lo = 0, .lo_open = false};
+inline constexpr Range kUnitInterval{.lo = 0, .hi = 1, .lo_open = false, .hi_open = false};
+
 struct ParameterInfo {
   std::string name;  // e.g. "h0"
   std::string unit;  // e.g. "m"; "" for dimensionless
   double default_value;
   std::string description;
+  Range accepted = kAnyFinite;
 };
 
 using ParameterValues = std::map<std::string, double>;
 
 // The value of every parameter: the given one or the default. Throws std::invalid_argument
-// naming a given name that is not a parameter, and the accepted names.
+// naming a given name that is not a parameter (and the accepted names), or a value outside its
+// parameter's range (and the range).
 ParameterValues resolve(const std::vector<ParameterInfo>& parameters, const ParameterValues& given,
                         const std::string& owner);
 

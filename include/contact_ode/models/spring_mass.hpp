@@ -14,7 +14,7 @@ class SpringMass final : public Dynamics {
   SpringMass(double m, double k, double x0, double v0) : m_(m), k_(k), x0_(x0), v0_(v0) {}
   double omega() const { return std::sqrt(k_ / m_); }
 
-  std::string name() const override { return "spring_mass"; }
+  std::string name() const override { return "spring-mass"; }
   Mask position_mask() const override { return Mask{{true, false}}; }
   std::size_t state_size() const override { return 2; }
   Vector initial_state() const override { return Vector{{x0_, v0_}}; }
