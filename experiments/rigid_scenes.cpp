@@ -46,7 +46,7 @@ int program(int argc, char** argv) {
   app.add("--m", p.m, "mass of the moving ball [kg]", cli::positive());
   app.add("--radius", p.radius, "its radius [m]", cli::positive());
   app.add("--elasticity", p.elasticity, "its elasticity (restitution = product of the pair's)",
-          cli::non_negative());
+          cli::real_in(0, 1, false, false));
   app.add("--half-extents", half, 3, "the cuboid's half extents [m]", cli::positive());
   app.add("--quaternion", quat, 4, "the cuboid's orientation w x y z (normalised; must be non-zero)",
           cli::finite());

@@ -103,7 +103,9 @@ TEST_F(RigidScenesCli, BadInputIsRefused) {
                                        {"--m -1", "--m", "'-1'", "(0, inf)"},
                                        {"--radius 0", "--radius", "'0'", "(0, inf)"},
                                        {"--half-extents 0.1 0 0.1", "--half-extents", "'0'", "(0, inf)"},
-                                       {"--elasticity -0.5", "--elasticity", "'-0.5'", "[0, inf)"},
+                                       {"--elasticity -0.5", "--elasticity", "'-0.5'", "[0, 1]"},
+                                       // A restitution (the product of the pair's) above one.
+                                       {"--elasticity 40", "--elasticity", "'40'", "[0, 1]"},
                                        {"--quaternion 0 0 0 0", "--quaternion", "'0 0 0 0'", "non-zero"},
                                        {"--quaternion 1 nan 0 0", "--quaternion", "'nan'", "(-inf, inf)"},
                                        {"--scene pool", "--scene", "'pool'", "snooker"},

@@ -128,7 +128,7 @@ std::vector<SceneEntry> rigid_scene_entries() {
          {{"m", "kg", d.m, "mass of the moving ball", kPositive},
           {"radius", "m", d.radius, "its radius", kPositive},
           {"elasticity", "", d.elasticity, "its elasticity (restitution: the product of the pair's)",
-           kNonNegative},
+           kUnitInterval},
           {"k", "N/m", d.k, "penalty stiffness (Kelvin-Voigt, damping tuned to each pair's e)", kPositive}},
          false,
          {"velocities", "momentum", "angular momentum", "energy", "contact log"},

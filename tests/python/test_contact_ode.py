@@ -96,6 +96,7 @@ def test_scene_parameters_outside_their_range_raise_value_error():
         ("ball-drop", "penalty", {"h0": -1.0}, "[0, inf)"),
         ("spring-mass", "penalty", {"v0": math.inf}, "(-inf, inf)"),
         ("cradle", "event-ode", {"k": math.nan}, "(0, inf)"),
+        ("wedge", "moreau-jean", {"elasticity": 40.0}, "[0, 1]"),
         ("ball-stack", "penalty", {"g": math.inf}, "[0, inf)"),
     ]:
         (name, value), = given.items()
