@@ -1,0 +1,85 @@
+// bench_report: the targets' verdicts follow from the numbers it is given, and a measurement that
+// is missing or failed is a target not met, never one met by default. The inputs are written here
+// (a benchmark run's JSON and the SciPy peer's lines): what is tested is the judging, not a speed.
+#include "cli_fixture.hpp"
+
+#include <fmt/format.h>
+
+#include <fstream>
+
+namespace {
+
+class BenchReportCli : public CliTest {
+ protected:
+  // P1: cvode-bdf at 0.1 ms per solve with apexes 1e-8 m off the reference; every SciPy peer
+  // given at 10 ms (100x) and 1e-6 m off. The chain: band timed at N = 1e3 and 1e4, failed at 1e5.
+  void write_inputs(const std::vector<std::string>& peers) const {
+    const double ref[5] = {0.6, 0.4, 0.25, 0.16, 0.1};
+    auto apexes = [&](double off) {
+      std::string s;
+      for (int n = 0; n < 5; ++n) s += fmt::format("{}\"apex_{}\": {}", n ? ", " : "", n + 1, ref[n] + off);
+      return s;
+    };
+    std::ofstream(dir_ / "bench.json")
+        << "{\"context\": {\"num_cpus\": 2, \"mhz_per_cpu\": 1000, \"library_build_type\": \"release\"},\n"
+        << "\"benchmarks\": [\n"
+        << "{\"name\": \"P1Reference/iterations:1\", \"cpu_time\": 2.0, \"time_unit\": \"ms\", " << apexes(0)
+        << "},\n"
+        << "{\"name\": \"P1/cvode-bdf/repeats:9_median\", \"cpu_time\": 0.1, \"time_unit\": \"ms\", "
+        << apexes(1e-8) << "},\n"
+        << "{\"name\": \"Chain/band/1000/repeats:5_median\", \"cpu_time\": 1, \"time_unit\": \"ms\", "
+           "\"time_per_sim_s\": 1.0},\n"
+        << "{\"name\": \"Chain/band/10000/repeats:5_median\", \"cpu_time\": 10, \"time_unit\": \"ms\", "
+           "\"time_per_sim_s\": 10.0},\n"
+        << "{\"name\": \"Chain/band/100000/repeats:5_median\", \"error_occurred\": true, \"error_message\": "
+           "\"max-steps\"}\n"
+        << "]}\n";
+    std::ofstream scipy(dir_ / "scipy.jsonl");
+    for (const auto& method : peers) {
+      scipy << "{\"method\": \"" << method << "\", \"cpu_s\": 0.01, \"apexes\": [";
+      for (int n = 0; n < 5; ++n) scipy << (n ? ", " : "") << ref[n] + 1e-6;
+      scipy << "]}\n";
+    }
+  }
+  Outcome report() const {
+    return run(BENCH_REPORT_EXE, "--build-type Release --load 0 --scipy scipy.jsonl bench.json");
+  }
+};
+
+}  // namespace
+
+TEST_F(BenchReportCli, P1IsMetOnlyAgainstAllFourPeers) {
+  write_inputs({"BDF", "Radau", "LSODA", "RK45"});
+  Outcome r = report();
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("LSODA 100x (apex error 1.0e-08 m against 1.0e-06 m)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("all four SciPy methods: cvode-bdf (0.1 ms)"), std::string::npos) << r.out;
+  // Radau missing from the SciPy run: before, `all` started true and the three present made it "met".
+  write_inputs({"BDF", "LSODA", "RK45"});
+  r = report();
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("SciPy's Radau not measured; target >= 50x less CPU than each, apex error no worse: "
+                       "**not met**"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("all four SciPy methods: none"), std::string::npos) << r.out;
+}
+
+TEST_F(BenchReportCli, AFailedChainSizeFailsTheLinearTarget) {
+  // The failed N = 1e5 case has no time: the power-law fit used to throw on it, and the whole
+  // report ended with exit 2.
+  write_inputs({"BDF", "Radau", "LSODA", "RK45"});
+  const Outcome r = report();
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("chain, band: timed at 2 of N = 1e3, 1e4, 1e5 (target: linear to 1e5): **not met**"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("chain: 2 cases ran, 1 failed"), std::string::npos) << r.out;
+}
+
+TEST_F(BenchReportCli, UnknownOptionsAreRefused) {
+  const Outcome r = run(BENCH_REPORT_EXE, "--bogus bench.json");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("unknown option '--bogus'; usage: bench_report"), std::string::npos) << r.err;
+  EXPECT_EQ(run(BENCH_REPORT_EXE, "--help").code, 0);
+}
