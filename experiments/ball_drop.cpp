@@ -118,7 +118,7 @@ int program(int argc, char** argv) {
   app.add_flag("--sweep", o.sweep, "run every method for k from --k-min to --k-max and print one table");
   app.add("--k-min", o.k_min, "sweep: smallest k [N/m]", cli::positive());
   app.add("--k-max", o.k_max, "sweep: largest k [N/m]", cli::positive());
-  app.add("--per-decade", o.per_decade, "sweep: points per decade of k", cli::integer_at_least(1));
+  app.add("--per-decade", o.per_decade, "sweep: points per decade of k", cli::integer_in(1, 100));
 
   return app.run(argc, argv, [&](OutputSet& files) {
     if (o.sweep && !(o.k_max >= o.k_min))

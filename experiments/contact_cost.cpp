@@ -42,7 +42,7 @@ int program(int argc, char** argv) {
                  "results/contact_cost");
   app.add("--k-min", k_min, "smallest k [N/m]", cli::positive());
   app.add("--k-max", k_max, "largest k [N/m]", cli::positive());
-  app.add("--per-decade", per_decade, "points per decade of k", cli::integer_at_least(1));
+  app.add("--per-decade", per_decade, "points per decade of k", cli::integer_in(1, 100));
   app.add("--rtol", rtol, "relative tolerance (atol = rtol / 100)", cli::real_in(1e-12, 1e-2, true, true));
   app.add("--integrators", integrators, "adaptive integrators, comma-separated",
           cli::some_of(integrator_names()));

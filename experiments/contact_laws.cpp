@@ -39,7 +39,7 @@ int program(int argc, char** argv) {
   app.add("--m", m, "mass [kg]", cli::positive());
   app.add("--v", v, "impact speed [m/s]", cli::positive());
   app.add("--depth", depth, "undamped penetration the stiffness is chosen for [m]", cli::positive());
-  app.add("--points", points, "target restitutions, evenly spaced in (0, 1]", cli::integer_at_least(2));
+  app.add("--points", points, "target restitutions, evenly spaced in (0, 1]", cli::integer_in(2, 1000));
   return app.run(argc, argv, [&](OutputSet& files) {
     std::vector<LawCase> cases;
     const double k_lin = m * v * v / (depth * depth);  // Hooke: V sqrt(m/k) = depth

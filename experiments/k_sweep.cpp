@@ -63,7 +63,7 @@ int program(int argc, char** argv) {
   app.add("--e", e, "target restitution of the Kelvin-Voigt laws", cli::real_in(0, 1, true, false));
   app.add("--k-min", k_min, "smallest k [N/m]", cli::positive());
   app.add("--k-max", k_max, "largest k [N/m]", cli::positive());
-  app.add("--per-decade", per_decade, "points per decade of k", cli::integer_at_least(1));
+  app.add("--per-decade", per_decade, "points per decade of k", cli::integer_in(1, 100));
   return app.run(argc, argv, [&](OutputSet& files) {
     if (!(k_max >= k_min))
       throw std::invalid_argument(fmt::format(

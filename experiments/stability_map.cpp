@@ -34,7 +34,7 @@ int program(int argc, char** argv) {
       "stability_map",
       "Game integration of a spring contact over the (k, dt) plane: restitution and energy against w dt.",
       "results/stability_map");
-  app.add("--points", points, "w dt values, log-spaced from 0.01", cli::integer_at_least(2));
+  app.add("--points", points, "w dt values, log-spaced from 0.01", cli::integer_in(2, 10000));
   app.add("--wdt-max", wdt_max, "largest w dt", cli::real_in(0.01, 100, true, false));
   return app.run(argc, argv, [&](OutputSet& files) {
     const double m = 1.0, V = 1.0;

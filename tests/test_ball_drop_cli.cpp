@@ -43,6 +43,8 @@ TEST_F(BallDropCli, BadInputIsRefusedWithOptionValueAndRangeAndWritesNothing) {
       {"--law rubber", "--law", "'rubber'", "kelvin-voigt"},
       {"--bogus 3", "--bogus", "", "--help"},
       {"--sweep --k-min 1e6 --k-max 1e3", "--k-max", "'1000'", "k-min"},
+      // Unbounded, 1e8 points per decade took 24 GB before the first run.
+      {"--sweep --per-decade 100000000", "--per-decade", "'100000000'", "[1, 100]"},
       {"--integrator warp", "--integrator", "'warp'", "cvode-bdf"},
       {"--linear-solver cholesky", "--linear-solver", "'cholesky'", "klu"},
       {"--integrator gsl-rk8pd --linear-solver klu", "--linear-solver", "'klu'", "implicit SUNDIALS methods"},

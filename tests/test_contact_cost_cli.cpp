@@ -57,5 +57,6 @@ TEST_F(ContactCostCli, BadInputIsRefused) {
                                        {"--k-min 1e5 --k-max 1e3", "--k-max", "'1000'", "[k-min, inf)"},
                                        {"--integrators rk4", "--integrators", "'rk4'", "adaptive"},
                                        {"--rtol 1", "--rtol", "'1'", "(1e-12, 0.01)"},
+                                       {"--per-decade 1000", "--per-decade", "'1000'", "[1, 100]"},
                                    });
 }

@@ -62,6 +62,8 @@ TEST_F(KSweepCli, BadInputIsRefused) {
                                   {"--k-max -1e5", "--k-max", "'-1e5'", "(0, inf)"},
                                   {"--k-min 1e6 --k-max 1e3", "--k-max", "'1000'", "k-min"},
                                   {"--e 0", "--e", "'0'", "(0, 1]"},
-                                  {"--per-decade 0", "--per-decade", "'0'", ">= 1"},
+                                  {"--per-decade 0", "--per-decade", "'0'", "[1, 100]"},
+                                  // Unbounded, 1e8 per decade allocated 8 GB of k values before a run.
+                                  {"--per-decade 100000000", "--per-decade", "'100000000'", "[1, 100]"},
                               });
 }

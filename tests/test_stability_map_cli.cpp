@@ -87,7 +87,8 @@ TEST_F(StabilityMapCli, RestitutionFollowsTheAnalyticReferences) {
 
 TEST_F(StabilityMapCli, BadInputIsRefused) {
   expect_refused(STABILITY_MAP_EXE, {
-                                        {"--points 1", "--points", "'1'", ">= 2"},
+                                        {"--points 1", "--points", "'1'", "[2, 10000]"},
+                                        {"--points 1000000000", "--points", "'1000000000'", "[2, 10000]"},
                                         {"--wdt-max 0.001", "--wdt-max", "'0.001'", "(0.01, 100]"},
                                     });
 }
