@@ -20,12 +20,14 @@ struct Figure {
 
 // Several series in one data file, one gnuplot index block each: add() appends a block of CSV
 // rows and the clause that draws it ("using 1:2 with lines title 'x'"); plot() is the
-// comma-separated list of "'data.csv' index i <clause>" to put after "plot ".
+// comma-separated list of "'data.csv' index i <clause>" to put after "plot ". With no series (a
+// sweep whose every run failed) it is an empty panel that says so, which gnuplot draws: a bare
+// "plot " is a gnuplot error, which used to end the experiment with gnuplot's message.
 class Series {
  public:
   void add(const std::string& rows, const std::string& clause);
   const std::string& data() const { return data_; }
-  const std::string& plot() const { return plot_; }
+  std::string plot() const;
   bool empty() const { return count_ == 0; }
   std::size_t count() const { return static_cast<std::size_t>(count_); }
 

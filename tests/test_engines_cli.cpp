@@ -1,5 +1,6 @@
 // engines: what the README and the paper say of the engines, read from the experiment's tables.
 #include "cli_fixture.hpp"
+#include "contact_ode/integrators/method_registry.hpp"
 
 #include <cmath>
 #include <map>
@@ -62,4 +63,21 @@ TEST_F(EnginesCli, BadInputIsRefused) {
   expect_refused(ENGINES_EXE, {{"--dt 0", "--dt", "'0'", "(0, inf)"},
                                {"--repeats 0", "--repeats", "'0'", "[1, 1000]"},
                                {"--k -1", "--k", "'-1'", "(0, inf)"}});
+}
+
+// A step so short that every fixed-step run exceeds its work limit at once: each is a row with its
+// status, and the work-precision figure, with no point to draw, says so. Its bare "plot " used to
+// be a gnuplot error that ended the experiment (exit 1, "function to plot expected").
+TEST_F(EnginesCli, ASweepWithoutAPointStillDrawsItsFigure) {
+  const Outcome r = run(ENGINES_EXE, "--dt 1e-12 --repeats 1 --out eng");
+  ASSERT_EQ(r.code, 0) << r.err;
+  long limited = 0;
+  for (auto& row : table("engines.csv"))
+    if (contact::method_info(row["method"]).fixed_step) {
+      EXPECT_EQ(row["status"], "work-limit") << row["scene"] << " " << row["method"];
+      ++limited;
+    }
+  EXPECT_GT(limited, 40);
+  EXPECT_NE(slurp(dir_ / "eng" / "work_precision.gp").find("nothing to draw"), std::string::npos);
+  EXPECT_TRUE(fs::exists(dir_ / "eng" / "work_precision.png"));
 }
