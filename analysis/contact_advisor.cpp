@@ -156,7 +156,10 @@ void validate(const ContactRequest& r) {
   const Designed d = design(r);
   // Extreme inputs (a mass of 1e-300 kg, a penetration of 1e300 m) give a design double precision
   // cannot hold or simulate: say so in terms of the inputs, before the check's own solver does.
-  const SpringContact undamped = power_law_contact(r.m, stiffness(d.law), exponent(d.law), r.v);
+  // (A stiffness that underflowed to 0 has no contact: NaN fails the checks below.)
+  const double K = stiffness(d.law), nan = std::nan("");
+  const SpringContact undamped = std::isfinite(K) && K > 0 ? power_law_contact(r.m, K, exponent(d.law), r.v)
+                                                           : SpringContact{nan, nan, nan};
   const double scales[] = {d.k_lin,
                            std::sqrt(d.k_lin / r.m),
                            undamped.duration,

@@ -1,6 +1,7 @@
 #include "contact_ode/analysis/references.hpp"
 
 #include "contact_ode/models/contact_law.hpp"
+#include "contact_ode/models/parameters.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,8 +10,19 @@
 
 namespace contact {
 
+namespace {
+// The closed forms' domains (references.hpp): outside them a formula returns NaN or a number
+// that means nothing (a negative damping ratio, an apex above the drop), so they are refused.
+constexpr Range kDampingRatio{.lo = 0, .hi = 1, .lo_open = false};
+}  // namespace
+
 RigidBounces::RigidBounces(double h0, double v0, double g_, double e_)
-    : g(g_), e(e_), V(std::sqrt(v0 * v0 + 2.0 * g_ * h0)), T1((v0 + V) / g_) {}
+    : g(g_), e(e_), V(std::sqrt(v0 * v0 + 2.0 * g_ * h0)), T1((v0 + V) / g_) {
+  require_in("rigid bounces: h0", h0, kNonNegative);
+  require_in("rigid bounces: v0", v0, kAnyFinite);
+  require_in("rigid bounces: g", g, kPositive);
+  require_in("rigid bounces: e", e, kUnitInterval);
+}
 
 double RigidBounces::impact_time(std::size_t n) const {
   // T(n) = T1 + (2V/g) (e + e^2 + ... + e^{n-1}), summed term by term (exact for e = 1 too).
@@ -36,12 +48,20 @@ double RigidBounces::zeno_time() const {
 }
 
 SpringContact hooke_contact(double m, double k, double V, double g) {
+  require_in("hooke_contact: m", m, kPositive);
+  require_in("hooke_contact: k", k, kPositive);
+  require_in("hooke_contact: g", g, kNonNegative);
+  require_in("hooke_contact: V", V, g > 0 ? kNonNegative : kPositive);  // no contact without either
   const double w = std::sqrt(k / m), s = g / (w * w);
   const double R = std::sqrt(s * s + (V / w) * (V / w));
   return {(std::numbers::pi + 2.0 * std::atan(g / (w * V))) / w, s + R, V};
 }
 
 SpringContact kelvin_voigt_contact(double m, double k, double zeta, double V) {
+  require_in("kelvin_voigt_contact: m", m, kPositive);
+  require_in("kelvin_voigt_contact: k", k, kPositive);
+  require_in("kelvin_voigt_contact: zeta", zeta, kDampingRatio);  // underdamped: the ball comes back
+  require_in("kelvin_voigt_contact: V", V, kNonNegative);
   const double w = std::sqrt(k / m), root = std::sqrt(1.0 - zeta * zeta), wd = w * root;
   const double tm = std::atan2(root, zeta) / wd;
   return {std::numbers::pi / wd, V / wd * std::exp(-zeta * w * tm) * std::sin(wd * tm),
@@ -55,7 +75,11 @@ double clamped_kelvin_voigt_restitution(double zeta) {
 SpringContact linear_law_first_contact(const std::string& law, double m, double k, double e, double V,
                                        double g) {
   const double nan = std::nan("");
-  if (!(k > 0) || !(V > 0)) return {nan, nan, nan};
+  require_in("linear_law_first_contact: m", m, kPositive);
+  require_in("linear_law_first_contact: k", k, kPositive);
+  require_in("linear_law_first_contact: e", e, kUnitInterval);
+  require_in("linear_law_first_contact: V", V, kPositive);
+  require_in("linear_law_first_contact: g", g, kNonNegative);
   if (law == "hooke") return hooke_contact(m, k, V, g);
   const bool clamped = law == "kelvin-voigt-clamped";
   if ((law != "kelvin-voigt" && !clamped) || !(e > 0)) return {nan, nan, nan};
@@ -74,6 +98,10 @@ double power_law_time_factor(double n) {
 }
 
 SpringContact power_law_contact(double m, double K, double n, double V) {
+  require_in("power_law_contact: m", m, kPositive);
+  require_in("power_law_contact: K", K, kPositive);
+  require_in("power_law_contact: n", n, kPositive);
+  require_in("power_law_contact: V", V, kPositive);
   const double dmax = std::pow((n + 1.0) * m * V * V / (2.0 * K), 1.0 / (n + 1.0));
   return {2.0 * dmax / V * power_law_time_factor(n), dmax, V};
 }
@@ -81,6 +109,7 @@ SpringContact power_law_contact(double m, double K, double n, double V) {
 double hunt_crossley_small_damping_loss(double chi, double V) { return 4.0 / 3.0 * chi * V; }
 
 double hunt_crossley_restitution(double a) {
+  require_in("hunt_crossley_restitution: chi V", a, kNonNegative);
   if (!(a > 0)) return a == 0 ? 1.0 : std::numeric_limits<double>::quiet_NaN();
   // g(e) = a e + ln(1 - a e) + a - ln(1 + a) is a - ln(1 + a) > 0 at e = 0 and falls to -inf at
   // e = 1/a: one root in (0, min(1, 1/a)).

@@ -37,7 +37,8 @@ void run_sweep(const BallDropOptions& o, Experiment& app, OutputSet& out) {
     // but it is said, on stderr, with its status, time and message.
     report(r, fmt::format("ball_drop: sweep: k = {:g}, {}", k, m.name));
     const bool game = m.fixed_step;
-    const SpringContact ref = closed_form_contact(o, k);
+    const double nan = std::nan("");  // k NaN: a method without a spring ("any" k), no closed form
+    const SpringContact ref = std::isnan(k) ? SpringContact{nan, nan, nan} : closed_form_contact(o, k);
     std::vector<Table::Cell> row{std::isnan(k) ? Table::Cell(std::string("any")) : Table::Cell(k), m.name,
                                  game && !std::isnan(k) ? std::sqrt(k / o.m) * o.dt : std::nan(""),
                                  ref.max_penetration, ref.duration};

@@ -1,5 +1,7 @@
 #include "contact_ode/models/contact_law.hpp"
 
+#include "contact_ode/models/parameters.hpp"
+
 #include <fmt/format.h>
 
 #include <numbers>
@@ -7,6 +9,7 @@
 namespace contact {
 
 double damping_ratio_for_restitution(double e) {
+  require_in("damping_ratio_for_restitution: e", e, kUnitInterval);
   if (e <= 0.0) return 1.0;
   const double l = std::log(e);
   return -l / std::sqrt(std::numbers::pi * std::numbers::pi + l * l);

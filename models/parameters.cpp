@@ -16,6 +16,12 @@ std::string Range::to_string() const {
   return fmt::format("{}{:g}, {:g}{}", lo_open ? '(' : '[', lo, hi, hi_open ? ')' : ']');
 }
 
+void require_in(const std::string& what, double value, const Range& accepted) {
+  if (!accepted.contains(value))
+    throw std::invalid_argument(
+        fmt::format("{} = {:g} is out of range; accepted range {}", what, value, accepted.to_string()));
+}
+
 ParameterValues resolve(const std::vector<ParameterInfo>& parameters, const ParameterValues& given,
                         const std::string& owner) {
   ParameterValues values;
@@ -29,9 +35,7 @@ ParameterValues resolve(const std::vector<ParameterInfo>& parameters, const Para
       throw std::invalid_argument(
           fmt::format("{}: parameter '{}' is not one of: {}", owner, name, fmt::join(names, ", ")));
     }
-    if (!p->accepted.contains(value))
-      throw std::invalid_argument(fmt::format("{}: parameter '{}' = {:g} is out of range; accepted range {}",
-                                              owner, name, value, p->accepted.to_string()));
+    require_in(fmt::format("{}: parameter '{}'", owner, name), value, p->accepted);
     values[name] = value;
   }
   return values;

@@ -159,3 +159,26 @@ TEST(Registries, LinearLawClosedFormsByName) {
                    linear_law_first_contact("kelvin-voigt", m, k, e, V, 0.0).max_penetration);
   EXPECT_TRUE(std::isnan(linear_law_first_contact("hertz", m, k, e, V, 0.0).duration));
 }
+
+// The closed forms outside their documented domains (references.hpp) are refused, naming the
+// argument and its range: before, a restitution of 1.5 gave a negative damping ratio (-0.128), an
+// overdamped Kelvin-Voigt contact NaN, a rigid bounce at e = 1.5 apexes above the drop, and g = 0
+// a Zeno time of NaN, each returned as if it were an answer.
+TEST(Registries, ClosedFormsRefuseArgumentsOutsideTheirDomain) {
+  EXPECT_NE(refusal([] {
+              damping_ratio_for_restitution(1.5);
+            }).find("damping_ratio_for_restitution: e = 1.5 is out of range; accepted range [0, 1]"),
+            std::string::npos);
+  EXPECT_NE(refusal([] { kelvin_voigt_contact(1, 1, 1.5, 1); }).find("zeta = 1.5"), std::string::npos);
+  EXPECT_NE(refusal([] { hooke_contact(0, 1, 1, 0); }).find("hooke_contact: m = 0"), std::string::npos);
+  EXPECT_NE(refusal([] { hooke_contact(1, 1, 0, 0); }).find("V = 0"), std::string::npos);  // no contact
+  EXPECT_NE(refusal([] { RigidBounces(1, 0, 9.81, 1.5); }).find("rigid bounces: e = 1.5"), std::string::npos);
+  EXPECT_NE(refusal([] { RigidBounces(1, 0, 0, 0.5); }).find("g = 0"), std::string::npos);
+  EXPECT_NE(refusal([] { hunt_crossley_restitution(-1); }).find("chi V = -1"), std::string::npos);
+  EXPECT_NE(refusal([] { linear_law_first_contact("hooke", 1, -1, 1, 1, 0); }).find("k = -1"),
+            std::string::npos);
+  // Inside them, the edges are answers: V = 0 under gravity is a ball set down on the spring (a
+  // full period 2 pi / w), and a critically damped contact gives e = 0 (zeta = 1).
+  EXPECT_NEAR(hooke_contact(1, 1e4, 0, 9.81).duration, 2 * std::numbers::pi / 100, 1e-14);
+  EXPECT_EQ(damping_ratio_for_restitution(0.0), 1.0);
+}

@@ -129,3 +129,15 @@ def test_time_stepping_settings_and_types_are_checked():
         co.solve("ball-drop", "moreau-jean", theta=2.0)
     with pytest.raises(ValueError, match="iterations: value 'many' has the wrong type"):
         co.solve("ball-drop", "sequential-impulses", iterations="many")
+
+
+def test_closed_forms_refuse_arguments_outside_their_domain():
+    # Each used to return a number that means nothing: a negative damping ratio, NaN for g = 0.
+    with pytest.raises(ValueError, match=r"damping_ratio_for_restitution: e = 1.5 is out of range; accepted range \[0, 1\]"):
+        co.references.damping_ratio_for_restitution(1.5)
+    with pytest.raises(ValueError, match="rigid bounces: g = 0 is out of range"):
+        co.references.zeno_time(h0=1.0, v0=0.0, g=0.0, e=0.5)
+    with pytest.raises(ValueError, match="kelvin_voigt_contact: zeta = 1.5"):
+        co.references.kelvin_voigt_contact(m=1.0, k=1.0, zeta=1.5, V=1.0)
+    # A law without a linear closed form stays NaN (documented), not an error.
+    assert math.isnan(co.references.linear_law_first_contact("hertz", 1.0, 1e5, 0.8, 1.0)["duration"])

@@ -20,6 +20,10 @@ inline constexpr Range kPositive{.lo = 0};
 inline constexpr Range kNonNegative{.lo = 0, .lo_open = false};
 inline constexpr Range kUnitInterval{.lo = 0, .hi = 1, .lo_open = false, .hi_open = false};
 
+// Throws std::invalid_argument "<what> = <value> is out of range; accepted range <range>" unless
+// `accepted` contains the value.
+void require_in(const std::string& what, double value, const Range& accepted);
+
 struct ParameterInfo {
   std::string name;  // e.g. "h0"
   std::string unit;  // e.g. "m"; "" for dimensionless
