@@ -46,7 +46,7 @@ int program(int argc, char** argv) {
                  "Energy drift of every method over long undamped ball drops and the rigid-body scenes.",
                  "results/energy_drift");
   app.add("--k", k, "penalty stiffness of the ball [N/m]", cli::positive());
-  app.add("--bounces", bounces, "bounces of the rigid ball solution to run", cli::integer_at_least(1));
+  app.add("--bounces", bounces, "bounces of the rigid ball solution to run", cli::integer_in(1, 10000));
   app.add_list("--dts", dts, "ball game steps [s], comma-separated", cli::positive());
   app.add_list("--rtols", rtols, "ball relative tolerances, comma-separated", cli::real_in(0, 1, true, true));
   app.add_list("--rigid-dts", rigid_dts, "rigid-scene game steps [s]", cli::positive());
