@@ -59,7 +59,16 @@ int program(int argc, char** argv) {
   app.add("--law", law, "penalty law (damping tuned to e = 0.5)", cli::one_of(law_names()));
   app.add("--methods", methods, "methods, comma-separated or 'all'", cli::some_of(stack_methods()));
   return app.run(argc, argv, [&](OutputSet& files) {
-    const auto chosen = cli::chosen(methods, stack_methods());
+    // Some methods need a linear law (xpbd, soft-step): 'all' is every method that can run the
+    // column under --law; a named one that cannot is refused in terms of the options.
+    const auto runnable = methods_for(*make_scene("ball-stack", {}, law));
+    const auto chosen = cli::chosen(methods, runnable);
+    for (const auto& name : chosen)
+      if (std::find(runnable.begin(), runnable.end(), name) == runnable.end())
+        throw std::invalid_argument(
+            fmt::format("--methods: value '{}' cannot run with --law {}: it needs {}; "
+                        "accepted with it: {}",
+                        name, law, method_info(name).needs, fmt::join(runnable, ", ")));
     Table table({"balls", "method", "status", "top_sink_m", "closed_form_sink_m", "max_penetration_m",
                  "jitter_mps", "energy_drift_rel", "rhs_evals", "rhs_per_sim_s", "wall_s_per_sim_s"});
     std::map<std::string, std::string> cost, sink;  // method -> "n,value" lines

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <map>
+#include <set>
 
 namespace {
 class TimeSteppingCli : public CliTest {
@@ -52,4 +53,21 @@ TEST_F(TimeSteppingCli, StackReachesItsExactLimits) {
     else
       EXPECT_LE(std::abs(sink), 1e-12) << method << " " << row.at("balls");
   }
+}
+
+// Under a nonlinear law the methods that need a linear one (xpbd) cannot run the column: 'all'
+// (the default) is every method that can, and naming one that cannot is refused in terms of the
+// options. The default used to end the run with 'method xpbd cannot run scene ball-stack'.
+TEST_F(TimeSteppingCli, StackUnderHertzRunsEveryMethodThatCan) {
+  Outcome r = run(STACK_EXE, "--law hertz --balls 1 --t-end 0.05 --out st");
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::set<std::string> methods;
+  for (const auto& row : table(dir_ / "st" / "stack.csv")) methods.insert(row.at("method"));
+  EXPECT_TRUE(methods.contains("penalty"));
+  EXPECT_TRUE(methods.contains("moreau-jean"));
+  EXPECT_FALSE(methods.contains("xpbd"));
+  r = run(STACK_EXE, "--law hertz --methods xpbd --out st2");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--methods: value 'xpbd' cannot run with --law hertz"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "st2"));
 }
