@@ -161,6 +161,20 @@ TEST(Ode, CradleImpactsExchangeTheVelocities) {
   }
 }
 
+// An assertion inside ODE's step (a 1e300 kg ball: its orientation quaternion cannot be
+// normalised) ends the run as a solver error carrying ODE's message; the half-stepped world is
+// not destroyed, since destroying it asserted again inside a destructor (std::terminate, the
+// process gone), and ODE keeps working for the next world.
+TEST(Ode, AnAssertionInsideAStepIsASolverErrorNotAnAbort) {
+  REQUIRE_ENGINE("ode");
+  const BallDrop heavy({.m = 1e300, .law = Hooke{1e5}});
+  const RunResult r = solve(heavy, {.name = "ode", .dt = 1e-3}, {.t_end = 0.5, .sample_dt = 0.5});
+  EXPECT_EQ(r.status, Status::SolverError);
+  EXPECT_NE(r.message.find("ODE error 1: assertion"), std::string::npos) << r.message;
+  const RunResult next = solve(BallDrop({}), {.name = "ode", .dt = 1e-3}, {.t_end = 0.5, .sample_dt = 0.5});
+  EXPECT_TRUE(next.ok()) << next.message;
+}
+
 // Siconos event-driven: the impacts are events located by LSODAR (rtol 1e-10, atol 1e-12), so
 // the apexes after them, which the sampling loop interpolates exactly in free flight, are the
 // closed form's e^(2n) h0 at the closed form's times to that tolerance (1e-8 on ~1 m and ~1 s),

@@ -60,9 +60,17 @@ class OdeLibrary {
     dSetErrorHandler(throw_error);
     dSetDebugHandler(throw_error);
   }
-  ~OdeLibrary() { dCloseODE(); }
+  ~OdeLibrary() {
+    if (!abandoned_) dCloseODE();
+  }
+  // After an error inside a step ODE's threading state is inconsistent and dCloseODE asserts
+  // (in a destructor: std::terminate); the reference is kept instead.
+  void abandon() { abandoned_ = true; }
   OdeLibrary(const OdeLibrary&) = delete;
   OdeLibrary& operator=(const OdeLibrary&) = delete;
+
+ private:
+  bool abandoned_ = false;
 };
 
 class OdeWorld final : public EngineWorld {
@@ -98,6 +106,14 @@ class OdeWorld final : public EngineWorld {
     feedback_.reserve(s.restitution.size());  // at most one joint per contact and step
   }
   ~OdeWorld() override {
+    // A world that an ODE error interrupted inside a step is left half-stepped, and destroying it
+    // asserts again (e.g. "m_job_list == NULL" in its threading job list), in a destructor, during
+    // the first error's unwinding: std::terminate. Such a world is leaked instead, and so is
+    // the library's reference (dCloseODE asserts on the same state).
+    if (interrupted_) {
+      library_.abandon();
+      return;
+    }
     dJointGroupDestroy(joints_);
     dSpaceDestroy(space_);  // destroys its geoms
     dWorldDestroy(world_);  // and the bodies
@@ -111,10 +127,15 @@ class OdeWorld final : public EngineWorld {
     made_.clear();
     dSpaceCollide(space_, this, &OdeWorld::near);
     ode_message.clear();
-    if (quick_)
-      dWorldQuickStep(world_, scene_.dt);
-    else
-      dWorldStep(world_, scene_.dt);
+    try {
+      if (quick_)
+        dWorldQuickStep(world_, scene_.dt);
+      else
+        dWorldStep(world_, scene_.dt);
+    } catch (const EngineError&) {
+      interrupted_ = true;
+      throw;
+    }
     if (!ode_message.empty()) throw EngineError(ode_message);
   }
 
@@ -186,6 +207,7 @@ class OdeWorld final : public EngineWorld {
   EngineScene scene_;
   bool spring_;
   bool quick_;
+  bool interrupted_ = false;  // an ODE error ended a step half-way: the world is not destroyed
   dWorldID world_ = nullptr;
   dSpaceID space_ = nullptr;
   dJointGroupID joints_ = nullptr;
