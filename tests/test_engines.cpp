@@ -175,6 +175,18 @@ TEST(Ode, AnAssertionInsideAStepIsASolverErrorNotAnAbort) {
   EXPECT_TRUE(next.ok()) << next.message;
 }
 
+// A scene an engine refuses to load (MuJoCo: masses below its mjMINVAL) is a run that fails at
+// t = 0 with the engine's message, as its other failures are; it used to be an exception out of
+// solve() (a RuntimeError in Python, not the documented SolverError).
+TEST(Mujoco, ASceneItRefusesIsASolverErrorAtTheStart) {
+  REQUIRE_ENGINE("mujoco");
+  const RunResult r =
+      solve(BallDrop({.m = 1e-300, .law = Hooke{1e5}}), {.name = "mujoco", .dt = 1e-3}, {.t_end = 0.5});
+  EXPECT_EQ(r.status, Status::SolverError);
+  EXPECT_EQ(r.t_reached, 0.0);
+  EXPECT_NE(r.message.find("MuJoCo could not load the scene"), std::string::npos) << r.message;
+}
+
 // Siconos event-driven: the impacts are events located by LSODAR (rtol 1e-10, atol 1e-12), so
 // the apexes after them, which the sampling loop interpolates exactly in free flight, are the
 // closed form's e^(2n) h0 at the closed form's times to that tolerance (1e-8 on ~1 m and ~1 s),

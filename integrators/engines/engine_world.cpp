@@ -64,12 +64,22 @@ MethodInfo engine_method(std::string name, std::string description, bool springs
   auto run = [springs, make = std::move(make)](const Dynamics& scene, const Method& m,
                                                const SolveOptions& span) {
     const EngineScene es = engine_scene(scene, m.dt);  // solve() has checked can_run
-    std::unique_ptr<EngineWorld> world = make(es);
+    // An engine that refuses the scene (MuJoCo's mass below its mjMINVAL, ODE's mass check) fails
+    // the run at its first step, as a solver error with the engine's message, like any other of
+    // its failures: not an exception out of solve().
+    std::unique_ptr<EngineWorld> world;
+    std::string refused;
+    try {
+      world = make(es);
+    } catch (const EngineError& failure) {
+      refused = failure.what();
+    }
     const ContactGeometry& geo = contact_geometry(scene);
     const std::size_t nc = scene.contact_count();
     std::vector<double> centre, velocity, impulse(nc, 0.0);
     std::vector<bool> pushed(nc, false);
     auto step = [&](double t, double h, Vector& y, StepReport& report, SolverStats& stats) {
+      if (!world) throw SolverFailure(Status::SolverError, t, refused);
       try {
         world->step();
       } catch (const EngineError& failure) {

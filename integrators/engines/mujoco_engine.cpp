@@ -82,7 +82,7 @@ class MujocoWorld final : public EngineWorld {
     std::memcpy(vfs->filedata[file], xml.data(), xml.size());
     char error[1000] = "";
     model_.reset(mj_loadXML("scene.xml", vfs.get(), error, sizeof error));
-    if (!model_) throw std::runtime_error(fmt::format("MuJoCo could not load the scene: {}", error));
+    if (!model_) throw EngineError(fmt::format("MuJoCo could not load the scene: {}", error));
     data_.reset(mj_makeData(model_.get()));
     if (!data_) throw std::runtime_error("MuJoCo: mj_makeData returned NULL");
     for (std::size_t b = 0; b < s.velocity.size(); ++b) data_->qvel[b] = s.velocity[b];
