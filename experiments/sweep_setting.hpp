@@ -26,13 +26,17 @@ inline std::vector<double> halved_steps(const std::string& option, double dt_max
                                         double span) {
   const double most = std::floor(std::log2(static_cast<double>(kSweepMaxSteps) * dt_max / span));
   const int h = static_cast<int>(std::min(halvings, 4096L));
-  if (static_cast<double>(halvings) > most)
+  if (static_cast<double>(halvings) > most) {
+    const std::string accepted =
+        most >= static_cast<double>(least)
+            ? fmt::format("accepted [{}, {:g}]", least, most)
+            : fmt::format("none is: the largest step, {:.3g} s, already takes {:.3g}", dt_max, span / dt_max);
     throw std::invalid_argument(
         fmt::format("{}: value '{}' makes the finest step {:.3g} s, {:.3g} steps over {:g} s (a run takes at "
-                    "most {:g}); accepted "
-                    "[{}, {:g}]",
+                    "most {:g}); {}",
                     option, halvings, std::ldexp(dt_max, -h), std::ldexp(span / dt_max, h), span,
-                    static_cast<double>(kSweepMaxSteps), least, std::max(most, static_cast<double>(least))));
+                    static_cast<double>(kSweepMaxSteps), accepted));
+  }
   std::vector<double> steps;
   for (int j = 0; j <= h; ++j) steps.push_back(std::ldexp(dt_max, -j));
   return steps;

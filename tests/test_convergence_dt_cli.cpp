@@ -120,6 +120,8 @@ TEST_F(ConvergenceDtCli, BadInputIsRefused) {
                                          {"--heights 0", "--heights", "'0'", "[1, 100]"},
                                          // 2e-3 s / 2^40 to 1.5 s: 8e14 steps, past the runs' 1e7.
                                          {"--halvings 40", "--halvings", "'40'", "[1, 13]"},
+                                         // A largest step whose run alone takes 1.5e9 steps: no count is.
+                                         {"--dt-max 1e-9", "--halvings", "'6'", "none is"},
                                      });
 }
 

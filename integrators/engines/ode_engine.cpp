@@ -107,9 +107,9 @@ class OdeWorld final : public EngineWorld {
   }
   ~OdeWorld() override {
     // A world that an ODE error interrupted inside a step is left half-stepped, and destroying it
-    // asserts again (e.g. "m_job_list == NULL" in its threading job list), in a destructor, during
-    // the first error's unwinding: std::terminate. Such a world is leaked instead, and so is
-    // the library's reference (dCloseODE asserts on the same state).
+    // asserts again (e.g. "m_job_list == NULL" in its threading job list) inside an ODE
+    // destructor, where our handler's throw is std::terminate. Such a world is leaked instead,
+    // and so is the library's reference (dCloseODE asserts on the same state).
     if (interrupted_) {
       library_.abandon();
       return;
