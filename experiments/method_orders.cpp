@@ -21,6 +21,7 @@
 #include "problems.hpp"
 #include "process.hpp"
 #include "progress.hpp"
+#include "sweep_setting.hpp"
 
 #include <fmt/format.h>
 
@@ -66,10 +67,9 @@ int program(int argc, char** argv) {
     Table errors({"method", "reference", "dt_s", "error", "observed_order", "rhs_evals"});
     Table orders({"method", "reference", "fitted_order", "finest_error"});
     Series figure;
-    const auto per_method = static_cast<std::size_t>(halvings + 1);
-    const auto step = [&](std::size_t i) {
-      return dt_max / std::pow(2.0, static_cast<double>(i % per_method));
-    };
+    const auto dts = halved_steps("--halvings", dt_max, halvings, 1, t_final);  // at most 1e7 steps a run
+    const std::size_t per_method = dts.size();
+    const auto step = [&](std::size_t i) { return dts[i % per_method]; };
     Progress progress("method_orders", chosen.size() * per_method);
     const auto results = app.share(chosen.size() * per_method, [&](std::size_t i) -> nlohmann::json {
       const std::string& name = chosen[i / per_method];

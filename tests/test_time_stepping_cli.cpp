@@ -71,3 +71,13 @@ TEST_F(TimeSteppingCli, StackUnderHertzRunsEveryMethodThatCan) {
   EXPECT_NE(r.err.find("--methods: value 'xpbd' cannot run with --law hertz"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir_ / "st2"));
 }
+
+// method_orders' finest step is bounded by the work it implies, as convergence_dt's: a largest
+// step of 8.34e-6 s halved 6 times is 1.2e7 steps to 1.5 s per run (it ran for minutes).
+TEST_F(TimeSteppingCli, MethodOrdersRefusesALadderPastTheWorkBound) {
+  const Outcome r = run(METHOD_ORDERS_EXE, "--dt-max 8.34e-6 --out mo");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--halvings: value '6'"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("accepted [1, 5]"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "mo"));
+}
