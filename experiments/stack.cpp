@@ -59,7 +59,7 @@ int program(int argc, char** argv) {
   app.add("--law", law, "penalty law (damping tuned to e = 0.5)", cli::one_of(law_names()));
   app.add("--methods", methods, "methods, comma-separated or 'all'", cli::some_of(stack_methods()));
   return app.run(argc, argv, [&](OutputSet& files) {
-    // Some methods need a linear law (xpbd, soft-step): 'all' is every method that can run the
+    // Some methods need a linear law (xpbd): 'all' is every method that can run the
     // column under --law; a named one that cannot is refused in terms of the options.
     const auto runnable = methods_for(*make_scene("ball-stack", {}, law));
     const auto chosen = cli::chosen(methods, runnable);
