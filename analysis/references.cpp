@@ -110,7 +110,7 @@ double hunt_crossley_small_damping_loss(double chi, double V) { return 4.0 / 3.0
 
 double hunt_crossley_restitution(double a) {
   require_in("hunt_crossley_restitution: chi V", a, kNonNegative);
-  if (!(a > 0)) return a == 0 ? 1.0 : std::numeric_limits<double>::quiet_NaN();
+  if (a == 0) return 1.0;
   // g(e) = a e + ln(1 - a e) + a - ln(1 + a) is a - ln(1 + a) > 0 at e = 0 and falls to -inf at
   // e = 1/a: one root in (0, min(1, 1/a)).
   auto g = [a](double e) { return a * e + std::log1p(-a * e) + a - std::log1p(a); };

@@ -224,8 +224,7 @@ int main(int argc, char** argv) try {
       if (c.variant == "cvode-bdf")
         fmt::print(
             "- P1 (rtol 1e-6), CVODE BDF at {:.3g} ms per solve: {}{}; target >= 50x less CPU than each, "
-            "apex "
-            "error no worse: {}\n",
+            "apex error no worse: {}\n",
             ours * 1e3, fmt::join(parts, "; "), absent, verdict(all));
       if (all) who_meets.push_back(fmt::format("{} ({:.3g} ms)", c.variant, ours * 1e3));
     }

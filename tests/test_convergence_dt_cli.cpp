@@ -143,13 +143,11 @@ TEST_F(ConvergenceDtCli, AFailedRunIsARowNotTheEnd) {
   EXPECT_TRUE(std::isnan(std::stod(failed.at("error_max"))));
   EXPECT_NE(r.err.find("arkode-dirk unlocated (dt 0.002): convergence-failure at t = "), std::string::npos)
       << r.err;
-  // The located rows at the same steps ran, and converge at SDIRK's order 4 or better (measured 3.5:
-  // at w dt = 1.6 the leading term does not dominate yet).
-  for (const char* dt : {"0.002", "0.001"}) {
-    const auto& located = rows[{"located", dt}];
-    EXPECT_EQ(located.at("status"), "ok") << dt;
-    EXPECT_LT(std::stod(located.at("error_max")), 2e-3) << dt;
-  }
+  // The located rows at the same steps ran, and halving the step cuts the error by 2^3 or more:
+  // SDIRK is of order 4, and at w dt = 1.6 its leading term does not dominate yet (measured 3.5).
+  const auto located = [&](const char* dt) { return rows[{"located", dt}]; };
+  for (const char* dt : {"0.002", "0.001"}) EXPECT_EQ(located(dt).at("status"), "ok") << dt;
+  EXPECT_GT(std::stod(located("0.002").at("error_max")), 8 * std::stod(located("0.001").at("error_max")));
   // The failed row is no point of the fits: the unlocated fixed order has one row left, no fit.
   const auto orders = csv_table(slurp(dir_ / "cd" / "orders.csv"));
   ASSERT_EQ(orders.size(), 1u);
