@@ -158,9 +158,19 @@ double first_bounce_window(const BallDropParams& p, double at_least) {
   return std::isfinite(window) ? std::max(at_least, window) : at_least;
 }
 
-void require_first_bounce(const RunResult& r, const BallDropParams& p, double t_end,
-                          const std::string& what) {
-  if (!r.contacts.empty() && r.contacts.front().closed() && !r.apexes.empty()) return;
+bool held_for_good(const RunResult& r, const BallDropParams& p) {
+  if (r.contacts.empty() || r.contacts.back().closed() || r.samples.empty()) return false;
+  const LinearLaw law = linear_law(p.law);
+  const double s = p.m * p.g / law.k, delta = -r.samples.back().y[0], rate = -r.samples.back().y[1];
+  const double energy = 0.5 * p.m * rate * rate + 0.5 * law.k * (delta - s) * (delta - s);
+  const double reach =
+      releases_while_overlapping(p.law) ? std::sqrt(law.k) + law.c / std::sqrt(p.m) : std::sqrt(law.k);
+  return std::sqrt(2 * energy) * reach < law.k * s;
+}
+
+std::string first_bounce(const RunResult& r, const BallDropParams& p, double t_end, const std::string& what) {
+  if (!r.contacts.empty() && r.contacts.front().closed() && !r.apexes.empty()) return "bounced";
+  if (r.contacts.size() == 1 && held_for_good(r, p)) return "held";
   const double k = linear_law(p.law).k;
   throw std::runtime_error(fmt::format(
       "{}: no complete first bounce by t = {:.3g} s{}", what, t_end,

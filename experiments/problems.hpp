@@ -89,9 +89,16 @@ double first_apex_error(const BallDropParams& p, const RunResult& r);
 // plus 0.05 s; never less than `at_least` (nor, for a nonlinear or overdamped law, more). A soft
 // spring holds the ball long: a fixed 1.6 s ended before the first bounce below k = 33 N/m.
 double first_bounce_window(const BallDropParams& p, double at_least);
-// Throws std::runtime_error unless r closed its first contact and reached its first apex, saying
-// by when (t_end) and how deep the spring sags (m g / k): a soft damped spring can hold the ball.
-void require_first_bounce(const RunResult& r, const BallDropParams& p, double t_end, const std::string& what);
+// Whether a ball-drop run under a linear law ended with the spring holding the ball for good: in
+// contact at its end, with too little energy of oscillation about the static sag s = m g / k,
+// E = m v^2 / 2 + k (delta - s)^2 / 2, to come back to the surface (E < k s^2 / 2) or, under a law
+// that lets go while overlapping, to bring its force k delta + c delta' to zero
+// (sqrt(2 E) (sqrt(k) + c / sqrt(m)) < k s). In contact dE/dt = -c delta'^2: once true, true for good.
+bool held_for_good(const RunResult& r, const BallDropParams& p);
+// How a ball-drop run's first bounce went: "bounced" (its first contact closed and its first apex
+// reached) or "held" (held_for_good, no bounce at all). Anything else throws std::runtime_error
+// saying by when (t_end) and how deep the spring sags (m g / k).
+std::string first_bounce(const RunResult& r, const BallDropParams& p, double t_end, const std::string& what);
 
 // The scenes the engines are compared on (experiments/engines.cpp), each scored against its
 // exact rigid answer:

@@ -56,6 +56,28 @@ TEST_F(ConvergenceExperimentsCli, ZenoStopsAtTheAccumulationAndNothingFallsThrou
     EXPECT_GE(std::stod(rows[m][7]), -std::sqrt(2 * 9.81) * std::sqrt(1 / 1e5)) << m;
 }
 
+// Soft springs ended the experiment with exit 1. At k = 10 N/m (sag 0.98 m) the ball is held for
+// good in its second contact: a row that says so, with no errors. At k = 50 N/m its contacts
+// (0.45 s each) push the third apex past the rigid ball's span; the run now takes the longer span
+// it needs, and its errors are the k^(-1/2) law's: the local order from 50 to 500 N/m is -1/2
+// within gravity's share g / (w V) at the third impact (V = e^2 sqrt(2 g h0): 0.16 at k = 500).
+TEST_F(ConvergenceExperimentsCli, ConvergenceKRecordsSoftSpringsThatHoldOrSlowTheBall) {
+  Outcome r = run(CONVERGENCE_K_EXE, "--k-min 10 --k-max 100 --per-decade 1 --out held");
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto rows = csv_rows(slurp(dir_ / "held" / "convergence_k.csv"));
+  ASSERT_EQ(rows.size(), 1 + 2u);
+  EXPECT_EQ(rows[1].back(), "held in contact 2");
+  EXPECT_TRUE(std::isnan(std::stod(rows[1][1])));
+  EXPECT_EQ(rows[2].back(), "ok");
+  r = run(CONVERGENCE_K_EXE, "--k-min 50 --k-max 500 --per-decade 1 --out slow");
+  ASSERT_EQ(r.code, 0) << r.err;
+  rows = csv_rows(slurp(dir_ / "slow" / "convergence_k.csv"));
+  ASSERT_EQ(rows.size(), 1 + 2u);
+  const double share = 9.81 / (std::sqrt(500.0) * 0.64 * std::sqrt(2 * 9.81));
+  EXPECT_NEAR(std::stod(rows[2][2]), -0.5, share) << "impact times";
+  EXPECT_NEAR(std::stod(rows[2][4]), -0.5, share) << "apex heights";
+}
+
 TEST_F(ConvergenceExperimentsCli, BadInputIsRefused) {
   expect_refused(CONVERGENCE_K_EXE, {
                                         {"--k-min 1e6 --k-max 1e6", "--k-max", "'1e+06'", "(k-min, inf)"},
