@@ -74,7 +74,7 @@ int program(int argc, char** argv) {
       const CpuTiming cpu = time_cpu_within(
           [&] { r = solve(model, penalty, {.t_end = t_end, .sample_dt = t_end}); }, 3, 10, 0.02);
       require(r, what);
-      first_bounce(r, p, t_end, what);  // throws unless it bounced: an undamped spring never holds
+      first_bounce(r, p, what);  // throws unless it bounced: an undamped spring never holds
       const double contacts = static_cast<double>(r.contacts.size());
       return {{"steps", static_cast<double>(r.stats.steps) / contacts},
               {"rhs", static_cast<double>(r.stats.rhs_evals) / contacts},

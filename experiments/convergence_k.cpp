@@ -28,7 +28,6 @@
 #include <chrono>
 #include <cmath>
 #include <iostream>
-#include <numbers>
 
 using namespace contact;
 
@@ -79,15 +78,14 @@ int program(int argc, char** argv) {
       penalty.integrator.atol = 1e-13;
       penalty.integrator.max_steps = 1000000;
       const BallDropParams p{m, g, h0, 0.0, e, make_law("kelvin-voigt", {.k = k, .m = m, .e = e})};
-      // The penalty ball's contacts take time: each lasts less than a damped period 2 pi / w_d.
-      const LinearLaw law = linear_law(p.law);
-      const double w_d = std::sqrt(law.k / m - std::pow(law.c / (2 * m), 2));
-      const double t_pen = t_end + static_cast<double>(nb + 1) * 2 * std::numbers::pi / w_d;
       const auto run = [&](double t) {
         return require(solve(BallDrop(p), penalty, {.t_end = t, .sample_dt = t}), fmt::format("k = {:g}", k));
       };
-      RunResult r = run(t_end);  // the rigid span first; longer only where the bounces need it
-      if (r.apexes.size() < nb && !held_for_good(r, p)) r = run(t_pen);
+      // The rigid span first; the penalty ball's contacts take time (each less than a damped
+      // period): where its bounces need it, nb + 1 periods more.
+      RunResult r = run(t_end);
+      if (r.apexes.size() < nb && !held_for_good(r, p))
+        r = run(t_end + static_cast<double>(nb + 1) * damped_period(p));
       if (r.apexes.size() < nb && held_for_good(r, p)) {  // a soft spring holds the ball: no errors
         table.add_row(
             {k, NAN, NAN, NAN, NAN, r.stats.rhs_evals, fmt::format("held in contact {}", r.contacts.size())});
@@ -97,7 +95,7 @@ int program(int argc, char** argv) {
         throw std::runtime_error(
             fmt::format("k = {:g}: the penalty run made {} contacts and {} apexes by t = {:.6g} s, "
                         "fewer than the {} bounces compared; lower --bounces or raise --k-min",
-                        k, r.contacts.size(), r.apexes.size(), t_pen, nb));
+                        k, r.contacts.size(), r.apexes.size(), r.samples.back().t, nb));
       }
       double te = 0, ae = 0;
       for (std::size_t b = 0; b < nb; ++b) {

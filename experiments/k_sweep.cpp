@@ -82,12 +82,11 @@ int program(int argc, char** argv) {
       penalty.integrator.rtol = 1e-10;
       penalty.integrator.atol = 1e-12;
       penalty.integrator.max_steps = 1000000;
-      // The first contact (0.45 s, lasting 0.37 s at k = 1e2, longer below) and the first apex.
       const BallDropParams p{m, g, h0, 0.0, e, make_law(law, {.k = k, .m = m, .e = e})};
-      const double t_end = first_bounce_window(p, 1.6);
       const std::string what = fmt::format("{} at k = {:g}", law, k);
+      const double t_end = first_bounce_window(p, 1.6);
       const RunResult r = require(solve(BallDrop(p), penalty, {.t_end = t_end, .sample_dt = t_end}), what);
-      const std::string status = first_bounce(r, p, t_end, what);  // or the spring holds it (NaN below)
+      const std::string status = first_bounce(r, p, what);  // or the spring holds it (NaN below)
       const auto& c = r.contacts[0];
       const double n = static_cast<double>(r.contacts.size());
       const auto per = [n](long count) { return static_cast<double>(count) / n; };

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <numbers>
 #include <stdexcept>
 
 namespace contact {
@@ -163,12 +164,19 @@ bool held_for_good(const RunResult& r, const BallDropParams& p) {
   const LinearLaw law = linear_law(p.law);
   const double s = p.m * p.g / law.k, delta = -r.samples.back().y[0], rate = -r.samples.back().y[1];
   const double energy = 0.5 * p.m * rate * rate + 0.5 * law.k * (delta - s) * (delta - s);
-  const double reach =
-      releases_while_overlapping(p.law) ? std::sqrt(law.k) + law.c / std::sqrt(p.m) : std::sqrt(law.k);
-  return std::sqrt(2 * energy) * reach < law.k * s;
+  // At energy E, u = delta - s reaches at most sqrt(2 E / k), and k u + c u' (Cauchy–Schwarz)
+  // sqrt(2 E (k + c^2 / m)).
+  const double reach = releases_while_overlapping(p.law) ? law.k + law.c * law.c / p.m : law.k;
+  return std::sqrt(2 * energy * reach) < law.k * s;
 }
 
-std::string first_bounce(const RunResult& r, const BallDropParams& p, double t_end, const std::string& what) {
+double damped_period(const BallDropParams& p) {
+  const LinearLaw law = linear_law(p.law);
+  return 2 * std::numbers::pi / std::sqrt(law.k / p.m - std::pow(law.c / (2 * p.m), 2));
+}
+
+std::string first_bounce(const RunResult& r, const BallDropParams& p, const std::string& what) {
+  const double t_end = r.samples.empty() ? r.t_reached : r.samples.back().t;
   if (!r.contacts.empty() && r.contacts.front().closed() && !r.apexes.empty()) return "bounced";
   if (r.contacts.size() == 1 && held_for_good(r, p)) return "held";
   const double k = linear_law(p.law).k;

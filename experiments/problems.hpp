@@ -92,13 +92,17 @@ double first_bounce_window(const BallDropParams& p, double at_least);
 // Whether a ball-drop run under a linear law ended with the spring holding the ball for good: in
 // contact at its end, with too little energy of oscillation about the static sag s = m g / k,
 // E = m v^2 / 2 + k (delta - s)^2 / 2, to come back to the surface (E < k s^2 / 2) or, under a law
-// that lets go while overlapping, to bring its force k delta + c delta' to zero
-// (sqrt(2 E) (sqrt(k) + c / sqrt(m)) < k s). In contact dE/dt = -c delta'^2: once true, true for good.
+// that lets go while overlapping, to bring its force k delta + c delta' = k s + k u + c u' to zero
+// (sqrt(2 E (k + c^2 / m)) < k s, u = delta - s). In contact dE/dt = -c u'^2: once true, true for good.
 bool held_for_good(const RunResult& r, const BallDropParams& p);
+// A linear law's damped period 2 pi / w_d, w_d = sqrt(k / m - (c / 2 m)^2) [s]: NaN when
+// overdamped or nonlinear. A contact that lets go at all does so within one (its later
+// excursions toward the surface are smaller).
+double damped_period(const BallDropParams& p);
 // How a ball-drop run's first bounce went: "bounced" (its first contact closed and its first apex
 // reached) or "held" (held_for_good, no bounce at all). Anything else throws std::runtime_error
-// saying by when (t_end) and how deep the spring sags (m g / k).
-std::string first_bounce(const RunResult& r, const BallDropParams& p, double t_end, const std::string& what);
+// saying by when and how deep the spring sags (m g / k).
+std::string first_bounce(const RunResult& r, const BallDropParams& p, const std::string& what);
 
 // The scenes the engines are compared on (experiments/engines.cpp), each scored against its
 // exact rigid answer:
