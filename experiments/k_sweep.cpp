@@ -83,8 +83,8 @@ int program(int argc, char** argv) {
       penalty.integrator.atol = 1e-12;
       penalty.integrator.max_steps = 1000000;
       const BallDropParams p{m, g, h0, 0.0, e, make_law(law, {.k = k, .m = m, .e = e})};
-      const std::string what = fmt::format("{} at k = {:g}", law, k);
       const double t_end = first_bounce_window(p, 1.6);
+      const std::string what = fmt::format("{} at k = {:g}", law, k);
       const RunResult r = require(solve(BallDrop(p), penalty, {.t_end = t_end, .sample_dt = t_end}), what);
       const std::string status = first_bounce(r, p, what);  // or the spring holds it (NaN below)
       const auto& c = r.contacts[0];
