@@ -73,6 +73,7 @@ TEST_F(ConvergenceExperimentsCli, ConvergenceKRecordsSoftSpringsThatHoldOrSlowTh
   ASSERT_EQ(r.code, 0) << r.err;
   rows = csv_rows(slurp(dir_ / "slow" / "convergence_k.csv"));
   ASSERT_EQ(rows.size(), 1 + 2u);
+  EXPECT_EQ(rows[1].back(), "ok") << "k = 50 compares its three bounces";
   const double share = 9.81 / (std::sqrt(500.0) * 0.64 * std::sqrt(2 * 9.81));
   EXPECT_NEAR(std::stod(rows[2][2]), -0.5, share) << "impact times";
   EXPECT_NEAR(std::stod(rows[2][4]), -0.5, share) << "apex heights";

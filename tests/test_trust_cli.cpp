@@ -81,7 +81,6 @@ TEST_F(TrustCli, MessagesNameTheRealCause) {
   const auto ten = csv_rows(slurp(dir_ / "ck" / "convergence_k.csv"));
   ASSERT_EQ(ten.size(), 1 + 7u);
   EXPECT_EQ(ten[1].back().rfind("held in contact ", 0), 0u) << ten[1].back();
-  EXPECT_LE(std::stoi(ten[1].back().substr(16)), 10);
   for (std::size_t j = 2; j < ten.size(); ++j) EXPECT_EQ(ten[j].back(), "ok") << ten[j][0];
   // A k range narrower than a point per decade used to divide by zero (k = NaN).
   r = run(exe("convergence_k"), "--k-min 1e5 --k-max 1.0001e5 --out ck2");
