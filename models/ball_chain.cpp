@@ -134,35 +134,32 @@ void BallChain::settle(std::size_t i, VectorRef y) const {
 namespace contact {
 
 namespace {
-// How many balls a scene takes (a whole number: the factory checks that).
-constexpr Range kBallCount{.lo = 2, .hi = 1e9, .lo_open = false};
+// How many balls a scene takes.
+constexpr Range kBallCount{.lo = 2, .hi = 1e9, .lo_open = false, .whole = true};
 }  // namespace
 
 SceneEntry ball_chain_scene() {
   const BallChainParams d;
-  return {
-      "ball-chain",
-      "Newton's cradle: a striker into a row of equal balls, no gravity",
-      {{"n", "", static_cast<double>(d.n), "number of balls", kBallCount},
-       {"m", "kg", d.m, "mass of each ball", kPositive},
-       {"v0", "m/s", d.v0, "striker velocity"},
-       {"approach", "m", d.approach, "striker's distance to ball 1", kNonNegative},
-       {"spacing", "m", d.spacing, "gap between the resting balls", kNonNegative},
-       {"e", "", d.e, "restitution (impulses; the damped laws are tuned to it)", kUnitInterval},
-       {"k", "N/m", 1e6, "contact stiffness", kPositive}},
-      true,
-      {"ball velocities after the impacts", "contact log", "energy"},
-      "event-driven, touching balls, e = 1: the striker's velocity passes to the last ball",
-      0.05,
-      [](const ParameterValues& v, const std::string& law) -> std::unique_ptr<Dynamics> {
-        const double n = v.at("n");
-        if (n != std::floor(n))  // its range, kBallCount, is checked with the others'
-          throw std::invalid_argument(fmt::format("ball-chain: parameter 'n' = {} is not a whole number", n));
-        const LawSpec spec{.k = v.at("k"), .m = v.at("m") / 2, .e = v.at("e"), .v = std::abs(v.at("v0"))};
-        return std::make_unique<BallChain>(BallChainParams{static_cast<std::size_t>(n), v.at("m"), v.at("v0"),
-                                                           v.at("approach"), v.at("spacing"), v.at("e"),
-                                                           make_law(law.empty() ? "hooke" : law, spec)});
-      }};
+  return {"ball-chain",
+          "Newton's cradle: a striker into a row of equal balls, no gravity",
+          {{"n", "", static_cast<double>(d.n), "number of balls", kBallCount},
+           {"m", "kg", d.m, "mass of each ball", kPositive},
+           {"v0", "m/s", d.v0, "striker velocity"},
+           {"approach", "m", d.approach, "striker's distance to ball 1", kNonNegative},
+           {"spacing", "m", d.spacing, "gap between the resting balls", kNonNegative},
+           {"e", "", d.e, "restitution (impulses; the damped laws are tuned to it)", kUnitInterval},
+           {"k", "N/m", 1e6, "contact stiffness", kPositive}},
+          true,
+          {"ball velocities after the impacts", "contact log", "energy"},
+          "event-driven, touching balls, e = 1: the striker's velocity passes to the last ball",
+          0.05,
+          [](const ParameterValues& v, const std::string& law) -> std::unique_ptr<Dynamics> {
+            const double n = v.at("n");  // a whole number in its range (kBallCount)
+            const LawSpec spec{.k = v.at("k"), .m = v.at("m") / 2, .e = v.at("e"), .v = std::abs(v.at("v0"))};
+            return std::make_unique<BallChain>(
+                BallChainParams{static_cast<std::size_t>(n), v.at("m"), v.at("v0"), v.at("approach"),
+                                v.at("spacing"), v.at("e"), make_law(law.empty() ? "hooke" : law, spec)});
+          }};
 }
 
 SphereLineLayout BallChain::sphere_line() const {

@@ -116,41 +116,38 @@ void BallStack::apply_normal_displacement(std::size_t i, double dlambda, VectorR
 }
 
 namespace {
-// How many balls a scene takes (a whole number: the factory checks that).
-constexpr Range kBallCount{.lo = 1, .hi = 1e7, .lo_open = false};
+// How many balls a scene takes.
+constexpr Range kBallCount{.lo = 1, .hi = 1e7, .lo_open = false, .whole = true};
 }  // namespace
 
 SceneEntry ball_stack_scene() {
   const BallStackParams d;
-  return {
-      "ball-stack",
-      "a column of equal balls resting on the floor under gravity (resting contact)",
-      {{"n", "", static_cast<double>(d.n), "number of balls", kBallCount},
-       {"m", "kg", d.m, "mass of each ball", kPositive},
-       {"radius", "m", d.radius, "radius of each ball", kPositive},
-       {"g", "m/s^2", d.g, "gravity", kNonNegative},
-       {"drop", "m", d.drop, "height the column is released from", kNonNegative},
-       {"e", "", d.e, "restitution (impulses; the damped laws are tuned to it)", kUnitInterval},
-       {"k", "N/m", 1e5, "contact stiffness", kPositive}},
-      true,
-      {"sink of the top ball", "penetration", "jitter", "energy", "cost per simulated second"},
-      "penalty at rest: contact b squeezed by (n - b) m g / k, the top sunk by m g n (n + 1) / (2 k)",
-      2.0,
-      [](const ParameterValues& v, const std::string& law) -> std::unique_ptr<Dynamics> {
-        const double n = v.at("n");
-        if (n != std::floor(n))  // its range, kBallCount, is checked with the others'
-          throw std::invalid_argument(fmt::format("ball-stack: parameter 'n' = {} is not a whole number", n));
-        const double V = std::sqrt(2 * v.at("g") * v.at("drop"));
-        const LawSpec spec{.k = v.at("k"), .m = v.at("m"), .e = v.at("e"), .v = V > 0 ? V : 1.0};
-        return std::make_unique<BallStack>(
-            BallStackParams{.n = static_cast<std::size_t>(n),
-                            .m = v.at("m"),
-                            .radius = v.at("radius"),
-                            .g = v.at("g"),
-                            .drop = v.at("drop"),
-                            .e = v.at("e"),
-                            .law = make_law(law.empty() ? "hooke" : law, spec)});
-      }};
+  return {"ball-stack",
+          "a column of equal balls resting on the floor under gravity (resting contact)",
+          {{"n", "", static_cast<double>(d.n), "number of balls", kBallCount},
+           {"m", "kg", d.m, "mass of each ball", kPositive},
+           {"radius", "m", d.radius, "radius of each ball", kPositive},
+           {"g", "m/s^2", d.g, "gravity", kNonNegative},
+           {"drop", "m", d.drop, "height the column is released from", kNonNegative},
+           {"e", "", d.e, "restitution (impulses; the damped laws are tuned to it)", kUnitInterval},
+           {"k", "N/m", 1e5, "contact stiffness", kPositive}},
+          true,
+          {"sink of the top ball", "penetration", "jitter", "energy", "cost per simulated second"},
+          "penalty at rest: contact b squeezed by (n - b) m g / k, the top sunk by m g n (n + 1) / (2 k)",
+          2.0,
+          [](const ParameterValues& v, const std::string& law) -> std::unique_ptr<Dynamics> {
+            const double n = v.at("n");  // a whole number in its range (kBallCount)
+            const double V = std::sqrt(2 * v.at("g") * v.at("drop"));
+            const LawSpec spec{.k = v.at("k"), .m = v.at("m"), .e = v.at("e"), .v = V > 0 ? V : 1.0};
+            return std::make_unique<BallStack>(
+                BallStackParams{.n = static_cast<std::size_t>(n),
+                                .m = v.at("m"),
+                                .radius = v.at("radius"),
+                                .g = v.at("g"),
+                                .drop = v.at("drop"),
+                                .e = v.at("e"),
+                                .law = make_law(law.empty() ? "hooke" : law, spec)});
+          }};
 }
 
 SphereLineLayout BallStack::sphere_line() const {

@@ -9,11 +9,13 @@
 namespace contact {
 
 bool Range::contains(double v) const {
-  return std::isfinite(v) && (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
+  return std::isfinite(v) && (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi) &&
+         (!whole || v == std::floor(v));
 }
 
 std::string Range::to_string() const {
-  return fmt::format("{}{:g}, {:g}{}", lo_open ? '(' : '[', lo, hi, hi_open ? ')' : ']');
+  return fmt::format("{}{}{:g}, {:g}{}", whole ? "whole numbers in " : "", lo_open ? '(' : '[', lo, hi,
+                     hi_open ? ')' : ']');
 }
 
 void require_in(const std::string& what, double value, const Range& accepted) {

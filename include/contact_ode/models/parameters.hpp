@@ -8,12 +8,13 @@
 
 namespace contact {
 
-// The values a parameter accepts: finite, between lo and hi (an open end excludes its bound).
+// The values a parameter accepts: finite, between lo and hi (an open end excludes its bound), and
+// whole numbers only where `whole` (a count).
 struct Range {
   double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
-  bool lo_open = true, hi_open = true;
+  bool lo_open = true, hi_open = true, whole = false;
   bool contains(double v) const;
-  std::string to_string() const;  // "(0, inf)", "[0, 1]"
+  std::string to_string() const;  // "(0, inf)", "[0, 1]", "whole numbers in [2, 1e+09)"
 };
 inline constexpr Range kAnyFinite{};
 inline constexpr Range kPositive{.lo = 0};
