@@ -116,9 +116,10 @@ int roots(sunrealtype t, N_Vector y, sunrealtype* gout, void* user) {
 void error_handler(int code, const char* module, const char* function, char* msg, void* user) {
   if (code >= 0) return;  // warnings are not failures
   data(user).solver_message = fmt::format("{}:{}: {}", module, function, msg);
-  // CVODE's cvRcheck2, ARKODE's arkRootCheck2: "Root found at and very near t".
-  const std::string_view f(function);
-  data(user).root_held_zero = f == "cvRcheck2" || f == "arkRootCheck2";
+  // "Root found at and very near t": CVODE's cvRcheck2 names itself, ARKODE reports it from
+  // arkStopTests (ARKStep) as well as arkRootCheck2, so the message is what identifies it.
+  data(user).root_held_zero =
+      std::string_view(msg).find("Root found at and very near") != std::string_view::npos;
 }
 
 }  // namespace contact::sundials
