@@ -301,7 +301,9 @@ std::vector<MethodInfo> event_methods() {
                         .max_events = m.max_events,
                         .reverse_order = reverse};
   };
-  auto numerical = [options](std::string name, std::string description, bool reverse) {
+  std::vector<std::string> settings = kIntegratorSettings;  // the flight's integrator, and the guard
+  settings.push_back("rest_speed");
+  auto numerical = [options, settings](std::string name, std::string description, bool reverse) {
     return MethodInfo{
         .name = std::move(name),
         .description = std::move(description),
@@ -315,7 +317,8 @@ std::vector<MethodInfo> event_methods() {
             [options, reverse](const Dynamics& scene, const Method& m, const SolveOptions& span) {
               return run_event_driven(dynamic_cast<const MechanicalSystem&>(scene), options(m, reverse),
                                       span);
-            }};
+            },
+        .settings = settings};
   };
   auto exact = [](const Dynamics& scene) {
     return dynamic_cast<const MechanicalSystem*>(&scene) != nullptr &&
@@ -333,11 +336,13 @@ std::vector<MethodInfo> event_methods() {
                  .uses_contact_law = false,
                  .needs = "a closed-form free flight (AnalyticFlight) besides an impulse map",
                  .can_run = exact,
-                 .run = [options](const Dynamics& scene, const Method& m, const SolveOptions& span) {
-                   return run_event_driven(dynamic_cast<const MechanicalSystem&>(scene),
-                                           dynamic_cast<const AnalyticFlight&>(scene), options(m, false),
-                                           span);
-                 }}};
+                 .run =
+                     [options](const Dynamics& scene, const Method& m, const SolveOptions& span) {
+                       return run_event_driven(dynamic_cast<const MechanicalSystem&>(scene),
+                                               dynamic_cast<const AnalyticFlight&>(scene), options(m, false),
+                                               span);
+                     },
+                 .settings = {"rest_speed"}}};
 }
 
 }  // namespace contact

@@ -188,7 +188,8 @@ std::vector<MethodInfo> game_methods() {
                                .persistence = m.persistence,
                                .on_notifications = m.on_notifications},
                               span);
-            }};
+            },
+        .settings = {"dt"}};
   };
   using S = FixedStepScheme;
   using R = GameResolution;

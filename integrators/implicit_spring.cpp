@@ -96,7 +96,8 @@ std::vector<MethodInfo> implicit_spring_methods() {
            .uses_contact_law = true,
            .needs = "dynamics and contact geometry",
            .can_run = [](const Dynamics&) { return true; },
-           .run = run}};
+           .run = run,
+           .settings = {"dt"}}};
 }
 
 }  // namespace contact

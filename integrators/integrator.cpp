@@ -79,9 +79,10 @@ void validate(const IntegratorOptions& o) {
   if (!(std::isfinite(o.dt) && o.dt >= 0))
     throw std::invalid_argument(
         fmt::format("--dt: value '{}' is out of range; accepted range (0, inf)", o.dt));
-  if (!info.adaptive && !(o.dt > 0))
+  if (!info.adaptive && !(o.dt > 0))  // 0 is the default: no step was given
     throw std::invalid_argument(
-        fmt::format("--dt: value '{}' is out of range for {}, a fixed-step method; accepted range (0, inf)",
+        fmt::format("--dt: value '{}' is out of range: {} is a fixed-step method and needs a step; accepted "
+                    "range (0, inf)",
                     o.dt, o.method));
   if (o.dt > 0 && !info.fixed_step_capable)
     throw std::invalid_argument(fmt::format(

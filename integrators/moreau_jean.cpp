@@ -91,7 +91,7 @@ std::vector<MethodInfo> moreau_jean_methods() {
   return {impulse_stepping_method("moreau-jean",
                                   "Moreau-Jean time stepping: theta = 1/2, Newton's impact law as one LCP "
                                   "per step (Siconos)",
-                                  run)};
+                                  run, {"dt", "theta"})};
 }
 
 }  // namespace contact

@@ -117,7 +117,8 @@ std::vector<MethodInfo> penalty_methods() {
                             PenaltyOptions o{.integrator = m.integrator};
                             o.integrator.jacobian = jacobian;
                             return run_penalty(scene, o, span);
-                          }};
+                          },
+                      .settings = kIntegratorSettings};
   };
   return {entry("penalty",
                 "penalty spring as an ODE (CVODE BDF by default), analytic Jacobian, switches root-located",

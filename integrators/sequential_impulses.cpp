@@ -83,10 +83,11 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
 }  // namespace
 
 std::vector<MethodInfo> sequential_impulses_methods() {
-  return {impulse_stepping_method("sequential-impulses",
-                                  "projected Gauss-Seidel impulses, 10 sweeps, warm starting, split-impulse "
-                                  "push-out (Bullet, ODE, PhysX)",
-                                  run)};
+  return {impulse_stepping_method(
+      "sequential-impulses",
+      "projected Gauss-Seidel impulses, 10 sweeps, warm starting, split-impulse "
+      "push-out (Bullet, ODE, PhysX)",
+      run, {"dt", "iterations", "warm_start", "erp", "split_impulse", "restitution_threshold"})};
 }
 
 }  // namespace contact

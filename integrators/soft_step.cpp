@@ -106,7 +106,9 @@ std::vector<MethodInfo> soft_step_methods() {
   return {impulse_stepping_method("soft-step",
                                   "Box2D v3's soft step: soft contact constraints (30 Hz, damping ratio 10), "
                                   "4 sub-steps, relax and restitution passes",
-                                  run)};
+                                  run,
+                                  {"dt", "substeps", "warm_start", "restitution_threshold", "contact_hertz",
+                                   "contact_damping_ratio", "push_max"})};
 }
 
 }  // namespace contact

@@ -45,7 +45,8 @@ double accumulate_impulse(const NormalImpulses& normal, std::size_t i, double d,
 
 MethodInfo impulse_stepping_method(
     std::string name, std::string description,
-    std::function<RunResult(const Dynamics&, const Method&, const SolveOptions&)> run) {
+    std::function<RunResult(const Dynamics&, const Method&, const SolveOptions&)> run,
+    std::vector<std::string> settings) {
   return {.name = std::move(name),
           .description = std::move(description),
           .family = "time-stepping",
@@ -53,7 +54,8 @@ MethodInfo impulse_stepping_method(
           .uses_contact_law = false,
           .needs = "dynamics, contact geometry, an impulse map and normal impulses",
           .can_run = [](const Dynamics& s) { return has_impulse_map(s) && has_normal_impulses(s); },
-          .run = std::move(run)};
+          .run = std::move(run),
+          .settings = std::move(settings)};
 }
 
 RunResult run_time_stepping(const Dynamics& model, const std::string& method, double dt,

@@ -59,10 +59,11 @@ double accumulate_impulse(const NormalImpulses& normal, std::size_t i, double d,
 
 // The entry of a time-stepping method that resolves contacts by impulses with Newton's
 // restitution (sequential impulses, soft step, Moreau–Jean): fixed step, needs normal impulses
-// and an impulse map (for e).
+// and an impulse map (for e); `settings` are the Method fields it reads (MethodInfo::settings).
 MethodInfo impulse_stepping_method(
     std::string name, std::string description,
-    std::function<RunResult(const Dynamics&, const Method&, const SolveOptions&)> run);
+    std::function<RunResult(const Dynamics&, const Method&, const SolveOptions&)> run,
+    std::vector<std::string> settings);
 
 // The smooth part of a step, every contact free (gravity and the scene's other forces). It keeps
 // the scene's position mask, the all-free modes and a scratch rate, so that a step allocates

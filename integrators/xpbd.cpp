@@ -62,7 +62,8 @@ std::vector<MethodInfo> xpbd_methods() {
            .uses_contact_law = true,
            .needs = "dynamics, contact geometry and normal impulses, with linear penalty laws",
            .can_run = has_linear_laws,
-           .run = run}};
+           .run = run,
+           .settings = {"dt", "substeps"}}};
 }
 
 }  // namespace contact

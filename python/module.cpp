@@ -4,8 +4,9 @@
 //   r.t, r.y, r.energy            NumPy arrays, one row per sample
 //   r.contacts["max_penetration"] one NumPy array per column of the contact log
 // Keyword options are the scene's parameters (co.scenes()), the method's settings (dt, rtol,
-// atol, integrator, iterations, ...) and the span (t_end, sample_dt); any other name, and any
-// value out of range, raises ValueError naming it. A run that fails raises co.SolverError with
+// atol, integrator, iterations, ...; co.methods() lists what each reads, and a setting the method
+// ignores raises a UserWarning) and the span (t_end, sample_dt); any other name, and any value out
+// of range, raises ValueError naming it. A run that fails raises co.SolverError with
 // .status, .t_reached, .solver_message and the partial .result.
 #include "contact_ode/analysis/contact_advisor.hpp"
 #include "contact_ode/analysis/references.hpp"
@@ -14,10 +15,12 @@
 #include "contact_ode/models/scene_registry.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <map>
@@ -48,7 +51,11 @@ py::array_t<double> column(const std::vector<Row>& rows, const std::function<dou
 using Setter = std::function<void(Method&, const py::handle&)>;
 const std::map<std::string, Setter>& method_settings() {
   static const std::map<std::string, Setter> settings = {
-      {"dt", [](Method& m, const py::handle& v) { m.dt = v.cast<double>(); }},
+      // A fixed-step method's step; for penalty and event-driven runs, their integrator's.
+      {"dt",
+       [](Method& m, const py::handle& v) {
+         (method_info(m.name).fixed_step ? m.dt : m.integrator.dt) = v.cast<double>();
+       }},
       {"rtol", [](Method& m, const py::handle& v) { m.integrator.rtol = v.cast<double>(); }},
       {"atol", [](Method& m, const py::handle& v) { m.integrator.atol = v.cast<double>(); }},
       {"integrator", [](Method& m, const py::handle& v) { m.integrator.method = v.cast<std::string>(); }},
@@ -80,6 +87,24 @@ void check_integrator(const Method& m) {
     throw std::invalid_argument(
         fmt::format("atol: value '{}' is out of range; accepted range (0, inf)", m.integrator.atol));
   integrator_info(m.integrator.method);  // throws naming the accepted integrators
+}
+
+// A setting the method does not read changes nothing: say so, as SciPy's solve_ivp does, rather
+// than let a caller believe it took effect (a loop over methods may pass every setting to each).
+void warn_of_ignored_settings(const std::string& method, const py::kwargs& options) {
+  const auto& reads = method_info(method).settings;
+  std::vector<std::string> ignored;
+  for (const auto& [key, value] : options) {
+    const auto name = key.cast<std::string>();
+    if (method_settings().count(name) && std::find(reads.begin(), reads.end(), name) == reads.end())
+      ignored.push_back(name);
+  }
+  if (ignored.empty()) return;
+  const std::string message =
+      fmt::format("{} {} no effect on method '{}'; its settings: {}", fmt::join(ignored, ", "),
+                  ignored.size() == 1 ? "has" : "have", method,
+                  reads.empty() ? "none" : fmt::format("{}", fmt::join(reads, ", ")));
+  if (PyErr_WarnEx(PyExc_UserWarning, message.c_str(), 2) != 0) throw py::error_already_set();
 }
 
 RunResult run(const std::string& scene, const std::string& method, const std::string& law,
@@ -114,6 +139,7 @@ RunResult run(const std::string& scene, const std::string& method, const std::st
     }
   }
   check_integrator(m);
+  warn_of_ignored_settings(m.name, options);
   const auto model = make_scene(scene, values, law);
   RunResult r = solve(*model, m, span);
   if (!r.ok()) {
@@ -261,7 +287,8 @@ PYBIND11_MODULE(contact_ode, mod) {
     for (const auto& m : method_registry())
       out.append(py::dict(py::arg("name") = m.name, py::arg("description") = m.description,
                           py::arg("family") = m.family, py::arg("fixed_step") = m.fixed_step,
-                          py::arg("uses_contact_law") = m.uses_contact_law, py::arg("needs") = m.needs));
+                          py::arg("uses_contact_law") = m.uses_contact_law, py::arg("needs") = m.needs,
+                          py::arg("settings") = m.settings));
     return out;
   });
   mod.def("integrators", [] {

@@ -122,7 +122,8 @@ MethodInfo engine_method(std::string name, std::string description, bool springs
               ? "spheres on a line (SphereLine), an impulse map and normal impulses, with linear penalty laws"
               : "spheres on a line (SphereLine), an impulse map and normal impulses",
       .can_run = springs ? can_run_engine_spring : can_run_engine,
-      .run = std::move(run)};
+      .run = std::move(run),
+      .settings = {"dt"}};
 }
 
 std::vector<MethodInfo> engine_methods() {

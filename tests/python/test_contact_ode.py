@@ -141,3 +141,44 @@ def test_closed_forms_refuse_arguments_outside_their_domain():
         co.references.kelvin_voigt_contact(m=1.0, k=1.0, zeta=1.5, V=1.0)
     # A law without a linear closed form stays NaN (documented), not an error.
     assert math.isnan(co.references.linear_law_first_contact("hertz", 1.0, 1e5, 0.8, 1.0)["duration"])
+
+
+def test_dt_is_the_step_of_the_integrator_a_penalty_run_uses():
+    """dt set only the game step, which penalty and event-driven runs ignore: a fixed-step
+    integrator under them was refused with "value '0'" whatever dt was given."""
+    def height_error(dt):  # at t = 0.6 s, after the first contact (switches located: order 4 kept)
+        r = co.solve("ball-drop", "penalty", integrator="rk4", dt=dt, t_end=0.6, sample_dt=0.6)
+        return r, abs(r.y[-1, 0] - reference.y[-1, 0])
+    reference = co.solve("ball-drop", "penalty", rtol=1e-12, atol=1e-14, t_end=0.6, sample_dt=0.6)
+    coarse, e_coarse = height_error(1e-4)
+    fine, e_fine = height_error(5e-5)
+    # Every step is dt, but those cut short at a located switch (one begin, one end by 0.6 s).
+    assert fine.stats["steps"] == pytest.approx(0.6 / 5e-5, abs=2)
+    assert fine.stats["steps"] == pytest.approx(2 * coarse.stats["steps"], abs=4)
+    # RK4: 2^4 per halving, within a factor 2: the steps cut short at the switches move with dt
+    # (measured 22 here, 28 one halving coarser).
+    assert 16 / 2 < e_coarse / e_fine < 16 * 2
+    flight = co.solve("ball-drop", "event-ode", integrator="rk4", dt=1e-3, t_end=1.0)
+    assert flight.stats["steps"] >= 1000
+    with pytest.raises(ValueError, match="dt: value '0' is out of range: euler is a fixed-step method and needs a step"):
+        co.solve("ball-drop", "penalty", integrator="euler")
+    with pytest.raises(ValueError, match="dt: cvode-bdf cannot run at a fixed step"):
+        co.solve("ball-drop", "penalty", dt=1e-4)  # silently ignored before
+
+
+def test_a_setting_the_method_ignores_is_a_warning():
+    with pytest.warns(UserWarning, match="rtol, iterations have no effect on method 'game-euler'; its settings: dt"):
+        co.solve("ball-drop", "game-euler", rtol=1e-8, iterations=3, t_end=0.1)
+    with pytest.warns(UserWarning, match="iterations has no effect on method 'penalty'"):
+        co.solve("ball-drop", "penalty", iterations=3, t_end=0.1)
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        co.solve("ball-drop", "sequential-impulses", iterations=3, erp=0.1, dt=1e-3, t_end=0.1)
+        co.solve("ball-drop", "event-ode", rtol=1e-8, rest_speed=1e-6, t_end=0.1)
+    # Every setting a method lists is a keyword solve() accepts.
+    with pytest.raises(ValueError) as info:
+        co.solve("ball-drop", "penalty", bogus=1)
+    accepted = set(str(info.value).split("accepted: ")[1].split(", "))
+    for m in co.methods():
+        assert set(m["settings"]) <= accepted, m["name"]

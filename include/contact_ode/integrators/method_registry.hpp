@@ -58,7 +58,14 @@ struct MethodInfo {
   std::string needs;      // the capabilities it asks of a scene, in words
   std::function<bool(const Dynamics&)> can_run;
   std::function<RunResult(const Dynamics&, const Method&, const SolveOptions&)> run;
+  // The settings it reads, by their Python keywords (Method's fields: "dt" is Method::dt where
+  // fixed_step, its integrator's fixed step otherwise); co.solve() warns of any other it is given.
+  std::vector<std::string> settings;
 };
+
+// The settings of a method that runs an ODE integrator (IntegratorOptions): a fixed step ("dt")
+// for an integrator that takes one, tolerances otherwise.
+inline const std::vector<std::string> kIntegratorSettings = {"integrator", "rtol", "atol", "max_steps", "dt"};
 
 const std::vector<MethodInfo>& method_registry();
 std::vector<std::string> method_names();
