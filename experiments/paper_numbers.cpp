@@ -3,12 +3,12 @@
 // The list is data, paper/numbers.json: each macro names the CSV, the row (column = value pairs;
 // numbers compared numerically) and the column it comes from. A missing file, row or column is an
 // error: the paper must not build on a partial study.
-// Usage: paper_numbers --results DIR --out FILE [--numbers LIST].
-// Exit codes: 0, 1 a number is missing, 2 bad input.
+// Usage: paper_numbers --results DIR --out FILE [--numbers LIST]. Exit 0, 1 a number is missing, 2 bad input.
 #include "cli.hpp"
 #include "contact_ode/analysis/table.hpp"
 #include "output.hpp"
 #include "process.hpp"
+#include "study_manifest.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -109,7 +109,7 @@ std::string macros(const fs::path& results, const fs::path& list) {
   for (const auto& n : numbers.at("numbers")) define(n.at("macro"), latex_number(lookup(results, n)));
   // The run: how long the study took, where, with which libraries.
   const json study = read_json(results / "study.json"), meta = read_json(results / "k_sweep" / "meta.json");
-  define("StudyWallTime", fmt::format("{:.0f}", study.at("wall_time_s").get<double>()));
+  define("StudyWallTime", fmt::format("{:.0f}", complete_wall_time(study, results / "study.json")));
   define("StudyCores", std::to_string(study.at("cores").get<unsigned>()));
   define("StudyExperiments", std::to_string(study.at("experiments").size()));
   define("GitRevision", fmt::format("\\texttt{{{}}}", meta.at("git_revision").get<std::string>()));

@@ -1,6 +1,7 @@
 // study — runs every experiment of the study (experiments/study.json) into one results folder,
 // checks that each left every output it declares (CSV columns included), and writes index.md
-// (a link and a sentence per table and figure) and study.json (what ran, how long it took).
+// (a link and a sentence per table and figure) and study.json (what ran, how long it took); after
+// --only, both keep the other experiments of an earlier run whose outputs are still complete.
 // --tiny runs the smoke-test arguments instead of the defaults. Started by mpirun (or srun) it
 // deals the experiments out over the ranks, experiment j to rank j mod size; each writes its own
 // folders, and rank 0 gathers what ran and writes index.md and study.json, as a serial run does.
@@ -118,6 +119,7 @@ int program(int argc, char** argv) {
   }
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   record["wall_time_s"] = total;
+  if (runs.size() == manifest.experiments.size()) record["complete_wall_time_s"] = total;
   record["cores"] = std::thread::hardware_concurrency();
   record["ranks"] = ranks.size();
   record["jobs"] = jobs;
@@ -125,11 +127,12 @@ int program(int argc, char** argv) {
     std::cerr << fmt::format("study: {} experiment(s) failed; index.md not written\n", failures);
     return cli::kExitFailure;
   }
+  if (runs.size() < manifest.experiments.size()) keep_earlier_runs(manifest, record, out);
   OutputSet files;
   files.add("index.md", study_index(manifest, record, out));
   files.add("study.json", record.dump(2) + "\n");
   files.write_into(out);
-  fmt::print("\nstudy: {} experiments in {:.1f} s; index in {}\n", record["experiments"].size(), total,
+  fmt::print("\nstudy: {} experiment(s) in {:.1f} s; index in {}\n", runs.size(), total,
              (fs::path(out) / "index.md").string());
   return 0;
 }

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -84,19 +85,68 @@ std::vector<std::string> check_outputs(const StudyExperiment& e, const fs::path&
   return problems;
 }
 
+namespace {
+
+// The record of experiment `name` in a study.json's list, or null.
+const nlohmann::json* record_of(const nlohmann::json& record, const std::string& name) {
+  for (const auto& r : record.at("experiments"))
+    if (r.at("name") == name) return &r;
+  return nullptr;
+}
+
+}  // namespace
+
+void keep_earlier_runs(const StudyManifest& m, nlohmann::json& record, const fs::path& results) {
+  nlohmann::json earlier;
+  try {
+    std::ifstream in(results / "study.json");
+    earlier = nlohmann::json::parse(in);
+    if (earlier.value("tiny", false) != record.value("tiny", false)) return;  // other settings
+    nlohmann::json merged = nlohmann::json::array();
+    for (const auto& e : m.experiments)
+      if (const auto* now = record_of(record, e.name))
+        merged.push_back(*now);
+      else if (const auto* before = record_of(earlier, e.name);
+               before && before->value("ok", false) && check_outputs(e, results / e.name).empty()) {
+        merged.push_back(*before);
+        merged.back()["earlier"] = true;
+      }
+    record["experiments"] = merged;
+    if (!record.contains("complete_wall_time_s") && earlier.contains("complete_wall_time_s"))
+      record["complete_wall_time_s"] = earlier.at("complete_wall_time_s");
+  } catch (const nlohmann::json::exception&) {
+    // no earlier study.json, or not one of ours: this run's record alone
+  }
+}
+
+double complete_wall_time(const nlohmann::json& study, const fs::path& file) {
+  if (!study.contains("complete_wall_time_s"))
+    throw std::runtime_error(
+        fmt::format("{}: no run of every experiment recorded; run `study` without --only", file.string()));
+  return study.at("complete_wall_time_s").get<double>();
+}
+
 std::string study_index(const StudyManifest& m, const nlohmann::json& record, const fs::path& results) {
   std::string s = fmt::format("# {}\n\n", m.title);
-  s += fmt::format(
-      "{} experiments{} in {:.1f} s of wall time on {} cores (per-experiment times and commands in "
-      "[study.json](study.json); each experiment's options, versions and revision in its `meta.json`). "
-      "Rebuild everything with `bash scripts/run_study.sh`.\n\n",
-      record.at("experiments").size(), record.value("tiny", false) ? " (smoke-test settings)" : "",
-      record.at("wall_time_s").get<double>(), record.value("cores", 0u));
+  const auto& runs = record.at("experiments");
+  const auto earlier = static_cast<std::size_t>(
+      std::count_if(runs.begin(), runs.end(), [](const auto& r) { return r.value("earlier", false); }));
+  s += fmt::format("{} experiments{}", runs.size(),
+                   record.value("tiny", false) ? " (smoke-test settings)" : "");
+  if (earlier > 0)
+    s += fmt::format("; {} run now in {:.1f} s of wall time on {} cores, {} kept from an earlier run",
+                     runs.size() - earlier, record.at("wall_time_s").get<double>(), record.value("cores", 0u),
+                     earlier);
+  else
+    s += fmt::format(" in {:.1f} s of wall time on {} cores", record.at("wall_time_s").get<double>(),
+                     record.value("cores", 0u));
+  s += " (per-experiment times and commands in [study.json](study.json); each experiment's options, "
+       "versions and revision in its `meta.json`). Rebuild everything with `bash scripts/run_study.sh`.\n\n";
   for (const auto& e : m.experiments) {
-    bool ran = false;
-    for (const auto& r : record.at("experiments")) ran = ran || r.at("name") == e.name;
-    if (!ran) continue;
-    s += fmt::format("## {}\n\n{}\n\n", e.name, e.summary);
+    const auto* run = record_of(record, e.name);
+    if (!run) continue;
+    s += fmt::format("## {}\n\n{}{}\n\n", e.name,
+                     run->value("earlier", false) ? "(From an earlier run.) " : "", e.summary);
     for (const auto& o : e.outputs) {
       const fs::path f = fs::path(e.name) / o.file;
       const fs::path md = fs::path(f).replace_extension(".md"), pdf = fs::path(f).replace_extension(".pdf");

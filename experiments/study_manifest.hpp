@@ -37,6 +37,17 @@ StudyManifest load_study_manifest(const std::filesystem::path& path);
 // signature, a meta.json that does not parse. Empty when all is well.
 std::vector<std::string> check_outputs(const StudyExperiment& experiment, const std::filesystem::path& dir);
 
+// A run of some experiments (study --only) keeps, from the folder's earlier study.json of the same
+// settings, the record of every other experiment whose outputs are still complete (marked
+// "earlier"), so that index.md and study.json describe the whole folder, not the last few runs;
+// and the wall time of the last run of every experiment ("complete_wall_time_s", the paper's).
+void keep_earlier_runs(const StudyManifest& manifest, nlohmann::json& record,
+                       const std::filesystem::path& results);
+
+// The wall time of the study's last run of every experiment, from its study.json (`file`, for the
+// message); throws std::runtime_error if it only holds runs of a few (study --only).
+double complete_wall_time(const nlohmann::json& study, const std::filesystem::path& file);
+
 // results/index.md: per experiment its summary and a link with one sentence per output (tables
 // to their Markdown rendering when `results` holds one, with the CSV beside), and the run's record.
 std::string study_index(const StudyManifest& manifest, const nlohmann::json& record,

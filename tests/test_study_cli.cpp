@@ -28,6 +28,27 @@ TEST_F(StudyCli, EveryExperimentLeavesItsDeclaredOutputsAndTheIndexLinksThem) {
   EXPECT_TRUE(nlohmann::json::accept(slurp(dir_ / "s" / "study.json")));
 }
 
+// Rerunning one experiment (--only) replaced index.md and study.json with that experiment alone,
+// though the folder still held every other's results (and the paper quoted that run's time as the
+// study's). The others of an earlier run with the same settings stay, marked, while their outputs
+// are complete; the run of every experiment keeps its wall time for the paper.
+TEST_F(StudyCli, RerunningSomeExperimentsKeepsTheOthersOfTheFolder) {
+  ASSERT_EQ(run(STUDY_EXE, "--tiny --only zeno,contact_advisor --out s").code, 0);
+  ASSERT_EQ(run(STUDY_EXE, "--tiny --only contact_advisor --out s").code, 0);
+  auto study = [&] { return nlohmann::json::parse(slurp(dir_ / "s" / "study.json")); };
+  std::string index = slurp(dir_ / "s" / "index.md");
+  EXPECT_NE(index.find("2 experiments (smoke-test settings); 1 run now"), std::string::npos) << index;
+  EXPECT_NE(index.find("## zeno\n\n(From an earlier run.)"), std::string::npos) << index;
+  EXPECT_NE(index.find("(zeno/zeno.csv)"), std::string::npos) << index;
+  ASSERT_EQ(study().at("experiments").size(), 2u);
+  EXPECT_FALSE(study().contains("complete_wall_time_s"));  // no run of all 19
+  // An experiment whose outputs are no longer complete is not listed.
+  fs::remove(dir_ / "s" / "zeno" / "zeno.csv");
+  ASSERT_EQ(run(STUDY_EXE, "--tiny --only contact_advisor --out s").code, 0);
+  EXPECT_EQ(slurp(dir_ / "s" / "index.md").find("## zeno"), std::string::npos);
+  EXPECT_EQ(study().at("experiments").size(), 1u);
+}
+
 // The check is not vacuous: a missing column, a short row, a figure without its PDF and a missing
 // file are each reported.
 TEST_F(StudyCli, OutputCheckReportsEveryKindOfDefect) {
