@@ -164,3 +164,26 @@ TEST(ContactLaw, HuntCrossleyValuesDerivativesAndEnergy) {
   // Odd continuation below zero (for integrators probing past a root): continuous through 0.
   EXPECT_DOUBLE_EQ(hc.force(-d, 0.0), -hc.force(d, 0.0));
 }
+
+// The exact restitution for every chi V. It returned NaN past chi V ~ 40 (the root's 1 - a e,
+// about (1 + a) exp(-1 - a), is below e's resolution there) though the relation always has a root
+// (1 + chi u > 0 throughout the contact): solved in ln(1 - a e) now, with a series below 1e-3.
+// Reference values: the same relation solved by bisection in 60-digit arithmetic (mpmath); held
+// to 1e-12 (bisection to adjacent doubles; the series' error is ~2e-13 at a = 1e-3).
+TEST(HuntCrossleyContact, ExactRestitutionHoldsForEveryChiV) {
+  const std::pair<double, double> reference[] = {{1e-6, 0.99999933333377777745},
+                                                 {1e-3, 0.99933377745210843051},
+                                                 {0.5, 0.74843493159743415812},
+                                                 {1.0, 0.59362426004004009232},
+                                                 {5.0, 0.19698024528051888505},
+                                                 {20.0, 0.049999999203831142392},
+                                                 {50.0, 0.02}};
+  for (const auto& [a, e] : reference) EXPECT_NEAR(hunt_crossley_restitution(a), e, 1e-12 * e) << a;
+  // Heavy damping: e -> 1 / a, to rounding once (1 + a) exp(-1 - a) < 1e-16.
+  for (double a : {50.0, 1e3, 1e9, 1e300}) EXPECT_NEAR(hunt_crossley_restitution(a) * a, 1.0, 4e-16) << a;
+  // And a simulated contact at chi V = 50 leaves at that speed: CVODE at rtol 1e-10, held to 100
+  // times that (measured within 1e-12).
+  const double m = 1.0, V = 1.0;
+  const auto c = measure_isolated_contact(HuntCrossley{1e8, 1.5, 50.0 / V}, m, V);
+  EXPECT_NEAR(c.exit_speed / V, hunt_crossley_restitution(50.0), 1e-8);
+}

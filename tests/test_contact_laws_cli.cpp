@@ -50,7 +50,6 @@ TEST_F(ContactLawsCli, HuntCrossleyRowsMatchTheExactRestitution) {
       const double target = std::stod(c[1]), achieved = std::stod(c[2]);
       const double a = contact::damping_factor(rule, target, 1.0) * 1.0;  // chi V at the default V = 1 m/s
       const double e = contact::hunt_crossley_restitution(a);
-      if (std::isnan(e)) continue;  // the clamp would act: no closed form
       EXPECT_NEAR(achieved, e, 1e-7) << c[0] << " target " << target;
       ++checked;
     }

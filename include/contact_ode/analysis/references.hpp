@@ -96,8 +96,9 @@ double hunt_crossley_small_damping_loss(double chi, double V);
 // m u du / (1 + chi u) = -K delta^n d(delta); over the whole contact delta returns to 0, so the
 // right side integrates to zero and, with a = chi V and e = u_out / V,
 //   a - ln(1 + a) = -a e - ln(1 - a e),
-// whatever n, K and m: the restitution depends on chi V alone. Solved by bisection; NaN if the
-// root needs 1 - a e <= 0 (the clamp F >= 0 would act).
+// whatever n, K and m: the restitution depends on chi V alone (1 + chi u > 0 throughout: u = -1/chi
+// is where the velocity stops changing, so 1 - a e > 0 and the clamp F >= 0 never acts). Solved by
+// bisection in ln(1 - a e), for every a >= 0 (e -> 1/a as a grows).
 double hunt_crossley_restitution(double chi_v);
 
 // Undamped penalty bounce sequence of the ball drop under Hooke (the exact penalty solution):
