@@ -77,7 +77,7 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
       motion.copy_positions(ghost, y);
     }
   };
-  return run_time_stepping(scene, m.name, m.dt, step, span, false);
+  return run_time_stepping(scene, m.name, m.dt, step, span, false, m.iterations);
 }
 
 }  // namespace

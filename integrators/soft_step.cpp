@@ -97,7 +97,7 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
             lambda[i], y);
     }
   };
-  return run_time_stepping(scene, m.name, m.dt, step, span, false);
+  return run_time_stepping(scene, m.name, m.dt, step, span, false, m.substeps);
 }
 
 }  // namespace

@@ -59,7 +59,7 @@ MethodInfo impulse_stepping_method(
 }
 
 RunResult run_time_stepping(const Dynamics& model, const std::string& method, double dt,
-                            const StepFunction& step, const SolveOptions& span, bool springs) {
+                            const StepFunction& step, const SolveOptions& span, bool springs, int passes) {
   const std::size_t nc = model.contact_count();
   const ContactGeometry& geo = contact_geometry(model);
   RunRecorder rec(model, method, span);
@@ -75,8 +75,12 @@ RunResult run_time_stepping(const Dynamics& model, const std::string& method, do
       if (geo.gap(i, y) < -kContactMargin) rec.contact_begin(i, 0.0, geo.gap_rate(i, y));
     // Counted in floating point: t_end / dt can exceed every integer type.
     const double steps_needed = std::ceil(span.t_end / dt - 1e-9);
-    rec.check_steps(steps_needed < 9e18 ? static_cast<long>(steps_needed) : std::numeric_limits<long>::max(),
-                    0.0);
+    if (steps_needed * passes > static_cast<double>(span.limits.max_steps))
+      throw SolverFailure(
+          Status::WorkLimit, 0.0,
+          fmt::format("{:g} steps{}: more than the {} steps a run may take", steps_needed,
+                      passes > 1 ? fmt::format(" of {} sub-steps or sweeps each", passes) : "",
+                      span.limits.max_steps));
     const auto n_steps = static_cast<long>(steps_needed);
     for (long n = 1; n <= n_steps; ++n) {
       const double t0 = t, h = std::min(dt, span.t_end - t0);

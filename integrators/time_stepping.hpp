@@ -49,9 +49,11 @@ using StepFunction =
     std::function<void(double t, double h, Vector& y, StepReport& report, SolverStats& stats)>;
 
 // `springs`: whether the method's contacts are the scene's penalty springs (their elastic energy
-// counts); impulse methods pass false, and an overlap they leave holds no energy.
+// counts); impulse methods pass false, and an overlap they leave holds no energy. `passes`: the
+// sub-steps or solver sweeps each step makes; the run's work bound (RunLimits::max_steps) counts
+// steps times passes, so that 2^31 sweeps a step fail at once instead of running for days.
 RunResult run_time_stepping(const Dynamics& model, const std::string& method, double dt,
-                            const StepFunction& step, const SolveOptions& span, bool springs);
+                            const StepFunction& step, const SolveOptions& span, bool springs, int passes = 1);
 
 // Adds d to contact i's accumulated impulse `lambda`, clamped at >= 0 (a contact pushes, never
 // pulls), and applies what changed to the velocities. Returns the change [N s].

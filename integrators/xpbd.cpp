@@ -48,7 +48,7 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
       stats.newton_iters += 1;
     }
   };
-  return run_time_stepping(scene, m.name, m.dt, step, span, true);
+  return run_time_stepping(scene, m.name, m.dt, step, span, true, m.substeps);
 }
 
 }  // namespace

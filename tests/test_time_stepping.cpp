@@ -153,6 +153,28 @@ TEST(TimeStepping, XpbdRefusesANonlinearLaw) {
   EXPECT_TRUE(method_info("game-implicit-spring").can_run(*hertz));
 }
 
+// The work bound counts sweeps and sub-steps: sequential impulses at iterations = 2^31 - 1 ran
+// ten 1 ms steps for hours (as soft step and XPBD did at that many sub-steps). Steps times passes
+// up to the bound run; one pass more fails at once, as a work limit that says why.
+TEST(TimeStepping, SweepsAndSubStepsCountAgainstTheWorkBound) {
+  const auto ball = make_scene("ball-drop");
+  SolveOptions span{.t_end = 0.01, .sample_dt = 0.01};
+  span.limits.max_steps = 1000;  // 10 steps of dt = 1e-3 s: 100 passes each
+  const Method at_bound[] = {{.name = "sequential-impulses", .iterations = 100},
+                             {.name = "soft-step", .substeps = 100},
+                             {.name = "xpbd", .substeps = 100}};
+  for (Method m : at_bound) {
+    EXPECT_TRUE(solve(*ball, m, span).ok()) << m.name;
+    (m.name == "sequential-impulses" ? m.iterations : m.substeps) = 101;
+    const RunResult r = solve(*ball, m, span);
+    EXPECT_EQ(r.status, Status::WorkLimit) << m.name;
+    EXPECT_EQ(r.t_reached, 0.0) << m.name;
+    EXPECT_NE(r.message.find("10 steps of 101 sub-steps or sweeps each: more than the 1000 steps"),
+              std::string::npos)
+        << r.message;
+  }
+}
+
 // The time-stepping settings are checked by solve(), by name, whatever method reads them.
 TEST(TimeStepping, SettingsOutOfRangeAreRefusedByName) {
   const auto ball = make_scene("ball-drop");
