@@ -48,7 +48,7 @@ int program(int argc, char** argv) {
   app.add("--k", k, "Hooke stiffness [N/m]", cli::positive());
   app.add("--t-end", t_end, "final time [s]; 0: approach plus three pair contacts per ball",
           cli::non_negative());
-  app.add("--rtol", rtol, "CVODE relative tolerance", cli::real_in(0, 1, false, false));
+  app.add("--rtol", rtol, "CVODE relative tolerance", cli::real_in(0, 1, true, true));
   app.add("--atol", atol, "CVODE absolute tolerance [m, m/s]", cli::positive());
   app.add("--out", out, "results folder (written by rank 0)");
   if (const int code = app.parse(argc, argv); code >= 0) return code;

@@ -43,6 +43,13 @@ TEST_F(ChainMpi, TheEnergyErrorShowsWhatATolerancePermits) {
   EXPECT_GT(std::abs(energy_error("loose")), 1.0);
 }
 
+// --rtol took [0, 1], where every other experiment takes (0, 1): rtol 1 'succeeded' with an
+// energy error of 7e73 and rtol 0 ran for minutes. Refused like the others' (a bad input, serial).
+TEST_F(ChainMpi, ToleranceOutOfRangeIsRefused) {
+  expect_refused(CHAIN_MPI_EXE,
+                 {{"--rtol 1", "--rtol", "'1'", "(0, 1)"}, {"--rtol 0", "--rtol", "'0'", "(0, 1)"}});
+}
+
 TEST_F(ChainMpi, OneAndTwoRanksAgreeWithTheSerialBandSolver) {
   using namespace contact;
   const BallChainParams p{.n = 50, .law = Hooke{1e6}};
