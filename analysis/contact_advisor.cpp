@@ -25,7 +25,7 @@ using std::numbers::pi;
 
 [[noreturn]] void bad(const std::string& option, double value, const std::string& accepted) {
   throw std::invalid_argument(
-      fmt::format("{}: value '{:g}' is out of range; accepted {}", option, value, accepted));
+      fmt::format("{}: value '{}' is out of range; accepted {}", option, value, accepted));
 }
 
 // zeta in (0, 1) with e_clamped(zeta) = e, by GSL's Brent solver on [0, 1).

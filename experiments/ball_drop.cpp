@@ -123,7 +123,7 @@ int program(int argc, char** argv) {
   return app.run(argc, argv, [&](OutputSet& files) {
     if (o.sweep && !(o.k_max >= o.k_min))
       throw std::invalid_argument(fmt::format(
-          "--k-max: value '{:g}' is below --k-min = {:g}; accepted range [k-min, inf)", o.k_max, o.k_min));
+          "--k-max: value '{}' is below --k-min = {}; accepted range [k-min, inf)", o.k_max, o.k_min));
     validate(method_for(o, "penalty").integrator);
     if (o.sweep)
       run_sweep(o, app, files);

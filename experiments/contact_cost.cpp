@@ -49,7 +49,7 @@ int program(int argc, char** argv) {
   return app.run(argc, argv, [&](OutputSet& files) {
     if (!(k_max >= k_min))
       throw std::invalid_argument(fmt::format(
-          "--k-max: value '{:g}' is below --k-min = {:g}; accepted range [k-min, inf)", k_max, k_min));
+          "--k-max: value '{}' is below --k-min = {}; accepted range [k-min, inf)", k_max, k_min));
     const auto chosen = cli::chosen(integrators, integrator_names());
     for (const auto& name : chosen)
       if (!integrator_info(name).adaptive)

@@ -45,7 +45,7 @@ int program(int argc, char** argv) {
   return app.run(argc, argv, [&](OutputSet& files) {
     if (!(k_max > k_min)) {
       throw std::invalid_argument(fmt::format(
-          "--k-max: value '{:g}' is not above --k-min = {:g}; accepted range (k-min, inf)", k_max, k_min));
+          "--k-max: value '{}' is not above --k-min = {}; accepted range (k-min, inf)", k_max, k_min));
     }
     const double m = 1.0, g = 9.81, h0 = 1.0;
     // Long enough for `bounces` impacts and apexes: T_{n+1} = T_n + 2 e^n t0.

@@ -65,7 +65,7 @@ int program(int argc, char** argv) {
   return app.run(argc, argv, [&](OutputSet& files) {
     if (!(k_max >= k_min))
       throw std::invalid_argument(fmt::format(
-          "--k-max: value '{:g}' is below --k-min = {:g}; accepted range [k-min, inf)", k_max, k_min));
+          "--k-max: value '{}' is below --k-min = {}; accepted range [k-min, inf)", k_max, k_min));
     const double m = 1.0, g = 9.81, h0 = 1.0, V = std::sqrt(2 * g * h0);
     const std::vector<double> grid = log_grid(k_min, k_max, per_decade);
     Table table({"k_N_per_m", "law", "penetration_m", "closed_form_penetration_m", "duration_s",

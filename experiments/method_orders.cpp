@@ -60,7 +60,7 @@ int program(int argc, char** argv) {
   return app.run(argc, argv, [&](OutputSet& files) {
     if (dt_max >= t_final)
       throw std::invalid_argument(
-          fmt::format("--dt-max: value '{:g}' is not below --t-final = {:g}; accepted range (0, t-final)",
+          fmt::format("--dt-max: value '{}' is not below --t-final = {}; accepted range (0, t-final)",
                       dt_max, t_final));
     const Problem ball = ball_problem(k, t_final);
     const auto chosen = cli::chosen(methods, fixed_step_methods());

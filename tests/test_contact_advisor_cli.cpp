@@ -15,6 +15,8 @@ TEST_F(ContactAdvisorCli, NonPhysicalRequestsAreRefused) {
           {"--v -5 --max-penetration 1e-3", "--v", "'-5'", "(0, inf)"},
           {"--v 0 --max-penetration 1e-3", "--v", "'0'", "(0, inf)"},
           {"--e 1.5 --max-penetration 1e-3", "--e", "'1.5'", "[0, 1]"},
+          // In full: at 6 digits it read "value '1' is out of range; accepted range [1, 1]".
+          {"--e 0.999999999 --law hooke --max-penetration 1e-3", "--e", "'0.999999999'", "[1, 1] for hooke"},
           {"--e nan --max-penetration 1e-3", "--e", "'nan'", "[0, 1]"},
           {"--max-penetration 0", "--max-penetration", "'0'", "(0, inf)"},
           {"--max-penetration -1e-3", "--max-penetration", "'-1e-3'", "(0, inf)"},

@@ -80,14 +80,18 @@ TEST_F(ConvergenceExperimentsCli, ConvergenceKRecordsSoftSpringsThatHoldOrSlowTh
 }
 
 TEST_F(ConvergenceExperimentsCli, BadInputIsRefused) {
-  expect_refused(CONVERGENCE_K_EXE, {
-                                        {"--k-min 1e6 --k-max 1e6", "--k-max", "'1e+06'", "(k-min, inf)"},
-                                        {"--bounces 0", "--bounces", "'0'", ">= 1"},
-                                        {"--per-decade 1000", "--per-decade", "'1000'", "[1, 100]"},
-                                        // At e = 0.05 the rigid ball rests after 5 apexes (e^n V < 1e-7
-                                        // m/s): more bounces failed with 'did not reach the bounces'.
-                                        {"--e 0.05 --bounces 6", "--bounces", "'6'", "[1, 5]"},
-                                    });
+  expect_refused(
+      CONVERGENCE_K_EXE,
+      {
+          // Values printed in full: at 6 digits both read '1e+06', a refusal that contradicted itself.
+          {"--k-min 1000001 --k-max 1000000.5", "--k-max", "'1000000.5' is not above --k-min = 1000001",
+           "(k-min, inf)"},
+          {"--bounces 0", "--bounces", "'0'", ">= 1"},
+          {"--per-decade 1000", "--per-decade", "'1000'", "[1, 100]"},
+          // At e = 0.05 the rigid ball rests after 5 apexes (e^n V < 1e-7
+          // m/s): more bounces failed with 'did not reach the bounces'.
+          {"--e 0.05 --bounces 6", "--bounces", "'6'", "[1, 5]"},
+      });
   expect_refused(ZENO_EXE, {
                                {"--e 1", "--e", "'1'", "(0, 1)"},
                                {"--t-end -6", "--t-end", "'-6'", "(0, inf)"},

@@ -12,7 +12,7 @@ namespace {
 void require(bool ok, const std::string& what, double value, const std::string& range) {
   if (!ok)
     throw std::invalid_argument(
-        fmt::format("{}: value '{:g}' is out of range; accepted range {}", what, value, range));
+        fmt::format("{}: value '{}' is out of range; accepted range {}", what, value, range));
 }
 
 }  // namespace
