@@ -21,7 +21,7 @@ std::string Range::to_string() const {
 void require_in(const std::string& what, double value, const Range& accepted) {
   if (!accepted.contains(value))
     throw std::invalid_argument(
-        fmt::format("{} = {:g} is out of range; accepted range {}", what, value, accepted.to_string()));
+        fmt::format("{} = {} is out of range; accepted range {}", what, value, accepted.to_string()));
 }
 
 ParameterValues resolve(const std::vector<ParameterInfo>& parameters, const ParameterValues& given,

@@ -102,6 +102,9 @@ def test_scene_parameters_outside_their_range_raise_value_error():
         (name, value), = given.items()
         with pytest.raises(ValueError, match=f"{scene}: parameter '{name}' = .* accepted range {re.escape(accepted)}"):
             co.solve(scene, method, **given)
+    # The value in full: at 6 digits a restitution of 1.0000001 read "'e' = 1 is out of range".
+    with pytest.raises(ValueError, match=re.escape("parameter 'e' = 1.0000001 is out of range")):
+        co.solve("ball-drop", "penalty", e=1.0000001)
     drop = {p["name"]: p for p in next(s for s in co.scenes() if s["name"] == "ball-drop")["parameters"]}
     assert drop["e"]["accepted"] == "[0, 1]" and drop["v0"]["accepted"] == "(-inf, inf)"
 
