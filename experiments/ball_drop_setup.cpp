@@ -48,6 +48,8 @@ std::vector<std::string> ball_methods(const BallDropOptions& o) {
 }
 
 SpringContact closed_form_contact(const BallDropOptions& o, double k) {
+  const double nan = std::nan("");
+  if (!(o.g > 0 || o.v0 < 0)) return {nan, nan, nan};  // without gravity, not thrown down: no contact
   return linear_law_first_contact(o.law, o.m, k, o.e, impact_speed(o), o.g);
 }
 

@@ -40,7 +40,8 @@ RunResult run_ball(const BallDropOptions& o, const std::string& method, double k
 // o's law (a power law has no linear spring for XPBD or an engine's spring setting to match).
 std::vector<std::string> ball_methods();
 std::vector<std::string> ball_methods(const BallDropOptions& o);
-// The first contact in closed form where the law has one (references.hpp), else NaN.
+// The first contact in closed form where the law has one (references.hpp) and the ball reaches
+// the floor, else NaN.
 SpringContact closed_form_contact(const BallDropOptions& o, double k);
 // The closed forms a reader compares the tables with, as text.
 std::string ball_references(const BallDropOptions& o);

@@ -126,6 +126,24 @@ TEST_F(BallDropCli, SweepPrintsOneRowPerStiffnessAndMethod) {
             0u);
 }
 
+// Without gravity a ball at rest (or thrown up) never reaches the floor: every method runs to the
+// end with no contact. The closed-form first contact printed after the table was then asked for
+// an impact at 0 m/s, and the run ended with exit 2, 'linear_law_first_contact: V = 0 is out of
+// range', after every method had run, and wrote nothing.
+TEST_F(BallDropCli, ABallThatNeverReachesTheFloorIsARunWithoutContacts) {
+  for (const char* args : {"--g 0", "--g 0 --v0 1"}) {
+    const Outcome r = run(std::string(args) + " --t-end 0.5 --out still");
+    ASSERT_EQ(r.code, 0) << args << ": " << r.err;
+    const auto rows = contact::read_csv(dir_ / "still" / "comparison.csv");
+    EXPECT_GE(rows.size(), 15u) << args;
+    for (const auto& row : rows) {
+      EXPECT_EQ(row.at("status"), "success") << args << " " << row.at("method");
+      EXPECT_EQ(row.at("contacts"), "0") << args << " " << row.at("method");
+    }
+    EXPECT_EQ(r.out.find("closed-form first contact"), std::string::npos) << args;
+  }
+}
+
 // With a power law (Hertz) there is no linear spring for XPBD or an engine's spring setting to
 // match: "all" is every method that can run that ball, and the others are left out, not failed.
 TEST_F(BallDropCli, AllMeansTheMethodsTheLawAllows) {
