@@ -58,9 +58,8 @@ int program(int argc, char** argv) {
           cli::some_of(integrator_names()));
   return app.run(argc, argv, [&](OutputSet& files) {
     if (dt_max >= t_final)
-      throw std::invalid_argument(
-          fmt::format("--dt-max: value '{}' is not below --t-final = {}; accepted range (0, t-final)",
-                      dt_max, t_final));
+      throw std::invalid_argument(fmt::format(
+          "--dt-max: value '{}' is not below --t-final = {}; accepted range (0, t-final)", dt_max, t_final));
     const auto dts = halved_steps("--halvings", dt_max, halvings, 1, t_final);
     const auto drops = ball_problems_over_heights(k, t_final, static_cast<std::size_t>(heights));
     const auto chosen = cli::chosen(integrators, integrator_names());

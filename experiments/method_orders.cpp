@@ -59,9 +59,8 @@ int program(int argc, char** argv) {
           cli::some_of(fixed_step_methods()));
   return app.run(argc, argv, [&](OutputSet& files) {
     if (dt_max >= t_final)
-      throw std::invalid_argument(
-          fmt::format("--dt-max: value '{}' is not below --t-final = {}; accepted range (0, t-final)",
-                      dt_max, t_final));
+      throw std::invalid_argument(fmt::format(
+          "--dt-max: value '{}' is not below --t-final = {}; accepted range (0, t-final)", dt_max, t_final));
     const Problem ball = ball_problem(k, t_final);
     const auto chosen = cli::chosen(methods, fixed_step_methods());
     Table errors({"method", "reference", "dt_s", "error", "observed_order", "rhs_evals"});
