@@ -70,8 +70,7 @@ RunResult run_game(const Dynamics& model, const GameOptions& opt, const SolveOpt
   double t = 0.0;
   try {
     rec.sample(0.0, y);
-    // Counted in floating point: t_end / dt can exceed every integer type (1e4 s at 1e-16 s).
-    const double steps_needed = std::ceil(span.t_end / opt.dt - 1e-9);
+    const double steps_needed = steps_to_cover(span.t_end, opt.dt);
     rec.check_steps(steps_needed < 9e18 ? static_cast<long>(steps_needed) : std::numeric_limits<long>::max(),
                     0.0);
     const auto n_steps = static_cast<long>(steps_needed);

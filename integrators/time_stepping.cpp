@@ -73,8 +73,7 @@ RunResult run_time_stepping(const Dynamics& model, const std::string& method, do
     rec.sample(0.0, y);
     for (std::size_t i = 0; i < nc; ++i)
       if (geo.gap(i, y) < -kContactMargin) rec.contact_begin(i, 0.0, geo.gap_rate(i, y));
-    // Counted in floating point: t_end / dt can exceed every integer type.
-    const double steps_needed = std::ceil(span.t_end / dt - 1e-9);
+    const double steps_needed = steps_to_cover(span.t_end, dt);
     if (steps_needed * passes > static_cast<double>(span.limits.max_steps))
       throw SolverFailure(
           Status::WorkLimit, 0.0,

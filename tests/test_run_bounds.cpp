@@ -3,9 +3,11 @@
 #include "contact_ode/analysis/references.hpp"
 #include "contact_ode/integrators/event_driven.hpp"
 #include "contact_ode/integrators/game_step.hpp"
+#include "contact_ode/integrators/method_registry.hpp"
 #include "contact_ode/integrators/penalty.hpp"
 #include "contact_ode/models/ball_chain.hpp"
 #include "contact_ode/models/ball_drop.hpp"
+#include "contact_ode/models/scene_registry.hpp"
 #include "integrator_driver.hpp"
 
 #include <gtest/gtest.h>
@@ -67,6 +69,23 @@ TEST(RunBounds, GameStepCountBeyondTheRunLimitFailsTyped) {
   EXPECT_EQ(r.status, Status::WorkLimit) << to_string(r.status);
   EXPECT_EQ(r.stats.steps, 0);
   EXPECT_NE(r.message.find("steps"), std::string::npos) << r.message;
+}
+
+// A span below a billionth of the step was no step at all: every fixed-step method (game loops,
+// time stepping, the engines) 'succeeded' at t = 0 with no sample at t_end. One step, shortened
+// to the span, covers it; a span within 1e-9 dt of whole steps still takes that many.
+TEST(RunBounds, AFixedStepRunShorterThanItsStepTakesOneShortStep) {
+  const auto ball = make_scene("ball-drop");
+  for (const char* method : {"game-euler", "sequential-impulses", "xpbd", "moreau-jean"})
+    for (const double t_end : {1e-300, 1e-13}) {
+      const RunResult r = solve(*ball, {.name = method, .dt = 1e-3}, {.t_end = t_end, .sample_dt = t_end});
+      ASSERT_TRUE(r.ok()) << method << ": " << r.message;
+      EXPECT_EQ(r.t_reached, t_end) << method;
+      EXPECT_EQ(r.stats.steps, 1) << method;
+      ASSERT_EQ(r.samples.size(), 2u) << method;
+      EXPECT_EQ(r.samples.back().t, t_end) << method;
+    }
+  EXPECT_EQ(steps_to_cover(1.0 + 1e-13, 1e-3), 1000.0);  // 1e-10 of a step past 1000: rounding, not a step
 }
 
 // A ball resting on the floor is detected and resolved every frame; it used to add a contact

@@ -5,7 +5,9 @@
 #include "contact_ode/integrators/run_result.hpp"
 #include "contact_ode/models/mechanical_system.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 
 namespace contact {
 
@@ -26,6 +28,12 @@ struct SolveOptions {
   double sample_dt = 0.01;  // output spacing [s] (fixed-step methods: rounded to whole steps)
   RunLimits limits;
 };
+
+// Fixed steps of dt that cover [0, t_end], the last one shortened to land on t_end: at least one
+// (a span below 1e-9 dt was none, and the run 'succeeded' at t = 0), and a span within 1e-9 dt of
+// a whole number of steps takes that many. Counted in floating point: t_end / dt can exceed every
+// integer type (1e4 s at 1e-16 s).
+inline double steps_to_cover(double t_end, double dt) { return std::max(1.0, std::ceil(t_end / dt - 1e-9)); }
 
 class RunRecorder {
  public:
