@@ -39,9 +39,9 @@ const MethodInfo& method_info(const std::string& name) {
 
 namespace {
 
-// The time-stepping methods' settings, each in its range (whatever method reads them, so that a
-// wrong value never waits for the method that uses it).
-void check_time_stepping_settings(const Method& m) {
+// The settings of the time-stepping and event-driven methods, each in its range (whatever method
+// reads them, so that a wrong value never waits for the method that uses it).
+void check_method_settings(const Method& m) {
   auto refuse = [](const char* name, double value, const char* range) {
     throw std::invalid_argument(
         fmt::format("--{}: value '{}' is out of range; accepted range {}", name, value, range));
@@ -58,6 +58,14 @@ void check_time_stepping_settings(const Method& m) {
   if (!(m.contact_damping_ratio >= 0 && std::isfinite(m.contact_damping_ratio)))
     refuse("contact-damping-ratio", m.contact_damping_ratio, "[0, inf)");
   if (!(m.push_max > 0 && std::isfinite(m.push_max))) refuse("push-max", m.push_max, "(0, inf)");
+  // Event-driven guards: a rest speed <= 0 never stops a Zeno cascade (the exact flight then ran
+  // into the record limit at the Zeno time, a work limit that did not name the cause).
+  if (!(m.rest_speed > 0 && std::isfinite(m.rest_speed))) refuse("rest-speed", m.rest_speed, "(0, inf)");
+  if (!std::isfinite(m.rest_height)) refuse("rest-height", m.rest_height, "(-inf, inf) (< 0: the default)");
+  if (!(m.min_event_spacing >= 0 && std::isfinite(m.min_event_spacing)))
+    refuse("min-event-spacing", m.min_event_spacing, "[0, inf)");
+  if (m.max_events < 1) refuse("max-events", static_cast<double>(m.max_events), "[1, inf)");
+  if (m.persistence < 1) refuse("persistence", m.persistence, "[1, inf)");
 }
 
 }  // namespace
@@ -76,7 +84,7 @@ RunResult solve(const Dynamics& scene, const Method& method, const SolveOptions&
   if (info.fixed_step && !(std::isfinite(method.dt) && method.dt > 0))
     throw std::invalid_argument(
         fmt::format("--dt: value '{}' is out of range; accepted range (0, inf)", method.dt));
-  check_time_stepping_settings(method);
+  check_method_settings(method);
   RunResult r = info.run(scene, method, options);
   r.method = info.name;
   return r;

@@ -175,7 +175,7 @@ TEST(TimeStepping, SweepsAndSubStepsCountAgainstTheWorkBound) {
   }
 }
 
-// The time-stepping settings are checked by solve(), by name, whatever method reads them.
+// The methods' settings are checked by solve(), by name, whatever method reads them.
 TEST(TimeStepping, SettingsOutOfRangeAreRefusedByName) {
   const auto ball = make_scene("ball-drop");
   auto refusal = [&](const Method& m) {
@@ -192,5 +192,11 @@ TEST(TimeStepping, SettingsOutOfRangeAreRefusedByName) {
   EXPECT_EQ(refusal({.name = "moreau-jean", .theta = 1.5}).rfind("--theta: value '1.5'", 0), 0u);
   EXPECT_EQ(refusal({.name = "sequential-impulses", .erp = -0.1}).rfind("--erp: value '-0.1'", 0), 0u);
   EXPECT_EQ(refusal({.name = "soft-step", .push_max = 0}).rfind("--push-max: value '0'", 0), 0u);
+  // The event-driven guards too: a rest speed <= 0 never stops a Zeno cascade, and the exact
+  // flight ran into the record limit at the Zeno time instead of naming the setting.
+  EXPECT_EQ(refusal({.name = "event-exact", .rest_speed = 0}).rfind("--rest-speed: value '0'", 0), 0u);
+  EXPECT_EQ(refusal({.name = "event-ode", .rest_speed = -1}).rfind("--rest-speed: value '-1'", 0), 0u);
+  EXPECT_EQ(refusal({.name = "event-ode", .max_events = 0}).rfind("--max-events: value '0'", 0), 0u);
+  EXPECT_EQ(refusal({.name = "game-euler", .persistence = 0}).rfind("--persistence: value '0'", 0), 0u);
   EXPECT_EQ(refusal({.name = "soft-step"}), "accepted");
 }

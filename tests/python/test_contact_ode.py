@@ -132,6 +132,10 @@ def test_time_stepping_settings_and_types_are_checked():
         co.solve("ball-drop", "moreau-jean", theta=2.0)
     with pytest.raises(ValueError, match="iterations: value 'many' has the wrong type"):
         co.solve("ball-drop", "sequential-impulses", iterations="many")
+    # Accepted before, though the command line refuses it: the exact flight then ran the Zeno
+    # cascade into the record limit.
+    with pytest.raises(ValueError, match=r"rest_speed: value '0' is out of range; accepted range \(0, inf\)"):
+        co.solve("ball-drop", "event-exact", rest_speed=0.0, t_end=5.0)
 
 
 def test_closed_forms_refuse_arguments_outside_their_domain():
