@@ -71,42 +71,35 @@ TEST(Registries, UnknownNamesAndParametersAreRefusedWithWhatIsAccepted) {
             std::string::npos);
   EXPECT_NE(refusal([] { law_info("spring"); }).find("--law: value 'spring' is not one of: hooke"),
             std::string::npos);
-  EXPECT_NE(refusal([] {
-              make_scene("ball-drop", {{"height", 1.0}});
-            }).find("parameter 'height' is not one of: m, g, h0"),
-            std::string::npos);
-  EXPECT_NE(refusal([] { make_scene("snooker", {}, "hooke"); }).find("fixes its own contact law"),
-            std::string::npos);
-  EXPECT_NE(refusal([] {
-              make_scene("ball-chain", {{"n", 2.5}});
-            }).find("'n' = 2.5 is out of range; accepted range whole numbers in [2, 1e+09)"),
-            std::string::npos);
-  // A ball count's range is its entry's, as every parameter's: listed by scenes(), checked by resolve().
-  EXPECT_NE(refusal([] {
-              make_scene("ball-chain", {{"n", 1.0}});
-            }).find("accepted range whole numbers in [2, 1e+09)"),
-            std::string::npos);
-  EXPECT_NE(refusal([] {
-              make_scene("ball-stack", {{"n", 1e7}});
-            }).find("accepted range whole numbers in [1, 1e+07)"),
-            std::string::npos);
-  // Every parameter has a range: a massless ball, a restitution above one, a NaN anywhere.
-  EXPECT_NE(refusal([] {
-              make_scene("ball-drop", {{"m", 0.0}});
-            }).find("ball-drop: parameter 'm' = 0 is out of range; accepted range (0, inf)"),
-            std::string::npos);
-  EXPECT_NE(refusal([] {
-              make_scene("ball-stack", {{"e", 1.5}});
-            }).find("accepted range [0, 1]"),
-            std::string::npos);
-  EXPECT_NE(refusal([] {
-              make_scene("snooker", {{"radius", std::nan("")}});
-            }).find("'radius' = nan"),
-            std::string::npos);
-  EXPECT_NE(refusal([] {
-              make_scene("spring-mass", {{"x0", INFINITY}});
-            }).find("(-inf, inf)"),
-            std::string::npos);
+  // Scenes refused at construction: what is given, and what the message must say.
+  struct BadScene {
+    std::string scene;
+    ParameterValues given;
+    std::string law, says;
+  };
+  const BadScene bad_scenes[] = {
+      {"ball-drop", {{"height", 1.0}}, "", "parameter 'height' is not one of: m, g, h0"},
+      {"snooker", {}, "hooke", "fixes its own contact law"},
+      {"ball-chain",
+       {{"n", 2.5}},
+       "",
+       "'n' = 2.5 is out of range; accepted range whole numbers in [2, 1e+09)"},
+      // A ball count's range is its entry's, as every parameter's: listed by scenes(), checked by resolve().
+      {"ball-chain", {{"n", 1.0}}, "", "accepted range whole numbers in [2, 1e+09)"},
+      {"ball-stack", {{"n", 1e7}}, "", "accepted range whole numbers in [1, 1e+07)"},
+      // Every parameter has a range: a massless ball, a restitution above one, a NaN anywhere.
+      {"ball-drop",
+       {{"m", 0.0}},
+       "",
+       "ball-drop: parameter 'm' = 0 is out of range; accepted range (0, inf)"},
+      {"ball-stack", {{"e", 1.5}}, "", "accepted range [0, 1]"},
+      {"snooker", {{"radius", std::nan("")}}, "", "'radius' = nan"},
+      {"spring-mass", {{"x0", INFINITY}}, "", "(-inf, inf)"},
+  };
+  for (const auto& b : bad_scenes) {
+    const std::string why = refusal([&] { make_scene(b.scene, b.given, b.law); });
+    EXPECT_NE(why.find(b.says), std::string::npos) << b.scene << ": " << why;
+  }
   const auto ball = make_scene("ball-drop");
   EXPECT_NE(refusal([&] { solve(*ball, {.name = "game-symplectic", .dt = 0.0}); }).find("--dt: value '0'"),
             std::string::npos);
