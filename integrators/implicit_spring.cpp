@@ -32,7 +32,8 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
   ContactModes modes;
   SparseMatrix J;
   Eigen::MatrixXd A(n, n);
-  Vector z(n), f(n), fp(n), G(n), zp(n);
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu(n);  // sized once: a step's iterations allocate nothing
+  Vector z(n), f(n), fp(n), G(n), zp(n), dz(n);
   bool frozen = false;
   auto rhs_at = [&](double t, const Vector& x, Vector& out) {
     if (!frozen) geo.modes_from_state(nc, x, modes);
@@ -48,14 +49,15 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
       G = z - y - h * f;
       if (scene.has_jacobian()) {
         scene.jacobian(t + h, z, modes, J);
-        A = -h * Eigen::MatrixXd(J);
+        A = J;
+        A *= -h;
       } else {  // difference quotients, column by column
         for (Eigen::Index j = 0; j < n; ++j) {
-          const double dz = 1e-7 * std::max(1.0, std::abs(z[j]));
+          const double dj = 1e-7 * std::max(1.0, std::abs(z[j]));
           zp = z;
-          zp[j] += dz;
+          zp[j] += dj;
           rhs_at(t + h, zp, fp);
-          A.col(j) = -h * (fp - f) / dz;
+          A.col(j) = -h * (fp - f) / dj;
         }
         stats.rhs_evals += n;
         if (!frozen) geo.modes_from_state(nc, z, modes);
@@ -64,7 +66,7 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
       stats.jac_evals += 1;
       stats.linear_setups += 1;
       stats.newton_iters += 1;
-      const Vector dz = A.partialPivLu().solve(G);
+      dz = lu.compute(A).solve(G);
       z -= dz;
       if (dz.lpNorm<Eigen::Infinity>() <= kNewtonTolerance * (1 + z.lpNorm<Eigen::Infinity>())) break;
       if (it == kMaxNewton || !z.allFinite())

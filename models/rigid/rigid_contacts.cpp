@@ -11,16 +11,16 @@ Vec3 lever(const RigidBody& body, const Vec3& point) {
   return body.rotates() ? Vec3(point - body.position) : Vec3::Zero();
 }
 
-RigidContact make(const std::vector<RigidBody>& bodies, std::size_t a, std::size_t b, const Vec3& point,
+RigidContact make(std::span<const RigidBody> bodies, std::size_t a, std::size_t b, const Vec3& point,
                   const Vec3& normal, double penetration) {
   return {a, b, point, normal, penetration, lever(bodies[a], point), lever(bodies[b], point)};
 }
 
-RigidContact flip(const std::vector<RigidBody>& bodies, RigidContact c) {
+RigidContact flip(std::span<const RigidBody> bodies, RigidContact c) {
   return make(bodies, c.b, c.a, c.point, -c.normal, c.penetration);
 }
 
-RigidContact sphere_sphere(const std::vector<RigidBody>& bodies, std::size_t a, std::size_t b) {
+RigidContact sphere_sphere(std::span<const RigidBody> bodies, std::size_t a, std::size_t b) {
   const double ra = std::get<Sphere>(bodies[a].shape).radius, rb = std::get<Sphere>(bodies[b].shape).radius;
   const Vec3 d = bodies[b].position - bodies[a].position;
   const double dist = d.norm();
@@ -30,7 +30,7 @@ RigidContact sphere_sphere(const std::vector<RigidBody>& bodies, std::size_t a, 
 }
 
 // Sphere a against plane b: the normal points from the sphere into the plane's solid side.
-RigidContact sphere_plane(const std::vector<RigidBody>& bodies, std::size_t a, std::size_t b) {
+RigidContact sphere_plane(std::span<const RigidBody> bodies, std::size_t a, std::size_t b) {
   const double r = std::get<Sphere>(bodies[a].shape).radius;
   const Plane& p = std::get<Plane>(bodies[b].shape);
   const double height = p.normal.dot(bodies[a].position) - p.offset;
@@ -39,7 +39,7 @@ RigidContact sphere_plane(const std::vector<RigidBody>& bodies, std::size_t a, s
 }
 
 // Sphere a against cuboid b, from the box's closest point to the sphere's centre.
-RigidContact sphere_cuboid(const std::vector<RigidBody>& bodies, std::size_t a, std::size_t b) {
+RigidContact sphere_cuboid(std::span<const RigidBody> bodies, std::size_t a, std::size_t b) {
   const RigidBody& box = bodies[b];
   const Vec3 h = std::get<Cuboid>(box.shape).half_extents;
   const double r = std::get<Sphere>(bodies[a].shape).radius;
@@ -68,7 +68,7 @@ RigidContact sphere_cuboid(const std::vector<RigidBody>& bodies, std::size_t a, 
 }
 
 // Vertex k of cuboid a against plane b.
-RigidContact cuboid_plane(const std::vector<RigidBody>& bodies, std::size_t a, std::size_t b, std::size_t k) {
+RigidContact cuboid_plane(std::span<const RigidBody> bodies, std::size_t a, std::size_t b, std::size_t k) {
   const Plane& p = std::get<Plane>(bodies[b].shape);
   const Vec3 v = vertex(bodies[a], static_cast<int>(k));
   const double pen = p.offset - p.normal.dot(v);
@@ -98,7 +98,7 @@ std::size_t candidate_count(const RigidBody& a, const RigidBody& b) {
   return 0;                                                                      // not needed
 }
 
-RigidContact contact_candidate(const std::vector<RigidBody>& bodies, std::size_t a, std::size_t b,
+RigidContact contact_candidate(std::span<const RigidBody> bodies, std::size_t a, std::size_t b,
                                std::size_t k) {
   const Shape &A = bodies[a].shape, &B = bodies[b].shape;
   const bool as = std::holds_alternative<Sphere>(A), bs = std::holds_alternative<Sphere>(B);
@@ -114,7 +114,7 @@ RigidContact contact_candidate(const std::vector<RigidBody>& bodies, std::size_t
   throw std::invalid_argument("contact_candidate: no contact between these shapes");
 }
 
-std::vector<RigidContact> contact_candidates(const std::vector<RigidBody>& bodies, std::size_t a,
+std::vector<RigidContact> contact_candidates(std::span<const RigidBody> bodies, std::size_t a,
                                              std::size_t b) {
   std::vector<RigidContact> out;
   for (std::size_t k = 0; k < candidate_count(bodies[a], bodies[b]); ++k)

@@ -4,7 +4,7 @@ namespace contact::rigid {
 
 double pair_restitution(const RigidBody& a, const RigidBody& b) { return a.elasticity * b.elasticity; }
 
-void project(std::vector<RigidBody>& bodies, const RigidContact& c, ProjectionShare share) {
+void project(std::span<RigidBody> bodies, const RigidContact& c, ProjectionShare share) {
   if (c.penetration <= 0) return;
   RigidBody &A = bodies[c.a], &B = bodies[c.b];
   const bool a_moves = A.inverse_mass > 0, b_moves = B.inverse_mass > 0;
@@ -18,11 +18,11 @@ void project(std::vector<RigidBody>& bodies, const RigidContact& c, ProjectionSh
   B.position += c.normal * (c.penetration * (1.0 - share_a));
 }
 
-double normal_velocity(const std::vector<RigidBody>& bodies, const RigidContact& c) {
+double normal_velocity(std::span<const RigidBody> bodies, const RigidContact& c) {
   return (bodies[c.b].point_velocity(c.r_b) - bodies[c.a].point_velocity(c.r_a)).dot(c.normal);
 }
 
-double normal_inverse_mass(const std::vector<RigidBody>& bodies, const RigidContact& c) {
+double normal_inverse_mass(std::span<const RigidBody> bodies, const RigidContact& c) {
   const RigidBody &A = bodies[c.a], &B = bodies[c.b];
   const Mat3 Ia = A.world_inverse_inertia(), Ib = B.world_inverse_inertia();
   const Vec3& n = c.normal;
@@ -30,7 +30,7 @@ double normal_inverse_mass(const std::vector<RigidBody>& bodies, const RigidCont
   return A.inverse_mass + B.inverse_mass + angular;
 }
 
-void apply_normal_impulse(std::vector<RigidBody>& bodies, const RigidContact& c, double J) {
+void apply_normal_impulse(std::span<RigidBody> bodies, const RigidContact& c, double J) {
   RigidBody &A = bodies[c.a], &B = bodies[c.b];
   const Vec3 Jn = J * c.normal;
   A.velocity -= A.inverse_mass * Jn;
@@ -39,7 +39,7 @@ void apply_normal_impulse(std::vector<RigidBody>& bodies, const RigidContact& c,
   B.angular_velocity += B.world_inverse_inertia() * c.r_b.cross(Jn);
 }
 
-void apply_normal_displacement(std::vector<RigidBody>& bodies, const RigidContact& c, double d) {
+void apply_normal_displacement(std::span<RigidBody> bodies, const RigidContact& c, double d) {
   const Vec3 dn = d * c.normal;
   auto turn = [](RigidBody& body, const Vec3& angle) {
     const Quat dq(0.0, angle.x(), angle.y(), angle.z());
@@ -55,7 +55,7 @@ void apply_normal_displacement(std::vector<RigidBody>& bodies, const RigidContac
   turn(B, turn_b);
 }
 
-double apply_impulse(std::vector<RigidBody>& bodies, const RigidContact& c, double e) {
+double apply_impulse(std::span<RigidBody> bodies, const RigidContact& c, double e) {
   const double vn = normal_velocity(bodies, c);
   if (vn >= 0) return 0.0;
   const double denom = normal_inverse_mass(bodies, c);

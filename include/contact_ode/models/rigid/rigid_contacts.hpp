@@ -12,6 +12,7 @@
 // point - centre, and zero for bodies that do not rotate (axis-aligned boxes, static bodies).
 #include "contact_ode/models/rigid/rigid_body.hpp"
 
+#include <span>
 #include <vector>
 
 namespace contact::rigid {
@@ -30,12 +31,11 @@ std::size_t candidate_count(const RigidBody& a, const RigidBody& b);
 
 // Candidate k < candidate_count of bodies a and b (indices into `bodies`): what one contact's
 // queries need, without computing the pair's others.
-RigidContact contact_candidate(const std::vector<RigidBody>& bodies, std::size_t a, std::size_t b,
+RigidContact contact_candidate(std::span<const RigidBody> bodies, std::size_t a, std::size_t b,
                                std::size_t k);
 
 // Every candidate between bodies a and b; empty for pairs no scene needs.
-std::vector<RigidContact> contact_candidates(const std::vector<RigidBody>& bodies, std::size_t a,
-                                             std::size_t b);
+std::vector<RigidContact> contact_candidates(std::span<const RigidBody> bodies, std::size_t a, std::size_t b);
 
 // World position of a cuboid's vertex i in [0, 8) (bit j of i: the + side along axis j), and all eight.
 Vec3 vertex(const RigidBody& cuboid, int i);

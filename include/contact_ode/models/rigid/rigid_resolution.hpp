@@ -16,17 +16,17 @@ namespace contact::rigid {
 enum class ProjectionShare { Equal, InverseMass };
 
 double pair_restitution(const RigidBody& a, const RigidBody& b);
-void project(std::vector<RigidBody>& bodies, const RigidContact& c, ProjectionShare share);
+void project(std::span<RigidBody> bodies, const RigidContact& c, ProjectionShare share);
 // Returns the impulse magnitude J (0 when the contact does not approach).
-double apply_impulse(std::vector<RigidBody>& bodies, const RigidContact& c, double e);
+double apply_impulse(std::span<RigidBody> bodies, const RigidContact& c, double e);
 // The contact's normal inverse mass m_a^-1 + m_b^-1 + the angular terms above [1/kg].
-double normal_inverse_mass(const std::vector<RigidBody>& bodies, const RigidContact& c);
+double normal_inverse_mass(std::span<const RigidBody> bodies, const RigidContact& c);
 // The impulse J n at the contact: b gets +J n, a gets -J n, linear and angular.
-void apply_normal_impulse(std::vector<RigidBody>& bodies, const RigidContact& c, double J);
+void apply_normal_impulse(std::span<RigidBody> bodies, const RigidContact& c, double J);
 // The same map on the positions (XPBD): b moves by m_b^-1 d n and turns by I_b^-1 (r_b x d n),
 // a the opposite; orientations turn by that small rotation and are renormalised.
-void apply_normal_displacement(std::vector<RigidBody>& bodies, const RigidContact& c, double d);
+void apply_normal_displacement(std::span<RigidBody> bodies, const RigidContact& c, double d);
 // The relative normal velocity v_r.n at the contact (< 0 approaching).
-double normal_velocity(const std::vector<RigidBody>& bodies, const RigidContact& c);
+double normal_velocity(std::span<const RigidBody> bodies, const RigidContact& c);
 
 }  // namespace contact::rigid

@@ -19,6 +19,7 @@
 #include "contact_ode/models/mechanical_system.hpp"
 #include "contact_ode/models/rigid/rigid_contacts.hpp"
 
+#include <array>
 #include <functional>
 
 namespace contact::rigid {
@@ -85,7 +86,7 @@ class RigidScene final : public MechanicalSystem, public NormalImpulses {
   // one contact copies two bodies, not the scene: the root functions ask about every contact, and
   // copying every body for each made a scene's root evaluation cost O(bodies x contacts).
   struct Local {
-    std::vector<RigidBody> bodies;
+    std::array<RigidBody, 2> bodies;  // on the stack: these queries run at every step and root check
     RigidContact contact;
   };
   Local local(std::size_t i, ConstVectorRef y) const;
