@@ -3,8 +3,9 @@
 // (a link and a sentence per table and figure) and study.json (what ran, how long it took); after
 // --only, both keep the other experiments of an earlier run whose outputs are still complete.
 // --tiny runs the smoke-test arguments instead of the defaults. Started by mpirun (or srun) it
-// deals the experiments out over the ranks, experiment j to rank j mod size; each writes its own
-// folders, and rank 0 gathers what ran and writes index.md and study.json, as a serial run does.
+// deals the experiments out over the ranks, costliest first (the manifest's cpu_s), the j-th to rank
+// j mod size; each writes its own folders, and rank 0 gathers what ran and writes index.md and
+// study.json, as a serial run does.
 // --jobs N runs N experiments at a time (default: one per core), each child's output kept in a
 // log and printed whole when it ends, so that two experiments' lines never interleave.
 // Exit codes: 0, 1 an experiment failed or left an output missing, 2 bad input.
@@ -65,20 +66,27 @@ int program(int argc, char** argv) {
   const auto start = std::chrono::steady_clock::now();
   nlohmann::json record = {{"tiny", tiny}, {"experiments", nlohmann::json::array()}};
   nlohmann::json mine = nlohmann::json::array();  // this rank's runs: {"index", "record", "ok"}
-  std::vector<std::size_t> queue;                 // this rank's experiments, in the manifest's order
-  std::size_t dealt = 0;
-  for (std::size_t index = 0; index < manifest.experiments.size(); ++index) {
-    const auto& e = manifest.experiments[index];
-    if (!only_list.empty() && std::find(only_list.begin(), only_list.end(), e.name) == only_list.end())
-      continue;
-    if (static_cast<int>(dealt++ % static_cast<std::size_t>(ranks.size())) == ranks.rank())
-      queue.push_back(index);
-  }
+  // The chosen experiments, costliest first (longest-processing-time order: the last job to start
+  // is a short one, so the jobs end together), dealt round-robin over the ranks.
+  std::vector<std::size_t> chosen, queue;  // queue: this rank's
+  for (std::size_t index = 0; index < manifest.experiments.size(); ++index)
+    if (only_list.empty() ||
+        std::find(only_list.begin(), only_list.end(), manifest.experiments[index].name) != only_list.end())
+      chosen.push_back(index);
+  std::stable_sort(chosen.begin(), chosen.end(), [&](std::size_t a, std::size_t b) {
+    return manifest.experiments[a].cpu_s > manifest.experiments[b].cpu_s;
+  });
+  for (std::size_t j = 0; j < chosen.size(); ++j)
+    if (static_cast<int>(j % static_cast<std::size_t>(ranks.size())) == ranks.rank())
+      queue.push_back(chosen[j]);
   const bool quiet = jobs > 1;  // children's output to logs, printed whole
   const ScratchDir logs_dir{quiet ? make_scratch_dir("contact_study")
                                   : fs::path()};  // removed however it ends
   const fs::path& logs = logs_dir.path;
   std::mutex lock;  // guards `mine` and the terminal
+  // Each experiment is one process on one core: OpenBLAS's worker threads, which spin between calls
+  // (sched_yield), would take CPU from the other jobs. A user's own setting stands.
+  setenv("OPENBLAS_NUM_THREADS", "1", 0);
   run_parallel(queue.size(), jobs, [&](std::size_t q) {
     const std::size_t index = queue[q];
     const auto& e = manifest.experiments[index];

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -20,7 +21,13 @@ StudyManifest load_study_manifest(const fs::path& path) {
     const auto j = nlohmann::ordered_json::parse(in);  // ordered: outputs keep the manifest's order
     StudyManifest m{j.at("title").get<std::string>(), {}};
     for (const auto& e : j.at("experiments")) {
-      StudyExperiment x{e.at("name"), e.at("exe"), e.at("args"), e.at("tiny"), e.at("summary"), {}};
+      StudyExperiment x{e.at("name"),    e.at("exe"), e.at("args"),         e.at("tiny"),
+                        e.at("summary"), {},          e.value("cpu_s", 0.0)};
+      if (!std::isfinite(x.cpu_s) || x.cpu_s < 0)
+        throw std::runtime_error(
+            fmt::format("'{}': experiment '{}': cpu_s: value '{}' is out of range; "
+                        "accepted range [0, inf)",
+                        path.string(), x.name, x.cpu_s));
       for (const auto& [file, o] : e.at("outputs").items())
         x.outputs.push_back({file, o.value("columns", std::vector<std::string>{}), o.at("about")});
       m.experiments.push_back(std::move(x));

@@ -22,6 +22,9 @@ struct StudyExperiment {
   std::vector<std::string> args, tiny;
   std::string summary;
   std::vector<StudyOutput> outputs;
+  // CPU seconds of its default run on the reference machine: the study starts the costliest first
+  // so that its jobs end together. A scheduling hint (a stale one costs time, never a result).
+  double cpu_s = 0.0;
 };
 
 struct StudyManifest {

@@ -76,6 +76,41 @@ TEST_F(StudyCli, BadInputIsRefused) {
                             });
 }
 
+// The study started its experiments in the manifest's order, so that its two longest
+// (convergence_dt, work_precision, listed late) ran last and one core idled for a second at the
+// end. It starts the costliest first now (the manifest's cpu_s), and still lists them in the
+// manifest's order. One job at a time shows the start order; a hint out of range is refused.
+TEST_F(StudyCli, TheCostliestExperimentStartsFirstAndTheIndexKeepsTheManifestOrder) {
+  auto manifest = nlohmann::json::parse(slurp(STUDY_MANIFEST));
+  nlohmann::json advisor;
+  for (const auto& e : manifest.at("experiments"))
+    if (e.at("name") == "contact_advisor") advisor = e;
+  ASSERT_FALSE(advisor.is_null());
+  auto write = [&](double cheap_s, double dear_s) {
+    nlohmann::json cheap = advisor, dear = advisor;
+    cheap["name"] = "cheap";
+    cheap["cpu_s"] = cheap_s;
+    dear["name"] = "dear";
+    dear["cpu_s"] = dear_s;
+    manifest["experiments"] = {cheap, dear};
+    std::ofstream(dir_ / "m.json") << manifest.dump();
+  };
+  write(0.1, 9.0);
+  const Outcome r = run(STUDY_EXE, "--tiny --jobs 1 --manifest m.json --out s");
+  ASSERT_EQ(r.code, 0) << r.err;
+  ASSERT_NE(r.out.find("== cheap =="), std::string::npos) << r.out;
+  EXPECT_LT(r.out.find("== dear =="), r.out.find("== cheap ==")) << r.out;
+  const std::string index = slurp(dir_ / "s" / "index.md");
+  ASSERT_NE(index.find("## dear"), std::string::npos) << index;
+  EXPECT_LT(index.find("## cheap"), index.find("## dear")) << index;
+  fs::remove_all(dir_ / "s");
+  write(-1.0, 9.0);
+  const Outcome bad = run(STUDY_EXE, "--tiny --manifest m.json --out s");
+  EXPECT_EQ(bad.code, 2);
+  for (const char* part : {"--manifest", "'cheap'", "cpu_s", "'-1'", "[0, inf)"})
+    EXPECT_NE(bad.err.find(part), std::string::npos) << part << " in: " << bad.err;
+}
+
 // Each experiment is a recipe: the skeleton (experiment.hpp) and the libraries hold everything
 // shared, so that no experiment's file grows past 150 lines.
 TEST(StudyManifestTest, EveryExperimentIsAShortRecipe) {
