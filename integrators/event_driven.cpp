@@ -83,7 +83,7 @@ class Impacts {
                       last_[i] == -kInf ? "the contact's first" : "not decaying"));
     const bool slow = unresolved || v_out < opt_.rest_speed || low;
     const bool crowded = t - last_[i] < opt_.min_event_spacing;
-    rec_.contact_end(i, t, model_.gap_rate(i, y));
+    rec_.contact_end(i, t, v_out);
     if (slow || crowded) {
       model_.settle(i, y);
       modes_[i] = ContactMode::Resting;
