@@ -94,7 +94,8 @@ int program(int argc, char** argv) {
   app.add("--g", o.g, "gravity [m/s^2]", cli::non_negative());
   app.add("--h0", o.h0, "initial height [m]", cli::positive());
   app.add("--v0", o.v0, "initial vertical velocity [m/s], negative downwards", cli::finite());
-  app.add("--dt", o.dt, "fixed step of the game methods [s]", cli::positive());
+  app.add("--dt", o.dt, "fixed step of the game methods and of a fixed-step --integrator [s]",
+          cli::positive());
   app.add("--rtol", o.rtol, "relative tolerance of adaptive integrators", cli::real_in(0, 1, true, true));
   app.add("--atol", o.atol,
           "absolute tolerance of adaptive integrators [m, m/s]; 0: 1e-10 per metre of the drop's height "

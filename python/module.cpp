@@ -91,20 +91,32 @@ void check_integrator(const Method& m) {
 
 // A setting the method does not read changes nothing: say so, as SciPy's solve_ivp does, rather
 // than let a caller believe it took effect (a loop over methods may pass every setting to each).
-void warn_of_ignored_settings(const std::string& method, const py::kwargs& options) {
-  const auto& reads = method_info(method).settings;
-  std::vector<std::string> ignored;
+// Tolerances are read by the method but not by a fixed-step integrator (no error control).
+void warn_of_ignored_settings(const Method& m, const py::kwargs& options) {
+  const auto& reads = method_info(m.name).settings;
+  const bool fixed_integrator = std::find(reads.begin(), reads.end(), "rtol") != reads.end() &&
+                                !integrator_info(m.integrator.method).adaptive;
+  std::vector<std::string> ignored, tolerances;
   for (const auto& [key, value] : options) {
     const auto name = key.cast<std::string>();
     if (method_settings().count(name) && std::find(reads.begin(), reads.end(), name) == reads.end())
       ignored.push_back(name);
+    else if (fixed_integrator && (name == "rtol" || name == "atol"))
+      tolerances.push_back(name);
   }
-  if (ignored.empty()) return;
-  const std::string message =
-      fmt::format("{} {} no effect on method '{}'; its settings: {}", fmt::join(ignored, ", "),
-                  ignored.size() == 1 ? "has" : "have", method,
-                  reads.empty() ? "none" : fmt::format("{}", fmt::join(reads, ", ")));
-  if (PyErr_WarnEx(PyExc_UserWarning, message.c_str(), 2) != 0) throw py::error_already_set();
+  std::string message;
+  if (!ignored.empty())
+    message = fmt::format("{} {} no effect on method '{}'; its settings: {}", fmt::join(ignored, ", "),
+                          ignored.size() == 1 ? "has" : "have", m.name,
+                          reads.empty() ? "none" : fmt::format("{}", fmt::join(reads, ", ")));
+  if (!tolerances.empty())
+    message += fmt::format(
+        "{}{} {} no effect with the fixed-step integrator '{}' (no error control; its "
+        "accuracy is set by dt)",
+        message.empty() ? "" : "; ", fmt::join(tolerances, ", "), tolerances.size() == 1 ? "has" : "have",
+        m.integrator.method);
+  if (!message.empty() && PyErr_WarnEx(PyExc_UserWarning, message.c_str(), 2) != 0)
+    throw py::error_already_set();
 }
 
 RunResult run(const std::string& scene, const std::string& method, const std::string& law,
@@ -139,7 +151,7 @@ RunResult run(const std::string& scene, const std::string& method, const std::st
     }
   }
   check_integrator(m);
-  warn_of_ignored_settings(m.name, options);
+  warn_of_ignored_settings(m, options);
   const auto model = make_scene(scene, values, law);
   RunResult r = solve(*model, m, span);
   if (!r.ok()) {

@@ -183,6 +183,15 @@ def test_a_setting_the_method_ignores_is_a_warning():
         warnings.simplefilter("error")
         co.solve("ball-drop", "sequential-impulses", iterations=3, erp=0.1, dt=1e-3, t_end=0.1)
         co.solve("ball-drop", "event-ode", rtol=1e-8, rest_speed=1e-6, t_end=0.1)
+        co.solve("ball-drop", "penalty", integrator="rk4", dt=1e-4, t_end=0.1)
+    # A fixed-step integrator has no error control: the tolerances of a penalty or event-driven
+    # run under one changed nothing, silently (the same run with and without them).
+    with pytest.warns(UserWarning, match="rtol, atol have no effect with the fixed-step integrator 'rk4'"):
+        loose = co.solve("ball-drop", "penalty", integrator="rk4", dt=1e-4, rtol=1e-12, atol=1e-14, t_end=0.1)
+    plain = co.solve("ball-drop", "penalty", integrator="rk4", dt=1e-4, t_end=0.1)
+    assert np.array_equal(loose.y, plain.y)
+    with pytest.warns(UserWarning, match="rtol has no effect with the fixed-step integrator 'velocity-verlet'"):
+        co.solve("ball-drop", "event-ode", integrator="velocity-verlet", dt=1e-3, rtol=1e-9, t_end=0.1)
     # Every setting a method lists is a keyword solve() accepts.
     with pytest.raises(ValueError) as info:
         co.solve("ball-drop", "penalty", bogus=1)
