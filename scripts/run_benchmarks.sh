@@ -16,7 +16,7 @@ build_type=$(grep -E '^CMAKE_BUILD_TYPE:' build/CMakeCache.txt | cut -d= -f2)
 
 out=build/benchmark-results
 mkdir -p "$out"
-echo "run_benchmarks: integrators (P1 nine times each, the k sweep, the apex target, exact bounces)"
+echo "run_benchmarks: integrators (P1 and the exact bounces nine times each, the k sweep, the apex target)"
 build/benchmarks/bench_integrators --benchmark_out="$out/integrators.json" --benchmark_out_format=json >/dev/null
 echo "run_benchmarks: the chain, N = 10 ... 1e5, five times each"
 build/benchmarks/bench_chain --benchmark_out="$out/chain.json" --benchmark_out_format=json >/dev/null
