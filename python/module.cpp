@@ -91,11 +91,13 @@ void check_integrator(const Method& m) {
 
 // A setting the method does not read changes nothing: say so, as SciPy's solve_ivp does, rather
 // than let a caller believe it took effect (a loop over methods may pass every setting to each).
-// Tolerances are read by the method but not by a fixed-step integrator (no error control).
+// Tolerances are read by the method but not by an integrator at a fixed step: a fixed-step one, or
+// an explicit adaptive one given dt (no error control; an implicit one still reads them for Newton).
 void warn_of_ignored_settings(const Method& m, const py::kwargs& options) {
   const auto& reads = method_info(m.name).settings;
+  const IntegratorInfo& info = integrator_info(m.integrator.method);
   const bool fixed_integrator = std::find(reads.begin(), reads.end(), "rtol") != reads.end() &&
-                                !integrator_info(m.integrator.method).adaptive;
+                                (!info.adaptive || (m.integrator.dt > 0 && !info.implicit));
   std::vector<std::string> ignored, tolerances;
   for (const auto& [key, value] : options) {
     const auto name = key.cast<std::string>();
@@ -111,7 +113,7 @@ void warn_of_ignored_settings(const Method& m, const py::kwargs& options) {
                           reads.empty() ? "none" : fmt::format("{}", fmt::join(reads, ", ")));
   if (!tolerances.empty())
     message += fmt::format(
-        "{}{} {} no effect with the fixed-step integrator '{}' (no error control; its "
+        "{}{} {} no effect on integrator '{}' at a fixed step (no error control; its "
         "accuracy is set by dt)",
         message.empty() ? "" : "; ", fmt::join(tolerances, ", "), tolerances.size() == 1 ? "has" : "have",
         m.integrator.method);

@@ -184,14 +184,20 @@ def test_a_setting_the_method_ignores_is_a_warning():
         co.solve("ball-drop", "sequential-impulses", iterations=3, erp=0.1, dt=1e-3, t_end=0.1)
         co.solve("ball-drop", "event-ode", rtol=1e-8, rest_speed=1e-6, t_end=0.1)
         co.solve("ball-drop", "penalty", integrator="rk4", dt=1e-4, t_end=0.1)
-    # A fixed-step integrator has no error control: the tolerances of a penalty or event-driven
-    # run under one changed nothing, silently (the same run with and without them).
-    with pytest.warns(UserWarning, match="rtol, atol have no effect with the fixed-step integrator 'rk4'"):
-        loose = co.solve("ball-drop", "penalty", integrator="rk4", dt=1e-4, rtol=1e-12, atol=1e-14, t_end=0.1)
-    plain = co.solve("ball-drop", "penalty", integrator="rk4", dt=1e-4, t_end=0.1)
-    assert np.array_equal(loose.y, plain.y)
-    with pytest.warns(UserWarning, match="rtol has no effect with the fixed-step integrator 'velocity-verlet'"):
+    # At a fixed step an explicit integrator has no error control: the tolerances of a penalty or
+    # event-driven run under one changed nothing, silently (the same run with and without them).
+    for integrator in ["rk4", "gsl-rk8pd", "arkode-erk"]:
+        with pytest.warns(UserWarning, match=f"rtol, atol have no effect on integrator '{integrator}' at a fixed step"):
+            tight = co.solve("ball-drop", "penalty", integrator=integrator, dt=1e-4, rtol=1e-12, atol=1e-14,
+                             t_end=0.1)
+        plain = co.solve("ball-drop", "penalty", integrator=integrator, dt=1e-4, t_end=0.1)
+        assert np.array_equal(tight.y, plain.y), integrator
+    with pytest.warns(UserWarning, match="rtol has no effect on integrator 'velocity-verlet' at a fixed step"):
         co.solve("ball-drop", "event-ode", integrator="velocity-verlet", dt=1e-3, rtol=1e-9, t_end=0.1)
+    with warnings.catch_warnings():  # adaptive, and implicit at a fixed step (Newton reads them)
+        warnings.simplefilter("error")
+        co.solve("ball-drop", "penalty", integrator="gsl-rk8pd", rtol=1e-9, t_end=0.1)
+        co.solve("ball-drop", "penalty", integrator="arkode-dirk", dt=1e-4, rtol=1e-9, t_end=0.1)
     # Every setting a method lists is a keyword solve() accepts.
     with pytest.raises(ValueError) as info:
         co.solve("ball-drop", "penalty", bogus=1)
