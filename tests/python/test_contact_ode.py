@@ -186,7 +186,7 @@ def test_a_setting_the_method_ignores_is_a_warning():
         co.solve("ball-drop", "penalty", integrator="rk4", dt=1e-4, t_end=0.1)
     # At a fixed step an explicit integrator has no error control: the tolerances of a penalty or
     # event-driven run under one changed nothing, silently (the same run with and without them).
-    for integrator in ["rk4", "gsl-rk8pd", "arkode-erk"]:
+    for integrator in ["rk4", "gsl-rk8pd", "gsl-rkf45", "arkode-erk"]:
         with pytest.warns(UserWarning, match=f"rtol, atol have no effect on integrator '{integrator}' at a fixed step"):
             tight = co.solve("ball-drop", "penalty", integrator=integrator, dt=1e-4, rtol=1e-12, atol=1e-14,
                              t_end=0.1)
