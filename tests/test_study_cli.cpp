@@ -111,6 +111,12 @@ TEST_F(StudyCli, TheCostliestExperimentStartsFirstAndTheIndexKeepsTheManifestOrd
     EXPECT_NE(bad.err.find(part), std::string::npos) << part << " in: " << bad.err;
 }
 
+// A new experiment without its cost would run last (cpu_s 0) however long it takes, and the study
+// would end on it alone: every entry carries the hint.
+TEST(StudyManifestTest, EveryExperimentCarriesItsSchedulingHint) {
+  for (const auto& e : load_study_manifest(STUDY_MANIFEST).experiments) EXPECT_GT(e.cpu_s, 0.0) << e.name;
+}
+
 // Each experiment is a recipe: the skeleton (experiment.hpp) and the libraries hold everything
 // shared, so that no experiment's file grows past 150 lines.
 TEST(StudyManifestTest, EveryExperimentIsAShortRecipe) {
