@@ -96,14 +96,14 @@ void check_integrator(const Method& m) {
 void warn_of_ignored_settings(const Method& m, const py::kwargs& options) {
   const auto& reads = method_info(m.name).settings;
   const IntegratorInfo& info = integrator_info(m.integrator.method);
-  const bool fixed_integrator = std::find(reads.begin(), reads.end(), "rtol") != reads.end() &&
-                                (!info.adaptive || (m.integrator.dt > 0 && !info.implicit));
+  const bool tolerances_unread = std::find(reads.begin(), reads.end(), "rtol") != reads.end() &&
+                                 (!info.adaptive || (m.integrator.dt > 0 && !info.implicit));
   std::vector<std::string> ignored, tolerances;
   for (const auto& [key, value] : options) {
     const auto name = key.cast<std::string>();
     if (method_settings().count(name) && std::find(reads.begin(), reads.end(), name) == reads.end())
       ignored.push_back(name);
-    else if (fixed_integrator && (name == "rtol" || name == "atol"))
+    else if (tolerances_unread && (name == "rtol" || name == "atol"))
       tolerances.push_back(name);
   }
   std::string message;

@@ -88,8 +88,8 @@ TEST_F(ConvergenceExperimentsCli, BadInputIsRefused) {
            "(k-min, inf)"},
           {"--bounces 0", "--bounces", "'0'", ">= 1"},
           {"--per-decade 1000", "--per-decade", "'1000'", "[1, 100]"},
-          // At e = 0.05 the rigid ball rests after 5 apexes (e^n V < 1e-7
-          // m/s): more bounces failed with 'did not reach the bounces'.
+          // At e = 0.05 the rigid ball rests after 5 apexes (e^n V < 1e-7 m/s): more bounces failed
+          // with 'did not reach the bounces'.
           {"--e 0.05 --bounces 6", "--bounces", "'6'", "[1, 5]"},
       });
   expect_refused(ZENO_EXE, {
