@@ -126,6 +126,14 @@ int program(int argc, char** argv) {
       throw std::invalid_argument(fmt::format(
           "--k-max: value '{}' is below --k-min = {}; accepted range [k-min, inf)", o.k_max, o.k_min));
     validate(method_for(o, "penalty").integrator);
+    // A fixed-step integrator has no error control: say so rather than let the tolerance seem to
+    // have taken effect (as co.solve() warns in Python). A note, not an error: --method all runs
+    // methods that read neither.
+    if ((app.given("--rtol") || app.given("--atol")) && !integrator_info(o.integrator).adaptive)
+      fmt::print(stderr,
+                 "ball_drop: note: --rtol and --atol have no effect on --integrator {} (fixed step: "
+                 "its accuracy is set by --dt)\n",
+                 o.integrator);
     if (o.sweep)
       run_sweep(o, app, files);
     else
