@@ -4,6 +4,10 @@
 #include "cli_fixture.hpp"
 #include "study_manifest.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <regex>
 #include <set>
 
 using namespace contact;
@@ -130,5 +134,49 @@ TEST(StudyManifestTest, EveryExperimentIsAShortRecipe) {
     std::size_t lines = 0;
     for (std::string line; std::getline(in, line);) ++lines;
     EXPECT_LE(lines, 150u) << file;
+  }
+}
+
+// index.md tells a reader what each experiment did from its manifest summary; a number there is a
+// default of the experiment and has to stay one. convergence_dt's said "five drop heights" long
+// after its default became three.
+TEST_F(StudyCli, TheSummariesStateTheDefaultsTheExperimentsRunWith) {
+  struct Claim {
+    std::string experiment, option, pattern;  // pattern's group 1: the number the summary states
+  };
+  const std::vector<Claim> claims = {
+      {"ball_drop", "--m", R"(\(([0-9.e]+) kg)"},
+      {"ball_drop", "--h0", R"(from ([0-9.e]+) m)"},
+      {"ball_drop", "--e", R"(e = ([0-9.e]+))"},
+      {"ball_drop", "--k", R"(k = ([0-9.e]+) N/m)"},
+      {"ball_drop_sweep", "--k-min", R"(k from ([0-9.e]+) to)"},
+      {"ball_drop_sweep", "--k-max", R"(to ([0-9.e]+) N/m)"},
+      {"energy_drift", "--bounces", R"(over ([0-9]+) undamped bounces)"},
+      {"convergence_dt", "--heights", R"(over ([a-z]+) drop heights)"},
+  };
+  const std::map<std::string, double> words = {{"two", 2}, {"three", 3}, {"four", 4}, {"five", 5},
+                                               {"six", 6}, {"seven", 7}, {"ten", 10}};
+  auto number = [&](const std::string& s) { return words.count(s) ? words.at(s) : std::stod(s); };
+  const StudyManifest manifest = load_study_manifest(STUDY_MANIFEST);
+  for (const auto& c : claims) {
+    const auto e = std::find_if(manifest.experiments.begin(), manifest.experiments.end(),
+                                [&](const auto& x) { return x.name == c.experiment; });
+    ASSERT_NE(e, manifest.experiments.end()) << c.experiment;
+    std::smatch said, help_default;
+    ASSERT_TRUE(std::regex_search(e->summary, said, std::regex(c.pattern)))
+        << c.pattern << " in " << e->summary;
+    const Outcome help = run((fs::path(STUDY_EXE).parent_path() / e->exe).string(), "--help");
+    ASSERT_EQ(help.code, 0) << e->exe;
+    // An option the entry's arguments set is the value it runs with; --help shows the default.
+    double runs_with = std::nan("");
+    for (std::size_t i = 0; i + 1 < e->args.size(); ++i)
+      if (e->args[i] == c.option) runs_with = std::stod(e->args[i + 1]);
+    if (std::isnan(runs_with)) {
+      ASSERT_TRUE(
+          std::regex_search(help.out, help_default, std::regex("\\n  " + c.option + " [^\\n]*=([^ \\n]+)")))
+          << c.option << " in " << help.out;
+      runs_with = std::stod(help_default[1]);
+    }
+    EXPECT_EQ(number(said[1]), runs_with) << c.experiment << " " << c.option << ": " << e->summary;
   }
 }
