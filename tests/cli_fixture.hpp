@@ -51,6 +51,50 @@ inline std::vector<std::map<std::string, std::string>> csv_table(const std::stri
   return out;
 }
 
+// The README shows programs' output as printed. Its text from the line after the first ``` that
+// follows `marker` to the closing ```, and the program's output, are compared line by line: a
+// "wrote N files" line up to its folder, and in the Markdown table the cells of the columns named
+// in `times` (wall times, different on every run) skipped. A sample that the program no longer
+// prints fails here.
+inline void expect_readme_sample(const std::string& readme, const std::string& marker, const std::string& out,
+                                 const std::vector<std::string>& times) {
+  const auto at = readme.find(marker);
+  ASSERT_NE(at, std::string::npos) << marker;
+  const auto start = readme.find('\n', readme.find("```", at)) + 1;
+  const std::string sample = readme.substr(start, readme.find("```", start) - start);
+  auto lines = [](const std::string& text) {
+    std::vector<std::string> v;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);)
+      v.push_back(line.rfind("wrote ", 0) == 0 ? line.substr(0, line.find(" to ")) : line);
+    return v;
+  };
+  auto cells = [](const std::string& row) {  // a table row's cells, trimmed
+    std::vector<std::string> v;
+    std::istringstream in(row);
+    for (std::string c; std::getline(in, c, '|');) {
+      const auto b = c.find_first_not_of(' '), e = c.find_last_not_of(' ');
+      v.push_back(b == std::string::npos ? "" : c.substr(b, e - b + 1));
+    }
+    return v;
+  };
+  const auto want = lines(sample), got = lines(out);
+  ASSERT_EQ(want.size(), got.size()) << "README sample:\n" << sample << "\nprinted:\n" << out;
+  std::vector<std::string> header;
+  for (std::size_t i = 0; i < want.size(); ++i) {
+    if (want[i].rfind("|", 0) != 0) {
+      EXPECT_EQ(want[i], got[i]) << "line " << i + 1;
+      continue;
+    }
+    const auto w = cells(want[i]), g = cells(got[i]);
+    if (header.empty()) header = w;
+    ASSERT_EQ(w.size(), g.size()) << "line " << i + 1 << ": " << got[i];
+    for (std::size_t c = 0; c < w.size(); ++c)
+      if (c >= header.size() || std::find(times.begin(), times.end(), header[c]) == times.end())
+        EXPECT_EQ(w[c], g[c]) << "line " << i + 1 << ", column " << c << ": " << got[i];
+  }
+}
+
 class CliTest : public ::testing::Test {
  protected:
   void SetUp() override {

@@ -172,3 +172,10 @@ TEST_F(BallDropCli, AToleranceAFixedStepIntegratorIgnoresIsNoted) {
   ASSERT_EQ(adaptive.code, 0) << adaptive.err;
   EXPECT_EQ(adaptive.err.find("no effect"), std::string::npos) << adaptive.err;
 }
+
+// The README's sample output is the program's: every cell but the wall times.
+TEST_F(BallDropCli, TheReadmeSampleIsWhatItPrints) {
+  const Outcome r = run("");
+  ASSERT_EQ(r.code, 0) << r.err;
+  expect_readme_sample(slurp(README), "as printed by the study command", r.out, {"wall_time_s"});
+}

@@ -41,3 +41,10 @@ TEST_F(ContactAdvisorCli, WritesTheAdviceTable) {
     EXPECT_NE(csv.find(q), std::string::npos) << q;
   EXPECT_TRUE(fs::exists(dir_ / "advice" / "meta.json"));
 }
+
+// The README's worked question is the program's answer, as printed.
+TEST_F(ContactAdvisorCli, TheReadmeSampleIsWhatItPrints) {
+  const Outcome r = run(CONTACT_ADVISOR_EXE, "--m 1 --v 5 --e 0.8 --max-penetration 1e-3");
+  ASSERT_EQ(r.code, 0) << r.err;
+  expect_readme_sample(slurp(README), "It then checks itself by simulating the contact", r.out, {});
+}
