@@ -37,9 +37,9 @@ double cell(const std::string& file, const Where& where, const std::string& colu
 
 }  // namespace
 
-// "The penalty contact lasts pi sqrt(m/k) and penetrates V sqrt(m/k)", and Section 4.1's "the
-// fitted exponents are within 0.002 of -1/2 for every law": gravity's share g / (w V) shifts them
-// (0.0011 measured for each law).
+// "The penalty contact lasts pi sqrt(m/k) and penetrates V sqrt(m/k)", and Section 4.1's (and the
+// README's) "the fitted exponents are within 0.002 of -1/2 for every law": gravity's share g / (w V)
+// shifts them (0.0011 measured for each law).
 TEST(PaperClaims, PenetrationAndDurationScaleAsKToTheMinusHalf) {
   for (const char* law : {"hooke", "kelvin-voigt", "kelvin-voigt-clamped"})
     for (const char* column : {"penetration_exponent", "duration_exponent"})
