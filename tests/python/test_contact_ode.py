@@ -125,6 +125,17 @@ def test_example_reproduces_the_heights_figure(tmp_path):
     assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
+def test_the_readme_session_prints_what_it_shows():
+    """The README's Python session, run as a doctest: its outputs are the module's."""
+    import doctest
+    readme = (EXAMPLES.parent / "README.md").read_text()
+    test = doctest.DocTestParser().get_doctest(readme, {}, "README.md", "README.md", 0)
+    assert len(test.examples) >= 4
+    runner = doctest.DocTestRunner(optionflags=doctest.NORMALIZE_WHITESPACE)
+    runner.run(test)
+    assert runner.summarize(verbose=False).failed == 0
+
+
 def test_time_stepping_settings_and_types_are_checked():
     with pytest.raises(ValueError, match="substeps: value '0' is out of range; accepted range \\[1, inf\\)"):
         co.solve("ball-drop", "soft-step", substeps=0)
