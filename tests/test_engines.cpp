@@ -190,22 +190,30 @@ TEST(Mujoco, ASceneItRefusesIsASolverErrorAtTheStart) {
 // Siconos event-driven: the impacts are events located by LSODAR (rtol 1e-10, atol 1e-12), so
 // the apexes after them, which the sampling loop interpolates exactly in free flight, are the
 // closed form's e^(2n) h0 at the closed form's times to that tolerance (1e-8 on ~1 m and ~1 s),
-// and after the Zeno time the ball rests on the floor.
+// and after the Zeno time the ball rests on the floor. At e = 0.3 and 0.606 Siconos's gap
+// tolerance (2.2e-12) was below LSODAR's atol, and the run ended at the Zeno time with "output of
+// level 0 must be positive".
 TEST(Siconos, EventDrivenBouncesAreTheExactOnes) {
   REQUIRE_ENGINE("siconos");
   const double h0 = 1.0, g = 9.81;
-  const RigidBounces exact(h0, 0.0, g, kE);
-  const BallDrop ball({.m = 1.0, .g = g, .h0 = h0, .v0 = 0.0, .e = kE, .law = Hooke{1e5}});
-  const RunResult r = solve(ball, {.name = "siconos", .dt = 1e-3}, {.t_end = 4.5, .sample_dt = 0.01});
-  ASSERT_TRUE(r.ok()) << r.message;
-  ASSERT_GE(r.apexes.size(), 5u);
-  for (std::size_t n = 1; n <= 5; ++n) {
-    EXPECT_NEAR(r.apexes[n - 1].gap, exact.apex_height(n), 1e-8) << "apex " << n;
-    EXPECT_NEAR(r.apexes[n - 1].t, exact.apex_time(n), 1e-8) << "apex " << n;
+  for (double e : {0.3, 0.606057, kE}) {
+    const RigidBounces exact(h0, 0.0, g, e);
+    const BallDrop ball({.m = 1.0, .g = g, .h0 = h0, .v0 = 0.0, .e = e, .law = Hooke{1e5}});
+    const RunResult r = solve(ball, {.name = "siconos", .dt = 1e-3}, {.t_end = 4.5, .sample_dt = 0.01});
+    ASSERT_TRUE(r.ok()) << "e = " << e << ": " << r.message;
+    // Every apex above 10 um (e = 0.3's fifth, 6 um, falls in the last 2 ms before the Zeno time,
+    // where Siconos brings the ball to rest).
+    std::size_t resolved = 0;
+    while (resolved < 5 && exact.apex_height(resolved + 1) > 1e-5) ++resolved;
+    ASSERT_GE(r.apexes.size(), resolved) << e;
+    for (std::size_t n = 1; n <= std::min<std::size_t>(5, r.apexes.size()); ++n) {
+      EXPECT_NEAR(r.apexes[n - 1].gap, exact.apex_height(n), 1e-8) << "e = " << e << ", apex " << n;
+      EXPECT_NEAR(r.apexes[n - 1].t, exact.apex_time(n), 1e-8) << "e = " << e << ", apex " << n;
+    }
+    ASSERT_LT(exact.zeno_time(), 4.5);
+    EXPECT_NEAR(r.samples.back().y[0], 0.0, 1e-9) << e;
+    EXPECT_NEAR(r.samples.back().y[1], 0.0, 1e-9) << e;
   }
-  ASSERT_LT(exact.zeno_time(), 4.5);
-  EXPECT_NEAR(r.samples.back().y[0], 0.0, 1e-9);
-  EXPECT_NEAR(r.samples.back().y[1], 0.0, 1e-9);
 }
 
 // Siconos on a cradle with 1 mm gaps, e = 1: each event-driven impact exchanges two balls'
