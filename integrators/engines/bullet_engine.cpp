@@ -12,6 +12,7 @@
 #include "engine_world.hpp"
 
 #include <btBulletDynamicsCommon.h>
+#include <fmt/format.h>
 
 #include <cmath>
 #include <memory>
@@ -37,8 +38,18 @@ class BulletWorld final : public EngineWorld {
     const bool pairs = s.restitution.size() > (l.floor ? 1u : 0u);
     const double sphere_e = pairs ? std::sqrt(s.restitution.back()) : 1.0;
     if (l.floor) {
+      // The floor's factor makes the product its own e. Spheres of e = 0 between them leave the
+      // floor's contact at 0 whatever its factor (e / 0 was a NaN restitution, and a NaN state).
+      double floor_e = s.restitution[0];
+      if (sphere_e > 0)
+        floor_e /= sphere_e;
+      else if (floor_e > 0)
+        throw EngineError(fmt::format(
+            "Bullet multiplies the bodies' restitutions: spheres of e = 0 between them cannot meet the "
+            "floor at e = {}",
+            floor_e));
       floor_ = std::make_unique<btRigidBody>(btRigidBody::btRigidBodyConstructionInfo(0, nullptr, &plane_));
-      floor_->setRestitution(s.restitution[0] / sphere_e);
+      floor_->setRestitution(floor_e);
       floor_->setFriction(0);
       floor_->setUserIndex(-1);
       if (tuned) floor_->setContactProcessingThreshold(0);
