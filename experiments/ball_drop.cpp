@@ -105,7 +105,9 @@ int program(int argc, char** argv) {
   app.add("--sample-dt", o.sample_dt, "spacing of samples.csv [s]", cli::positive());
   app.add("--integrator", o.integrator, "ODE integrator of the penalty and event-ode methods",
           cli::one_of(integrator_names()));
-  app.add("--linear-solver", o.linear_solver, "linear solver of implicit SUNDIALS integrators",
+  app.add("--linear-solver", o.linear_solver,
+          "linear solver of implicit SUNDIALS integrators (klu: 'all' leaves out penalty-dq, whose "
+          "difference-quotient Jacobian it cannot take)",
           cli::one_of(linear_solver_names()));
   app.add("--jacobian", o.jacobian, "Jacobian of implicit integrators (penalty-dq always uses dq)",
           cli::one_of({"analytic", "dq"}));

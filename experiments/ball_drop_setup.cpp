@@ -44,7 +44,11 @@ RunResult run_ball(const BallDropOptions& o, const std::string& method, double k
 std::vector<std::string> ball_methods() { return methods_for(BallDrop({})); }
 
 std::vector<std::string> ball_methods(const BallDropOptions& o) {
-  return methods_for(BallDrop({o.m, o.g, o.h0, o.v0, o.e, law_for(o, o.k)}));
+  std::vector<std::string> names = methods_for(BallDrop({o.m, o.g, o.h0, o.v0, o.e, law_for(o, o.k)}));
+  // KLU needs the analytic Jacobian: a method that always forms difference quotients cannot use it.
+  if (parse_linear_solver(o.linear_solver) == LinearSolverKind::Klu)
+    std::erase_if(names, [](const std::string& name) { return method_info(name).dq_jacobian; });
+  return names;
 }
 
 SpringContact closed_form_contact(const BallDropOptions& o, double k) {

@@ -37,7 +37,8 @@ ContactLaw law_for(const BallDropOptions& o, double k);
 Method method_for(const BallDropOptions& o, const std::string& name);
 RunResult run_ball(const BallDropOptions& o, const std::string& method, double k);
 // Every method that can run the ball drop (with the default law), and those that can run it with
-// o's law (a power law has no linear spring for XPBD or an engine's spring setting to match).
+// o's law (a power law has no linear spring for XPBD or an engine's spring setting to match) and
+// linear solver (KLU: not penalty-dq, whose Jacobian is difference quotients).
 std::vector<std::string> ball_methods();
 std::vector<std::string> ball_methods(const BallDropOptions& o);
 // The first contact in closed form where the law has one (references.hpp) and the ball reaches

@@ -61,6 +61,9 @@ struct MethodInfo {
   // The settings it reads, by their Python keywords (Method's fields: "dt" is Method::dt where
   // fixed_step, its integrator's fixed step otherwise); co.solve() warns of any other it is given.
   std::vector<std::string> settings;
+  // Forms its integrator's Jacobian by difference quotients whatever Method::integrator says
+  // (penalty-dq): it cannot run with a sparse linear solver (KLU needs the analytic Jacobian).
+  bool dq_jacobian = false;
 };
 
 // The settings of a method that runs an ODE integrator (IntegratorOptions): a fixed step ("dt")
