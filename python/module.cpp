@@ -91,32 +91,34 @@ void check_integrator(const Method& m) {
 
 // A setting the method does not read changes nothing: say so, as SciPy's solve_ivp does, rather
 // than let a caller believe it took effect (a loop over methods may pass every setting to each).
-// Tolerances are read by the method but not by an integrator at a fixed step: a fixed-step one, or
-// an explicit adaptive one given dt (no error control; an implicit one still reads them for Newton).
+// rtol is read by the method but not by an integrator at a fixed step: a fixed-step one, or an
+// explicit adaptive one given dt (no error control; an implicit one still reads it for Newton).
+// atol is read all the same: it sets a penalty run's switching offset and an event-driven run's
+// rest height (100 atol), whatever the integrator.
 void warn_of_ignored_settings(const Method& m, const py::kwargs& options) {
   const auto& reads = method_info(m.name).settings;
   const IntegratorInfo& info = integrator_info(m.integrator.method);
-  const bool tolerances_unread = std::find(reads.begin(), reads.end(), "rtol") != reads.end() &&
-                                 (!info.adaptive || (m.integrator.dt > 0 && !info.implicit));
-  std::vector<std::string> ignored, tolerances;
+  const bool rtol_unread = std::find(reads.begin(), reads.end(), "rtol") != reads.end() &&
+                           (!info.adaptive || (m.integrator.dt > 0 && !info.implicit));
+  std::vector<std::string> ignored;
+  bool rtol_given = false;
   for (const auto& [key, value] : options) {
     const auto name = key.cast<std::string>();
     if (method_settings().count(name) && std::find(reads.begin(), reads.end(), name) == reads.end())
       ignored.push_back(name);
-    else if (tolerances_unread && (name == "rtol" || name == "atol"))
-      tolerances.push_back(name);
+    else if (name == "rtol")
+      rtol_given = true;
   }
   std::string message;
   if (!ignored.empty())
     message = fmt::format("{} {} no effect on method '{}'; its settings: {}", fmt::join(ignored, ", "),
                           ignored.size() == 1 ? "has" : "have", m.name,
                           reads.empty() ? "none" : fmt::format("{}", fmt::join(reads, ", ")));
-  if (!tolerances.empty())
+  if (rtol_unread && rtol_given)
     message += fmt::format(
-        "{}{} {} no effect on integrator '{}' at a fixed step (no error control; its "
-        "accuracy is set by dt)",
-        message.empty() ? "" : "; ", fmt::join(tolerances, ", "), tolerances.size() == 1 ? "has" : "have",
-        m.integrator.method);
+        "{}rtol has no effect on integrator '{}' at a fixed step (no error control; its accuracy is "
+        "set by dt)",
+        message.empty() ? "" : "; ", m.integrator.method);
   if (!message.empty() && PyErr_WarnEx(PyExc_UserWarning, message.c_str(), 2) != 0)
     throw py::error_already_set();
 }
