@@ -90,8 +90,9 @@ inline void expect_readme_sample(const std::string& readme, const std::string& m
     if (header.empty()) header = w;
     ASSERT_EQ(w.size(), g.size()) << "line " << i + 1 << ": " << got[i];
     for (std::size_t c = 0; c < w.size(); ++c)
-      if (c >= header.size() || std::find(times.begin(), times.end(), header[c]) == times.end())
+      if (c >= header.size() || std::find(times.begin(), times.end(), header[c]) == times.end()) {
         EXPECT_EQ(w[c], g[c]) << "line " << i + 1 << ", column " << c << ": " << got[i];
+      }
   }
 }
 

@@ -144,8 +144,11 @@ TEST(Bullet, AnInelasticColumnLandsAndStays) {
     const BallStack column({.n = 2, .m = 3.0, .drop = 0.01, .e = 0.0, .law = Hooke{15782.0}});
     const RunResult r = solve(column, {.name = method, .dt = 1.7e-4}, {.t_end = 0.5, .sample_dt = 0.01});
     ASSERT_TRUE(r.ok()) << method << ": " << r.message;
-    for (const auto& c : r.contacts)
-      if (c.contact == 0) EXPECT_FALSE(c.closed()) << method << ": left the floor at " << c.t_end;
+    for (const auto& c : r.contacts) {
+      if (c.contact == 0) {
+        EXPECT_FALSE(c.closed()) << method << ": left the floor at " << c.t_end;
+      }
+    }
     const Vector& y = r.samples.back().y;
     ASSERT_TRUE(y.allFinite()) << method;
     EXPECT_LT(std::abs(y[1]), 1e-6) << method;
