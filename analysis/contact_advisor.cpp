@@ -76,7 +76,7 @@ Designed design(const ContactRequest& r) {
   }
   // Hunt–Crossley family.
   const double n = r.law == "hertz" ? 1.5 : 1.0;
-  const double chi = damping_factor(r.rule, r.e, V);
+  const double chi = damping_factor(r.rule.value_or(DampingRule::LankaraniNikravesh), r.e, V);
   double K;
   if (r.radius) {
     K = hertz_stiffness(*r.radius, effective_modulus(*r.young, *r.poisson, INFINITY, 0.0));
@@ -120,6 +120,11 @@ void validate(const ContactRequest& r) {
   if (std::find(laws.begin(), laws.end(), r.law) == laws.end())
     throw std::invalid_argument(
         fmt::format("--law: value '{}' is not one of: {}", r.law, fmt::join(laws, ", ")));
+  if (r.rule && (r.law == "hooke" || r.law == "kelvin-voigt" || r.law == "kelvin-voigt-clamped"))
+    throw std::invalid_argument(fmt::format(
+        "--rule: value '{}' is for the Hunt-Crossley laws; accepted with --law hertz or hunt-crossley-linear "
+        "(law {} has no damping rule)",
+        to_string(*r.rule), r.law));
   const bool material = r.radius || r.young || r.poisson;
   const int given = (r.max_penetration ? 1 : 0) + (r.duration ? 1 : 0) + (material ? 1 : 0);
   if (given != 1)

@@ -35,7 +35,7 @@ int program(int argc, char** argv) {
   app.add("--max-penetration", max_penetration, "required maximum penetration [m]", cli::positive());
   app.add("--duration", duration, "required contact duration [s]", cli::positive());
   app.add("--law", r.law, "contact law", cli::one_of(law_names()));
-  app.add("--rule", rule, "damping rule of the Hunt-Crossley laws",
+  app.add("--rule", rule, "damping rule of the Hunt-Crossley laws (hertz, hunt-crossley-linear)",
           cli::one_of({"hunt-crossley", "lankarani-nikravesh", "flores", "gonthier"}));
   app.add("--radius", radius, "hertz from a material: sphere radius [m]", cli::positive());
   app.add("--young", young, "hertz from a material: Young's modulus [Pa]", cli::positive());
@@ -52,7 +52,7 @@ int program(int argc, char** argv) {
     if (app.given("--poisson")) r.poisson = poisson;
     for (auto k : {DampingRule::HuntCrossley, DampingRule::LankaraniNikravesh, DampingRule::Flores,
                    DampingRule::Gonthier})
-      if (to_string(k) == rule) r.rule = k;
+      if (to_string(k) == rule && app.given("--rule")) r.rule = k;
     validate(r);
     const ContactAdvice a = advise(r);
     const double nan = std::nan("");

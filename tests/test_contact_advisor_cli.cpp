@@ -28,6 +28,9 @@ TEST_F(ContactAdvisorCli, NonPhysicalRequestsAreRefused) {
           {"--law kelvin-voigt-clamped --e 0.1 --max-penetration 1e-3", "--e", "'0.1'", "0.1353"},
           {"--law jelly --max-penetration 1e-3", "--law", "'jelly'", "hertz"},
           {"--max-penetration 1e-3 --duration 1e-3", "--max-penetration", "", "exactly one"},
+          // A damping rule with a law that has none was silently ignored (the same advice as without).
+          {"--law kelvin-voigt --rule flores --max-penetration 1e-3", "--rule", "'flores'",
+           "--law hertz or hunt-crossley-linear"},
       });
 }
 
