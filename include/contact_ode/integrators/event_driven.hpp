@@ -12,6 +12,10 @@
 //                      ball), measured by a difference quotient of the gap rate along the flight;
 //   min_event_spacing  two impacts of one contact closer in time than this also mean rest;
 //   max_events         a hard cap: exceeding it ends the run with Status::ZenoLimit.
+// The first three rest only a contact that the flight pushes together (its gap's acceleration < 0,
+// as for the initial rest): two balls that leave an impact together fly on. A resting contact that
+// an impulse drives together faster than rest_speed takes its impact and leaves rest (a ball
+// landing on one at rest on the floor: the floor takes its share).
 // A contact that starts closed (gap <= 0), still (|gap rate| <= rest_speed) and pushed together by
 // the flight (the gap's acceleration < 0, with the contacts below it already held) starts at rest:
 // a ball released on the floor, a resting column.
