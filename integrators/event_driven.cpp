@@ -238,14 +238,20 @@ RunResult run_event_driven(const MechanicalSystem& model, const EventOptions& op
   // sample that finds an overlap beyond the flight's resolution (100 atol) ends the run.
   const double overlap_limit = 100 * opt.integrator.atol;
   drive.sample = [&](double t, ConstVectorRef y) {
-    for (std::size_t i = 0; i < nc; ++i)
-      if (model.gap(i, y) < -overlap_limit)
-        throw SolverFailure(
-            Status::Unresolved, t,
-            fmt::format("contact {} overlaps by {:.3g} m with no impact located: its bodies go on pressing "
-                        "together after an impact (a sustained contact between free bodies, which impulses "
-                        "do not model; a penalty or time-stepping method does)",
-                        i, -model.gap(i, y)));
+    for (std::size_t i = 0; i < nc; ++i) {
+      if (model.gap(i, y) >= -overlap_limit) continue;
+      if (t == 0.0)  // a scene whose bodies start inside each other (a large radius)
+        throw SolverFailure(Status::Unresolved, t,
+                            fmt::format("contact {} overlaps by {:.3g} m at the start: impulses need the "
+                                        "bodies apart or touching",
+                                        i, -model.gap(i, y)));
+      throw SolverFailure(
+          Status::Unresolved, t,
+          fmt::format("contact {} overlaps by {:.3g} m with no impact located: its bodies go on pressing "
+                      "together after an impact (a sustained contact between free bodies, which impulses "
+                      "do not model; a penalty or time-stepping method does)",
+                      i, -model.gap(i, y)));
+    }
     rec.sample(t, y);
   };
   Vector y0 = model.initial_state();
