@@ -137,13 +137,15 @@ class Impacts {
   // said it separated (a dropped column of two, e = 0.5, ended unresolved).
   void resolve_from(std::size_t first, double t, VectorRef y) {
     resolve(first, t, y);
-    for (bool again = true; again;) {
+    // One contact: the impulse has nowhere to go on to (it leaves separating or at rest).
+    for (bool again = model_.contact_count() > 1; again;) {
       again = false;
       const std::size_t n = model_.contact_count();
       for (std::size_t k = 0; k < n; ++k) {
         const std::size_t j = opt_.reverse_order ? n - 1 - k : k;
+        if (model_.gap(j, y) > 0) continue;  // the gap first: most contacts are apart
         const double rate = model_.gap_rate(j, y);
-        if (model_.gap(j, y) <= 0 && (resting(j) ? rate < -opt_.rest_speed : rate < 0)) {
+        if (resting(j) ? rate < -opt_.rest_speed : rate < 0) {
           modes_[j] = ContactMode::Free;
           resolve(j, t, y);
           again = true;
