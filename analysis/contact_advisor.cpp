@@ -55,6 +55,12 @@ struct Designed {
   double k_lin, c_lin;
 };
 
+// The laws design() builds as Hunt–Crossley laws (every one but the linear spring-dashpots), the
+// ones a damping rule applies to.
+bool hunt_crossley_family(const std::string& law) {
+  return law != "hooke" && law != "kelvin-voigt" && law != "kelvin-voigt-clamped";
+}
+
 Designed design(const ContactRequest& r) {
   const double m = r.m, V = r.v;
   if (r.law == "kelvin-voigt" || r.law == "kelvin-voigt-clamped") {
@@ -74,7 +80,7 @@ Designed design(const ContactRequest& r) {
                                        : m * (pi / *r.duration) * (pi / *r.duration);
     return {Hooke{k}, k, 0.0};
   }
-  // Hunt–Crossley family.
+  // Hunt–Crossley family (hunt_crossley_family).
   const double n = r.law == "hertz" ? 1.5 : 1.0;
   const double chi = damping_factor(r.rule.value_or(DampingRule::LankaraniNikravesh), r.e, V);
   double K;
@@ -120,11 +126,14 @@ void validate(const ContactRequest& r) {
   if (std::find(laws.begin(), laws.end(), r.law) == laws.end())
     throw std::invalid_argument(
         fmt::format("--law: value '{}' is not one of: {}", r.law, fmt::join(laws, ", ")));
-  if (r.rule && (r.law == "hooke" || r.law == "kelvin-voigt" || r.law == "kelvin-voigt-clamped"))
-    throw std::invalid_argument(fmt::format(
-        "--rule: value '{}' is for the Hunt-Crossley laws; accepted with --law hertz or hunt-crossley-linear "
-        "(law {} has no damping rule)",
-        to_string(*r.rule), r.law));
+  if (r.rule && !hunt_crossley_family(r.law)) {
+    std::vector<std::string> takes_rule = laws;
+    std::erase_if(takes_rule, [](const std::string& law) { return !hunt_crossley_family(law); });
+    throw std::invalid_argument(
+        fmt::format("--rule: value '{}' is for the Hunt-Crossley laws; accepted with --law {} (law {} has no "
+                    "damping rule)",
+                    to_string(*r.rule), fmt::join(takes_rule, " or "), r.law));
+  }
   const bool material = r.radius || r.young || r.poisson;
   const int given = (r.max_penetration ? 1 : 0) + (r.duration ? 1 : 0) + (material ? 1 : 0);
   if (given != 1)

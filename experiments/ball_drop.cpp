@@ -127,11 +127,12 @@ int program(int argc, char** argv) {
     if (o.sweep && !(o.k_max >= o.k_min))
       throw std::invalid_argument(fmt::format(
           "--k-max: value '{}' is below --k-min = {}; accepted range [k-min, inf)", o.k_max, o.k_min));
-    validate(method_for(o, "penalty").integrator);
+    const IntegratorOptions integrator = method_for(o, "penalty").integrator;
+    validate(integrator);
     // A fixed-step integrator has no error control: say so rather than let the tolerance seem to
     // have taken effect (as co.solve() warns in Python). A note, not an error: --method all runs
     // methods that do not read it. (--atol still sets the contact threshold and the rest height.)
-    if (app.given("--rtol") && !integrator_info(o.integrator).adaptive)
+    if (app.given("--rtol") && !reads_rtol(integrator))
       fmt::print(
           stderr,
           "ball_drop: note: --rtol has no effect on --integrator {} (fixed step: its accuracy is set by "

@@ -50,9 +50,10 @@ int program(int argc, char** argv) {
     if (app.given("--radius")) r.radius = radius;
     if (app.given("--young")) r.young = young;
     if (app.given("--poisson")) r.poisson = poisson;
-    for (auto k : {DampingRule::HuntCrossley, DampingRule::LankaraniNikravesh, DampingRule::Flores,
-                   DampingRule::Gonthier})
-      if (to_string(k) == rule && app.given("--rule")) r.rule = k;
+    if (app.given("--rule"))
+      for (auto k : {DampingRule::HuntCrossley, DampingRule::LankaraniNikravesh, DampingRule::Flores,
+                     DampingRule::Gonthier})
+        if (to_string(k) == rule) r.rule = k;
     validate(r);
     const ContactAdvice a = advise(r);
     const double nan = std::nan("");

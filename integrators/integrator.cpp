@@ -67,6 +67,11 @@ LinearSolverKind parse_linear_solver(const std::string& name) {
                                           fmt::join(linear_solver_names(), ", ")));
 }
 
+bool reads_rtol(const IntegratorOptions& o) {
+  const IntegratorInfo& info = integrator_info(o.method);
+  return info.implicit || (info.adaptive && !(o.dt > 0));
+}
+
 void validate(const IntegratorOptions& o) {
   const IntegratorInfo& info = integrator_info(o.method);
   auto positive = [](double v) { return std::isfinite(v) && v > 0; };

@@ -91,15 +91,13 @@ void check_integrator(const Method& m) {
 
 // A setting the method does not read changes nothing: say so, as SciPy's solve_ivp does, rather
 // than let a caller believe it took effect (a loop over methods may pass every setting to each).
-// rtol is read by the method but not by an integrator at a fixed step: a fixed-step one, or an
-// explicit adaptive one given dt (no error control; an implicit one still reads it for Newton).
+// rtol is read by the method but not by an explicit integrator at a fixed step (reads_rtol).
 // atol is read all the same: it sets a penalty run's switching offset and an event-driven run's
 // rest height (100 atol), whatever the integrator.
 void warn_of_ignored_settings(const Method& m, const py::kwargs& options) {
   const auto& reads = method_info(m.name).settings;
-  const IntegratorInfo& info = integrator_info(m.integrator.method);
-  const bool rtol_unread = std::find(reads.begin(), reads.end(), "rtol") != reads.end() &&
-                           (!info.adaptive || (m.integrator.dt > 0 && !info.implicit));
+  const bool rtol_unread =
+      std::find(reads.begin(), reads.end(), "rtol") != reads.end() && !reads_rtol(m.integrator);
   std::vector<std::string> ignored;
   bool rtol_given = false;
   for (const auto& [key, value] : options) {

@@ -149,6 +149,8 @@ TEST(Bullet, AnInelasticColumnLandsAndStays) {
         EXPECT_FALSE(c.closed()) << method << ": left the floor at " << c.t_end;
       }
     }
+    // At rest: 1e-6 m/s, under a thousandth of g dt (1.7e-3 m/s, the speed one step of gravity
+    // gives), so a ball still falling, or still being pushed out of an overlap, would show.
     const Vector& y = r.samples.back().y;
     ASSERT_TRUE(y.allFinite()) << method;
     EXPECT_LT(std::abs(y[1]), 1e-6) << method;

@@ -232,7 +232,7 @@ TEST(EventDriven, ExactFlightFollowsTheClosedFormTrajectory) {
 // together (e = 1) were put at rest on each other, which held the upper one in mid-air at its speed
 // while the lower flew: the energy ledger ran off by 60 times the drop's energy. The ledger
 // E + D = E0 holds now to the flight's tolerance (rtol 1e-8 over a few hundred impacts: 1e-6 of
-// E0), and no pair overlaps by more than the flight resolves.
+// E0), and no pair overlaps by more than the flight resolves (100 atol, its rest height).
 TEST(EventDriven, ADroppedColumnKeepsItsEnergyLedgerAndNeverOverlaps) {
   for (std::size_t n : {2u, 3u, 4u})
     for (double e : {0.0, 0.5, 0.8, 1.0}) {
@@ -246,7 +246,7 @@ TEST(EventDriven, ADroppedColumnKeepsItsEnergyLedgerAndNeverOverlaps) {
         ASSERT_NEAR(s.energy + s.dissipated, r.energy0, 1e-6 * r.energy0)
             << "n " << n << ", e " << e << ", t " << s.t;
         for (std::size_t i = 0; i < n; ++i)
-          ASSERT_GT(column.gap(i, s.y), -1e-8)
+          ASSERT_GT(column.gap(i, s.y), -100 * o.integrator.atol)
               << "n " << n << ", e " << e << ", contact " << i << ", t " << s.t;
       }
     }

@@ -68,6 +68,11 @@ std::vector<std::string> integrator_names();
 // Throws std::invalid_argument for an unknown name.
 const IntegratorInfo& integrator_info(const std::string& name);
 
+// Whether the integrator reads rtol: an adaptive one stepping by its error estimate, or an
+// implicit one at a fixed step (its Newton iteration). An explicit one at a fixed step (a
+// fixed-step method, or an adaptive one given dt) has no error control and ignores it.
+bool reads_rtol(const IntegratorOptions& options);
+
 // Checks the options against the method; throws std::invalid_argument with a message naming the
 // option, the value and what is accepted.
 void validate(const IntegratorOptions& options);
