@@ -82,8 +82,10 @@ OdeSystem mechanical_ode(const Dynamics& model, ModesAt modes_at) {
     };
   }
   // IMEX: the contact forces are what makes the system stiff, so they are the implicit part:
-  // f_implicit = f(modes) - f(all free), with the Jacobian likewise.
+  // f_implicit = f(modes) - f(all free), with the Jacobian likewise; the explicit part is the free
+  // flight f(all free), one evaluation where f - f_implicit took three.
   auto free = std::make_shared<const ContactModes>(model.all_modes(ContactMode::Free));
+  sys.explicit_rhs = [&model, free](double t, ConstVectorRef y, VectorRef yd) { model.rhs(t, y, *free, yd); };
   auto buffer = std::make_shared<Vector>(sys.size);
   sys.implicit_rhs = [&model, modes_at, free, buffer](double t, ConstVectorRef y, VectorRef yd) {
     model.rhs(t, y, modes_at(y), yd);
@@ -130,6 +132,12 @@ OdeSystem with_ledger(OdeSystem base, std::function<double(ConstVectorRef y)> po
       yd[n] = 0.0;
     };
     sys.implicit_jacobian = extend(base.implicit_jacobian);
+  }
+  if (base.explicit_rhs) {  // the ledger's power is explicit: its implicit part is zero
+    sys.explicit_rhs = [base, power, n](double t, ConstVectorRef y, VectorRef yd) {
+      base.explicit_rhs(t, y.head(n), yd.head(n));
+      yd[n] = power(y.head(n));
+    };
   }
   if (base.roots) {
     sys.roots = [base, n](double t, ConstVectorRef y, VectorRef g) { base.roots(t, y.head(n), g); };

@@ -77,10 +77,11 @@ int explicit_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
   auto& d = data(user);
   auto out = d.map(ydot);
   return guarded(d, t, out, [&] {
-    Vector fi(out.size());
-    d.sys.implicit_rhs(t, d.map(y), fi);
+    if (d.sys.explicit_rhs) return d.sys.explicit_rhs(t, d.map(y), out);
+    d.implicit_part.resize(out.size());
+    d.sys.implicit_rhs(t, d.map(y), d.implicit_part);
     d.sys.rhs(t, d.map(y), out);
-    out -= fi;
+    out -= d.implicit_part;
   });
 }
 

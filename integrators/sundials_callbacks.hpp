@@ -16,6 +16,7 @@ namespace contact::sundials {
 struct CallbackData {
   OdeSystem sys;
   SparseMatrix J;               // last analytic Jacobian (for copies and J v products)
+  Vector implicit_part;         // IMEX without an explicit_rhs: the implicit part, subtracted
   std::string solver_message;   // the solver's last error message
   bool root_held_zero = false;  // that error: a root function zero at the last root and just after
   std::string callback_error;   // why one of our callbacks refused

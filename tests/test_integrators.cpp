@@ -422,3 +422,28 @@ TEST(IntegratorOptionsValidation, BadOptionsNameTheOptionAndTheAcceptedValues) {
   EXPECT_NE(message(o).find("--max-steps"), std::string::npos);
   EXPECT_EQ(message(IntegratorOptions{}), "accepted");
 }
+
+// The IMEX split of a mechanical system: the explicit part formed directly (the free flight, one
+// evaluation) is rhs - implicit_rhs, as the integrator formed it before, to rounding; with the
+// energy ledger appended its power is explicit. A ball in contact (x < 0, moving down), where the
+// implicit part (the law's force) is not zero.
+TEST(ImexSplit, TheExplicitPartIsTheRhsLessTheImplicitPart) {
+  BallDropParams p;
+  p.law = KelvinVoigt{.k = 1e5, .c = 50.0};
+  const BallDrop ball(p);
+  auto modes = std::make_shared<ContactModes>(ball.all_modes(ContactMode::Penalty));
+  const OdeSystem base =
+      mechanical_ode(ball, [modes](ConstVectorRef) -> const ContactModes& { return *modes; });
+  const OdeSystem ledger = with_ledger(base, [](ConstVectorRef y) { return 7.0 * y[1] * y[1]; });
+  for (const OdeSystem* sys : {&base, &ledger}) {
+    ASSERT_TRUE(sys->explicit_rhs);
+    const auto n = static_cast<Eigen::Index>(sys->size);
+    Vector y = Vector::Zero(n), f(n), fi(n), fe(n);
+    y.head(2) << -1e-3, -2.0;
+    sys->rhs(0.0, y, f);
+    sys->implicit_rhs(0.0, y, fi);
+    sys->explicit_rhs(0.0, y, fe);
+    EXPECT_GT(std::abs(fi[1]), 10.0);  // the contact's force per mass: the split is not trivial
+    EXPECT_LT((fe - (f - fi)).cwiseAbs().maxCoeff(), 1e-12 * f.cwiseAbs().maxCoeff()) << n;
+  }
+}

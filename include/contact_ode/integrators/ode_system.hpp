@@ -27,6 +27,9 @@ struct OdeSystem {
   // IMEX: the stiff part, integrated implicitly, and its Jacobian; the rest of rhs is explicit.
   Rhs implicit_rhs;
   Jacobian implicit_jacobian;
+  // IMEX: the explicit part where the system forms it directly (a mechanical system's free flight,
+  // one evaluation); empty: rhs - implicit_rhs, two.
+  Rhs explicit_rhs;
 };
 
 }  // namespace contact
