@@ -129,15 +129,7 @@ int program(int argc, char** argv) {
           "--k-max: value '{}' is below --k-min = {}; accepted range [k-min, inf)", o.k_max, o.k_min));
     const IntegratorOptions integrator = method_for(o, "penalty").integrator;
     validate(integrator);
-    // A fixed-step integrator has no error control: say so rather than let the tolerance seem to
-    // have taken effect (as co.solve() warns in Python). A note, not an error: --method all runs
-    // methods that do not read it. (--atol still sets the contact threshold and the rest height.)
-    if (app.given("--rtol") && !reads_rtol(integrator))
-      fmt::print(
-          stderr,
-          "ball_drop: note: --rtol has no effect on --integrator {} (fixed step: its accuracy is set by "
-          "--dt)\n",
-          o.integrator);
+    note_options_without_effect(o, app, integrator);
     if (o.sweep)
       run_sweep(o, app, files);
     else

@@ -71,4 +71,19 @@ std::string ball_references(const BallDropOptions& o) {
   return s;
 }
 
+void note_options_without_effect(const BallDropOptions& o, const Experiment& app,
+                                 const IntegratorOptions& integrator) {
+  if (app.given("--rtol") && !reads_rtol(integrator))
+    fmt::print(stderr,
+               "ball_drop: note: --rtol has no effect on --integrator {} (fixed step: its accuracy is set by "
+               "--dt)\n",
+               o.integrator);
+  // The other mode's options were silently ignored.
+  for (const char* other : o.sweep ? std::vector<const char*>{"--k"}
+                                   : std::vector<const char*>{"--k-min", "--k-max", "--per-decade"})
+    if (app.given(other))
+      fmt::print(stderr, "ball_drop: note: {} has no effect {}\n", other,
+                 o.sweep ? "with --sweep (k runs from --k-min to --k-max)" : "without --sweep");
+}
+
 }  // namespace contact

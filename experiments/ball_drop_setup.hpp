@@ -47,6 +47,13 @@ SpringContact closed_form_contact(const BallDropOptions& o, double k);
 // The closed forms a reader compares the tables with, as text.
 std::string ball_references(const BallDropOptions& o);
 
+// Notes on stderr for options given that do not take effect: --rtol on a fixed-step integrator (no
+// error control; as co.solve() warns in Python), and the other mode's options (a sweep's k range
+// without --sweep, --k in a sweep). Notes, not errors: --method all runs methods that do not read
+// the tolerance. (--atol still sets the contact threshold and the rest height.)
+void note_options_without_effect(const BallDropOptions& o, const Experiment& app,
+                                 const IntegratorOptions& integrator);
+
 void run_single(const BallDropOptions& o, OutputSet& out);
 // Under mpirun the sweep's (k, method) runs are dealt over the ranks (Experiment::share).
 void run_sweep(const BallDropOptions& o, Experiment& app, OutputSet& out);

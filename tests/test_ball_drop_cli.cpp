@@ -176,6 +176,22 @@ TEST_F(BallDropCli, AToleranceAFixedStepIntegratorIgnoresIsNoted) {
   }
 }
 
+// The other mode's options do nothing: a sweep's k range without --sweep, --k in a sweep. They
+// were silently ignored (a user asking for --k-min 10 got one run at --k); now each is noted.
+TEST_F(BallDropCli, TheOtherModesOptionsAreNoted) {
+  const Outcome single = run("--method penalty --t-end 0.1 --k-min 10 --per-decade 3 --out single");
+  ASSERT_EQ(single.code, 0) << single.err;
+  EXPECT_NE(single.err.find("--k-min has no effect without --sweep"), std::string::npos) << single.err;
+  EXPECT_NE(single.err.find("--per-decade has no effect without --sweep"), std::string::npos) << single.err;
+  EXPECT_EQ(single.err.find("--k-max"), std::string::npos) << single.err;
+  const Outcome sweep = run("--method penalty --t-end 0.1 --sweep --k-min 1e4 --k-max 1e4 --k 5 --out sweep");
+  ASSERT_EQ(sweep.code, 0) << sweep.err;
+  EXPECT_NE(sweep.err.find("--k has no effect with --sweep"), std::string::npos) << sweep.err;
+  const Outcome plain = run("--method penalty --t-end 0.1 --k 1e4 --out plain");
+  ASSERT_EQ(plain.code, 0) << plain.err;
+  EXPECT_EQ(plain.err.find("no effect"), std::string::npos) << plain.err;
+}
+
 // The README's sample output is the program's: every cell but the wall times.
 TEST_F(BallDropCli, TheReadmeSampleIsWhatItPrints) {
   const Outcome r = run("");
