@@ -139,7 +139,7 @@ class Impacts {
   // resolved in the instant: a plastic impulse leaves the pair's rate at zero only to rounding, and
   // one left at -6.9e-18 m/s after an approach at 0.65 m/s (a wedge of small balls, e = 0, under
   // GSL's flights) was struck again and again, each impulse lost to the same rounding, until the
-  // impact limit. 1e-12 is some 5000 times that rounding and a speed no contact here resolves.
+  // impact limit. 1e-12 is 1e5 times that rounding, and a speed no contact here resolves.
   static constexpr double kRateRounding = 1e-12;
   void resolve_from(std::size_t first, double t, VectorRef y) {
     double speed = std::abs(model_.gap_rate(first, y));
