@@ -35,8 +35,10 @@ int program(int argc, char** argv) {
   app.add("--max-penetration", max_penetration, "required maximum penetration [m]", cli::positive());
   app.add("--duration", duration, "required contact duration [s]", cli::positive());
   app.add("--law", r.law, "contact law", cli::one_of(law_names()));
+  std::vector<std::string> rules;
+  for (const DampingRule k : kDampingRules) rules.emplace_back(to_string(k));
   app.add("--rule", rule, "damping rule of the Hunt-Crossley laws (hertz, hunt-crossley-linear)",
-          cli::one_of({"hunt-crossley", "lankarani-nikravesh", "flores", "gonthier"}));
+          cli::one_of(rules));
   app.add("--radius", radius, "hertz from a material: sphere radius [m]", cli::positive());
   app.add("--young", young, "hertz from a material: Young's modulus [Pa]", cli::positive());
   app.add("--poisson", poisson, "hertz from a material: Poisson ratio", cli::real_in(-1, 0.5, true, true));
@@ -51,8 +53,7 @@ int program(int argc, char** argv) {
     if (app.given("--young")) r.young = young;
     if (app.given("--poisson")) r.poisson = poisson;
     if (app.given("--rule"))
-      for (auto k : {DampingRule::HuntCrossley, DampingRule::LankaraniNikravesh, DampingRule::Flores,
-                     DampingRule::Gonthier})
+      for (const DampingRule k : kDampingRules)
         if (to_string(k) == rule) r.rule = k;
     validate(r);
     const ContactAdvice a = advise(r);

@@ -49,8 +49,7 @@ int program(int argc, char** argv) {
                      [&](double e) { return ContactLaw{kelvin_voigt_for_restitution(k_lin, m, e, true)}; }});
     for (double n : {1.0, 1.5}) {
       const double K = (n + 1) * m * v * v / (2 * std::pow(depth, n + 1));  // power law: depth
-      for (auto rule : {DampingRule::HuntCrossley, DampingRule::LankaraniNikravesh, DampingRule::Flores,
-                        DampingRule::Gonthier})
+      for (const DampingRule rule : kDampingRules)
         cases.push_back({fmt::format("{} n={}", to_string(rule), n == 1.0 ? "1" : "3/2"), [=](double e) {
                            return ContactLaw{HuntCrossley{K, n, damping_factor(rule, e, v)}};
                          }});

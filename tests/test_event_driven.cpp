@@ -300,6 +300,8 @@ TEST(EventDriven, BodiesThatGoOnPressingTogetherAfterAnImpactEndTheRun) {
 // impulse lost to the same rounding, until the impact limit of a million (CVODE's flight happened
 // to round to >= 0). An approach below 1e-12 of the instant's fastest is rounding now: every
 // flight ends the instant in two impacts, and the runs agree to the flights' resolution (100 atol).
+// Without gravity the balls' velocities are constant between impacts, whose losses are booked as the
+// energy they take: the ledger holds to rounding.
 TEST(EventDriven, APlasticImpulseLeftApproachingByRoundingIsNotStruckAgain) {
   const auto wedge = make_scene("wedge", {{"m", 0.025}, {"radius", 0.059}, {"elasticity", 0.0}});
   const SolveOptions span{.t_end = 0.05, .sample_dt = 0.05};
@@ -313,6 +315,7 @@ TEST(EventDriven, APlasticImpulseLeftApproachingByRoundingIsNotStruckAgain) {
     EXPECT_EQ(r.contacts.size(), ref.contacts.size()) << flight;
     const double atol = m.integrator.atol;
     EXPECT_LT((r.samples.back().y - ref.samples.back().y).cwiseAbs().maxCoeff(), 100 * atol) << flight;
-    EXPECT_NEAR(r.samples.back().energy + r.samples.back().dissipated, r.energy0, 1e-9 * r.energy0) << flight;
+    EXPECT_NEAR(r.samples.back().energy + r.samples.back().dissipated, r.energy0, 1e-12 * r.energy0)
+        << flight;
   }
 }

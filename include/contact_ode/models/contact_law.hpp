@@ -15,6 +15,7 @@
 //   stored_energy(d)        elastic energy held in the spring [J];
 //   dissipated_power(d, dd) power the law's damping removes while it pushes [W] (energy ledger).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 #include <string_view>
@@ -103,6 +104,9 @@ LinearLaw linear_law(const ContactLaw& law);
 //   Flores et al. (2011)            chi = 8 (1 - e) / (5 e v)
 //   Gonthier et al. (2004)          chi = (1 - e^2) / (e v)
 enum class DampingRule { HuntCrossley, LankaraniNikravesh, Flores, Gonthier };
+// Every rule, in the order above (sweeps over them, the command lines' choices).
+inline constexpr std::array<DampingRule, 4> kDampingRules = {
+    DampingRule::HuntCrossley, DampingRule::LankaraniNikravesh, DampingRule::Flores, DampingRule::Gonthier};
 double damping_factor(DampingRule rule, double e, double v);
 std::string_view to_string(DampingRule rule);
 
