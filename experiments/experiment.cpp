@@ -1,5 +1,7 @@
 #include "experiment.hpp"
 
+#include "figure.hpp"
+
 #include "contact_ode/integrators/run_result.hpp"
 #include "process.hpp"
 #include "ranks.hpp"
@@ -34,6 +36,7 @@ int Experiment::run_body(int argc, char** argv, const std::function<void(OutputS
   OutputSet outputs;
   body(outputs);                      // exceptions go to guarded_main: exit 2 for bad input, 1 otherwise
   if (ranks_->rank() != 0) return 0;  // rank 0 writes
+  draw_figures(outputs);              // gnuplot's failure: exit 1 through guarded_main
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const nlohmann::json meta = {
       {"experiment", program()},

@@ -85,42 +85,68 @@ std::string logy(const std::string& ylabel) {
   return fmt::format("set logscale y\nset format y '10^{{%L}}'\nset ylabel '{}'\nset grid\n", ylabel);
 }
 
-void render(const Figure& f, OutputSet& out) {
+namespace {
+
+// The figure's script reading its own data file, NAME-data.csv (the file saved beside it).
+std::string script_reading_own_data(const Figure& f) {
+  std::string script = f.script;
+  const std::string data_file = "'" + f.name + "-data.csv'";
+  for (std::size_t at = script.find("'data.csv'"); at != std::string::npos;
+       at = script.find("'data.csv'", at + data_file.size()))
+    script.replace(at, 10, data_file);
+  return script;
+}
+
+const char* const kPng = "set terminal pngcairo size 900,600 font ',11'\n";
+const char* const kPdf = "set terminal pdfcairo size 6in,4in font ',10'\n";
+const std::string kMarker = "drawing figure ";  // printed on the log before each figure
+
+}  // namespace
+
+void render(Figure figure, OutputSet& out) { out.queue_figure(std::move(figure)); }
+
+void draw_figures(OutputSet& out) {
+  const std::vector<Figure> figures = out.take_figures();
+  if (figures.empty()) return;
   throw_if_interrupted();
-  // A private scratch folder (mkdtemp: unique, not guessable) removed however render() ends.
+  // A private scratch folder (mkdtemp: unique, not guessable) removed however this ends. One
+  // gnuplot run draws every picture, each figure's script once per terminal (a multiplot cannot
+  // be replotted) after a reset, so that no setting carries over from the figure before. Each
+  // figure announces itself on the log, so that a failure is put to the figure that failed. The
+  // file names are relative (gnuplot runs in the scratch folder), so no path is ever quoted.
   const ScratchDir scratch{make_scratch_dir("contact_figure")};
   const fs::path& dir = scratch.path;
-  std::ofstream(dir / "data.csv") << f.data;
-  // One gnuplot run draws both pictures, the script once per terminal (a multiplot cannot be
-  // replotted). The file names are relative (gnuplot runs in the scratch folder), so no path is
-  // ever quoted.
-  std::ofstream(dir / "plot.gp") << "set datafile separator ','\n"
-                                 << "set terminal pngcairo size 900,600 font ',11'\nset output '" << f.name
-                                 << ".png'\n"
-                                 << f.script << "\nunset output\n"
-                                 << "set terminal pdfcairo size 6in,4in font ',10'\nset output '" << f.name
-                                 << ".pdf'\n"
-                                 << f.script << "\nunset output\n";
+  std::string batch;
+  for (const Figure& f : figures) {
+    const std::string script = script_reading_own_data(f);
+    std::ofstream(dir / (f.name + "-data.csv")) << f.data;
+    batch += fmt::format(
+        "reset\nprint '{4}{0}'\nset datafile separator ','\n{1}set output '{0}.png'\n{2}\n"
+        "unset output\n{3}set output '{0}.pdf'\n{2}\nunset output\n",
+        f.name, kPng, script, kPdf, kMarker);
+  }
+  std::ofstream(dir / "plot.gp") << batch;
   const int code = run_process({"gnuplot", "plot.gp"}, dir, dir / "gnuplot.log");
   if (code != 0) {
+    // The log from the failing figure's announcement on (the first figure's if gnuplot never ran).
     const std::string log = read_file(dir / "gnuplot.log");
+    const std::size_t at = log.rfind(kMarker);
+    const std::string tail = at == std::string::npos ? log : log.substr(at + kMarker.size());
+    const std::string failed =
+        at == std::string::npos ? figures.front().name : tail.substr(0, tail.find('\n'));
     throw std::runtime_error(
-        fmt::format("gnuplot failed for {} (exit {}): {}", f.name, code,
-                    log.empty() ? "is gnuplot installed? (bash scripts/setup.sh)" : log));
+        fmt::format("gnuplot failed for {} (exit {}): {}", failed, code,
+                    log.empty() ? "is gnuplot installed? (bash scripts/setup.sh)" : tail));
   }
-  for (const char* ext : {"png", "pdf"})
-    out.add(fmt::format("{}.{}", f.name, ext), read_file(dir / fmt::format("{}.{}", f.name, ext)));
-  // The saved script re-runs beside its data: `gnuplot NAME.gp` in the folder reads NAME-data.csv.
-  const std::string data_file = f.name + "-data.csv";
-  std::string script = f.script;
-  for (std::size_t at = script.find("'data.csv'"); at != std::string::npos;
-       at = script.find("'data.csv'", at))
-    script.replace(at, 10, "'" + data_file + "'");
-  out.add(data_file, f.data);
-  out.add(f.name + ".gp",
-          "# gnuplot " + f.name + ".gp, in this folder, draws " + f.name + ".png from " + data_file +
-              "\nset datafile separator ','\nset terminal pngcairo size 900,600 font ',11'\nset output '" +
-              f.name + ".png'\n" + script + "\n");
+  for (const Figure& f : figures) {
+    for (const char* ext : {"png", "pdf"})
+      out.add(fmt::format("{}.{}", f.name, ext), read_file(dir / fmt::format("{}.{}", f.name, ext)));
+    // The saved script re-runs beside its data: `gnuplot NAME.gp` in the folder reads NAME-data.csv.
+    out.add(f.name + "-data.csv", f.data);
+    out.add(f.name + ".gp", "# gnuplot " + f.name + ".gp, in this folder, draws " + f.name + ".png from " +
+                                f.name + "-data.csv\nset datafile separator ','\n" + kPng + "set output '" +
+                                f.name + ".png'\n" + script_reading_own_data(f) + "\n");
+  }
 }
 
 }  // namespace contact

@@ -1,8 +1,8 @@
 #pragma once
 // Figures drawn by gnuplot (Debian's gnuplot-nox, cairo terminals) from the experiment's own CSV,
-// as PNG for quick viewing and PDF for the paper. The script and data are written to a private
-// scratch folder, gnuplot runs there (no shell), and the pictures join the experiment's
-// OutputSet, so they are written with everything else or not at all.
+// as PNG for quick viewing and PDF for the paper. The scripts and data are written to a private
+// scratch folder, one gnuplot run draws all of an experiment's figures there (no shell), and the
+// pictures join the experiment's OutputSet, so they are written with everything else or not at all.
 #include "contact_ode/analysis/fit.hpp"
 #include "output.hpp"
 
@@ -11,12 +11,6 @@
 #include <vector>
 
 namespace contact {
-
-struct Figure {
-  std::string name;    // file stem: NAME.png, NAME.pdf, NAME.gp
-  std::string data;    // CSV the script reads as 'data.csv'
-  std::string script;  // gnuplot commands after the terminal and output lines; plots 'data.csv'
-};
 
 // Several series in one data file, one gnuplot index block each: add() appends a block of CSV
 // rows and the clause that draws it ("using 1:2 with lines title 'x'"); plot() is the
@@ -55,9 +49,12 @@ using NamedPoints = std::pair<std::string, std::vector<ConvergencePoint>>;
 Figure convergence_figure(const std::string& name, const std::string& xlabel, const std::string& ylabel,
                           const std::vector<NamedPoints>& series, const std::vector<int>& slopes);
 
-// Renders the figure into `out`: NAME.png and NAME.pdf from one gnuplot run, and, to redraw it,
-// the script NAME.gp with its data NAME-data.csv. Throws std::runtime_error with gnuplot's
-// message if it fails or is missing.
-void render(const Figure& figure, OutputSet& out);
+// Queues the figure in `out`, to be drawn by draw_figures: NAME.png and NAME.pdf, and, to redraw
+// it, the script NAME.gp with its data NAME-data.csv.
+void render(Figure figure, OutputSet& out);
+// Draws every figure queued in `out` by one gnuplot run and adds their files (Experiment::run
+// calls it after the body). Throws std::runtime_error naming the figure, with gnuplot's message,
+// if gnuplot fails or is missing.
+void draw_figures(OutputSet& out);
 
 }  // namespace contact

@@ -70,6 +70,8 @@ ScratchDir::~ScratchDir() {
 
 void OutputSet::write(const fs::path& dir_in) const {
   throw_if_interrupted();
+  if (!figures_.empty())
+    throw std::logic_error(fmt::format("{} figure(s) queued but not drawn (draw_figures)", figures_.size()));
   const fs::path dir = fs::absolute(dir_in).lexically_normal();
   const fs::path target = dir.filename().empty() ? dir.parent_path() : dir;
   std::error_code ec;

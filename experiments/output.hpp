@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <map>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace contact {
 
@@ -25,14 +27,25 @@ struct ScratchDir {
 // STEM_XXXXXX; throws std::runtime_error when it cannot be made. Own it with a ScratchDir.
 std::filesystem::path make_scratch_dir(const std::string& stem);
 
+// A figure drawn by gnuplot (figure.hpp): NAME.png, NAME.pdf and the script NAME.gp.
+struct Figure {
+  std::string name;    // file stem: NAME.png, NAME.pdf, NAME.gp
+  std::string data;    // CSV the script reads as 'data.csv'
+  std::string script;  // gnuplot commands after the terminal and output lines; plots 'data.csv'
+};
+
 class OutputSet {
  public:
   void add(const std::string& name, std::string content) { files_[name] = std::move(content); }
   // name.csv, name.md and name.tex.
   void add_table(const std::string& name, const Table& table);
+  // Figures wait here to be drawn together (draw_figures in figure.hpp: one gnuplot run for all of
+  // an experiment's figures, not one each; a run's start costs as much as a simple figure).
+  void queue_figure(Figure figure) { figures_.push_back(std::move(figure)); }
+  std::vector<Figure> take_figures() { return std::exchange(figures_, {}); }
   // Writes every file into a staging folder and swaps it in as `dir` (the previous `dir`, an
   // earlier run's results, is removed only then). Throws std::runtime_error naming the path on
-  // failure, having removed the staging folder.
+  // failure, having removed the staging folder, and std::logic_error while figures wait undrawn.
   void write(const std::filesystem::path& dir) const;
   // Adds the files to the existing folder `dir`, each written to a temporary name and renamed
   // into place (the study's index beside the experiments' folders).
@@ -41,6 +54,7 @@ class OutputSet {
 
  private:
   std::map<std::string, std::string> files_;
+  std::vector<Figure> figures_;
 };
 
 // The versions of the libraries the project links, as a JSON object {"sundials": "6.4.1", ...}.

@@ -1,0 +1,53 @@
+// One gnuplot run draws all of an experiment's figures (draw_figures): each figure starts from
+// gnuplot's defaults whatever the figure before it set, every queued figure gets its four files,
+// and a failure names the figure that failed, with gnuplot's message.
+#include "figure.hpp"
+#include "output.hpp"
+
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+#include <string>
+
+namespace {
+
+using contact::Figure;
+using contact::OutputSet;
+
+TEST(FigureBatch, NoSettingCarriesOverFromTheFigureBefore) {
+  OutputSet out;
+  // The second figure's y values are all negative: a log scale carried over from the first would
+  // leave it nothing to draw, which gnuplot refuses ("all points y value undefined").
+  contact::render({"first", "1,1\n10,100\n", "set logscale y\nplot 'data.csv' using 1:2 with lines"}, out);
+  contact::render({"second", "1,-1\n2,-3\n", "plot 'data.csv' using 1:2 with lines"}, out);
+  ASSERT_NO_THROW(contact::draw_figures(out));
+  for (const char* name : {"first", "second"})
+    for (const char* suffix : {".png", ".pdf", ".gp", "-data.csv"})
+      EXPECT_TRUE(out.files().contains(std::string(name) + suffix)) << name << suffix;
+  EXPECT_EQ(out.files().at("second-data.csv"), "1,-1\n2,-3\n");
+  EXPECT_EQ(out.files().at("second.png").substr(1, 3), "PNG");
+  EXPECT_EQ(out.take_figures().size(), 0u);  // drawn, nothing left queued
+}
+
+TEST(FigureBatch, AFailureNamesTheFigureThatFailed) {
+  OutputSet out;
+  contact::render({"fine", "1,1\n2,2\n", "plot 'data.csv' using 1:2 with lines"}, out);
+  contact::render({"broken", "1,1\n", "plot 'data.csv' using 1:2 with nonsense"}, out);
+  try {
+    contact::draw_figures(out);
+    FAIL() << "a gnuplot error was not reported";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("gnuplot failed for broken"), std::string::npos) << what;
+    EXPECT_NE(what.find("nonsense"), std::string::npos) << what;  // gnuplot's own message
+  }
+}
+
+TEST(FigureBatch, AnUndrawnFigureIsNotWrittenSilentlyAway) {
+  OutputSet out;
+  contact::render({"pending", "1,1\n", "plot 'data.csv' using 1:2"}, out);
+  const contact::ScratchDir scratch{contact::make_scratch_dir("figure_batch")};
+  EXPECT_THROW(out.write(scratch.path / "results"), std::logic_error);
+}
+
+}  // namespace
