@@ -13,16 +13,6 @@
 
 namespace contact {
 
-std::string scipy_peer_missing() {
-  if (!std::filesystem::exists(CONTACT_ODE_PYTHON_EXE))
-    return fmt::format("{} (python3)", CONTACT_ODE_PYTHON_EXE);
-  const ScratchDir scratch{make_scratch_dir("contact_scipy")};
-  if (run_process({CONTACT_ODE_PYTHON_EXE, "-c", "import numpy, scipy.integrate"}, {},
-                  scratch.path / "log") != 0)
-    return "SciPy for " CONTACT_ODE_PYTHON_EXE " (python3-scipy)";
-  return "";
-}
-
 std::vector<ScipyRun> run_scipy_peer(const ScipyDrop& d) {
   const ScratchDir scratch{make_scratch_dir("contact_scipy")};
   const std::filesystem::path log = scratch.path / "log";
@@ -43,8 +33,11 @@ std::vector<ScipyRun> run_scipy_peer(const ScipyDrop& d) {
                                     {"--repeats", static_cast<double>(d.repeats)},
                                     {"--budget", d.budget_s}})
     argv.insert(argv.end(), {flag, fmt::format("{}", value)});
+  if (!std::filesystem::exists(CONTACT_ODE_PYTHON_EXE))
+    throw ScipyPeerMissing(fmt::format("{} (python3)", CONTACT_ODE_PYTHON_EXE));
   const int code = run_process(argv, {}, log);
   const std::string out = read_text(log);
+  if (code == 3) throw ScipyPeerMissing("SciPy for " CONTACT_ODE_PYTHON_EXE " (python3-scipy)");
   if (code != 0) throw std::runtime_error(fmt::format("the SciPy peer failed (exit {}):\n{}", code, out));
   std::vector<ScipyRun> runs;
   std::istringstream lines(out);

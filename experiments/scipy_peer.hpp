@@ -2,9 +2,10 @@
 // The SciPy peer (python/scipy_peer.py) run from an experiment: the penalty ball drop under
 // scipy.integrate.solve_ivp (BDF, Radau, LSODA, RK45), restarted at every contact switch, run by
 // Debian's /usr/bin/python3 and read back as numbers. SciPy is a peer, not a dependency of the
-// library: when the interpreter or SciPy is missing, scipy_peer_missing() says what to install.
+// library: when the interpreter or SciPy is missing, ScipyPeerMissing says what to install.
 #include "problems.hpp"
 
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -29,9 +30,13 @@ struct ScipyDrop {
   std::vector<std::string> methods{"BDF", "Radau", "LSODA", "RK45"};
 };
 
-// "" when the peer can run; otherwise what is missing and how to install it.
-std::string scipy_peer_missing();
-// Runs the peer; throws std::runtime_error with its output when it fails.
+// The peer cannot run: the interpreter or SciPy is missing; what() says what to install.
+struct ScipyPeerMissing : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+// Runs the peer; throws ScipyPeerMissing when it cannot run (found by running it: a separate
+// check would start the interpreter and import SciPy once more), and std::runtime_error with its
+// output when it fails.
 std::vector<ScipyRun> run_scipy_peer(const ScipyDrop& drop);
 
 // The peer on the work-precision ball (problems.hpp: Hooke spring k, to the problem's t_end) at

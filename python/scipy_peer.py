@@ -16,8 +16,12 @@ import statistics
 import sys
 import time
 
-import numpy as np
-from scipy.integrate import solve_ivp
+try:
+    import numpy as np
+    from scipy.integrate import solve_ivp
+except ImportError as missing:  # the caller says what to install (exit 3: the peer is absent, not failed)
+    print(f"scipy_peer: {missing}", file=sys.stderr)
+    sys.exit(3)
 
 
 def drop(method, rtol, atol, m, g, k, c, h0, v0, t_end):

@@ -101,3 +101,19 @@ TEST_F(WorkPrecisionCli, BadInputIsRefused) {
                                          {"--halvings 30", "--halvings", "'30'", "[0, 13]"},
                                      });
 }
+
+// Without SciPy the peer is left out with a note saying what to install, and the rest of the
+// study's work-precision runs as before. (SciPy is made unimportable by a module of that name
+// first on the interpreter's path, which raises ImportError, as a missing package does.)
+TEST_F(WorkPrecisionCli, WithoutSciPyThePeerIsLeftOutWithANote) {
+  fs::create_directories(dir_ / "no_scipy" / "scipy");
+  std::ofstream(dir_ / "no_scipy" / "scipy" / "__init__.py")
+      << "raise ImportError('No module named scipy')\n";
+  const Outcome r = run(WORK_PRECISION_EXE, "--problems ball --integrators cvode-bdf --out wp",
+                        "PYTHONPATH='" + (dir_ / "no_scipy").string() + "'");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("the SciPy peer is skipped: missing SciPy for"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("python3-scipy"), std::string::npos) << r.err;
+  EXPECT_TRUE(points("ball", "scipy", "BDF").empty());
+  EXPECT_FALSE(points("ball", "penalty", "cvode-bdf").empty());
+}
