@@ -117,7 +117,7 @@ std::string macros(const fs::path& results, const fs::path& list) {
       {"ToolCmake", "cmake --version"},
       {"ToolGnuplot", "gnuplot --version"},
       {"ToolPdftex", "pdflatex --version"},
-      {"ToolLatexmk", "latexmk --version | grep -m1 Version"},
+      {"ToolBibtex", "bibtex --version"},
       {"MachineCpu", "grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//'"},
       {"MachineKernel", "uname -srm"},
   };

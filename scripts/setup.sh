@@ -22,7 +22,7 @@ packages=(
   libmujoco-dev libqhull-dev libbullet-dev libode-dev  # the peer engines (integrators/engines)
   libsiconos-kernel-dev libsiconos-mechanics-dev python3-siconos  # Siconos (its CMake targets need the io libraries)
   python3-scipy        # the SciPy peer of the work-precision study and the benchmarks
-  latexmk texlive-latex-base texlive-latex-recommended texlive-fonts-recommended  # the paper
+  texlive-latex-base texlive-latex-recommended texlive-fonts-recommended  # the paper
 )
 
 missing=()
