@@ -4,10 +4,16 @@
 // step, and dissipative: on an undamped spring each step multiplies the energy by exactly
 // 1 / (1 + w^2 h^2) (tests), the mirror of explicit Euler's 1 + w^2 h^2.
 // Solved by Newton's method with the scene's Jacobian (difference quotients where it has none)
-// and a dense LU, to 1e-12 of the state's size, each contact's mode read off the iterate. Where
-// the modes keep switching (the step's end sits on a switching surface: 20 iterations without
-// convergence) they are frozen at the last iterate's and Newton finishes on that smooth system;
-// 50 iterations in all without convergence are a typed ConvergenceFailure.
+// and a dense LU, to 1e-12 of the state's size, each contact's mode read off the iterate. The
+// LU of I - h J is kept across iterations and steps (a chord method, as CVODE keeps its Newton
+// matrix): forming it costs a Jacobian, n right-hand sides by difference quotients, and an O(n^3)
+// factorization, against one right-hand side per iteration. It is formed again when the modes
+// differ from those it was formed with (the Jacobian jumps where a law engages), when an
+// iteration fails to halve the correction, and after 20 steps; the converged step is the same
+// to the 1e-12 tolerance. Where the modes keep switching (the step's end sits on a switching
+// surface: 20 iterations without convergence) they are frozen at the last iterate's and Newton
+// finishes on that smooth system; 50 iterations in all without convergence are a typed
+// ConvergenceFailure.
 #include "contact_ode/integrators/capabilities.hpp"
 #include "contact_ode/integrators/method_registry.hpp"
 #include "contact_ode/integrators/status.hpp"
@@ -17,63 +23,77 @@
 #include <Eigen/Dense>
 
 #include <cmath>
+#include <limits>
 
 namespace contact {
 
 namespace {
 
-constexpr int kMaxNewton = 50, kFreezeModes = 20;
+constexpr int kMaxNewton = 50, kFreezeModes = 20, kMaxLuAge = 20;  // iterations; steps an LU is kept
 constexpr double kNewtonTolerance = 1e-12;
 
 RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) {
   const ContactGeometry& geo = contact_geometry(scene);
   const std::size_t nc = scene.contact_count();
   const auto n = static_cast<Eigen::Index>(scene.state_size());
-  ContactModes modes;
+  ContactModes modes, formed_with;  // the iterate's modes; those the LU was formed with
   SparseMatrix J;
   Eigen::MatrixXd A(n, n);
   Eigen::PartialPivLU<Eigen::MatrixXd> lu(n);  // sized once: a step's iterations allocate nothing
+  int lu_age = -1;                             // steps since the LU was formed; < 0: none
   Vector z(n), f(n), fp(n), G(n), zp(n), dz(n);
   bool frozen = false;
   auto rhs_at = [&](double t, const Vector& x, Vector& out) {
     if (!frozen) geo.modes_from_state(nc, x, modes);
     scene.rhs(t, x, modes, out);
   };
+  // I - h J at (t, z) with the iterate's modes, factorized.
+  auto form = [&](double t, double h, SolverStats& stats) {
+    if (scene.has_jacobian()) {
+      scene.jacobian(t, z, modes, J);
+      A = J;
+      A *= -h;
+    } else {  // difference quotients, column by column
+      for (Eigen::Index j = 0; j < n; ++j) {
+        const double dj = 1e-7 * std::max(1.0, std::abs(z[j]));
+        zp = z;
+        zp[j] += dj;
+        rhs_at(t, zp, fp);
+        A.col(j) = -h * (fp - f) / dj;
+      }
+      stats.rhs_evals += n;
+      if (!frozen) geo.modes_from_state(nc, z, modes);
+    }
+    A.diagonal().array() += 1.0;
+    lu.compute(A);
+    formed_with = modes;
+    lu_age = 0;
+    stats.jac_evals += 1;
+    stats.linear_setups += 1;
+  };
   auto step = [&](double t, double h, Vector& y, StepReport& report, SolverStats& stats) {
     z = y;
     frozen = false;
+    if (lu_age >= 0) ++lu_age;
+    double previous = std::numeric_limits<double>::infinity();  // the last correction's size
     for (int it = 1;; ++it) {
       frozen = it > kFreezeModes;
       rhs_at(t + h, z, f);
       stats.rhs_evals += 1;
       G = z - y - h * f;
-      if (scene.has_jacobian()) {
-        scene.jacobian(t + h, z, modes, J);
-        A = J;
-        A *= -h;
-      } else {  // difference quotients, column by column
-        for (Eigen::Index j = 0; j < n; ++j) {
-          const double dj = 1e-7 * std::max(1.0, std::abs(z[j]));
-          zp = z;
-          zp[j] += dj;
-          rhs_at(t + h, zp, fp);
-          A.col(j) = -h * (fp - f) / dj;
-        }
-        stats.rhs_evals += n;
-        if (!frozen) geo.modes_from_state(nc, z, modes);
-      }
-      A.diagonal().array() += 1.0;
-      stats.jac_evals += 1;
-      stats.linear_setups += 1;
+      if (lu_age < 0 || lu_age > kMaxLuAge || modes != formed_with) form(t + h, h, stats);
       stats.newton_iters += 1;
-      dz = lu.compute(A).solve(G);
+      dz = lu.solve(G);
       z -= dz;
-      if (dz.lpNorm<Eigen::Infinity>() <= kNewtonTolerance * (1 + z.lpNorm<Eigen::Infinity>())) break;
+      const double size = dz.lpNorm<Eigen::Infinity>();
+      if (size <= kNewtonTolerance * (1 + z.lpNorm<Eigen::Infinity>())) break;
       if (it == kMaxNewton || !z.allFinite())
         throw SolverFailure(Status::ConvergenceFailure, t,
                             fmt::format("implicit Euler: Newton did not converge in {} iterations (last "
                                         "correction {:g})",
-                                        it, dz.lpNorm<Eigen::Infinity>()));
+                                        it, size));
+      if (size > 0.5 * previous) lu_age = -1;  // too slow for the kept matrix: form it at the iterate
+      previous = size;
     }
     scene.normalize(z);
     y = z;
