@@ -1,12 +1,12 @@
 // convergence_dt — observed orders of every integrator on the penalty ball drop, switches located or not.
-// Problem: 1 kg dropped on a Hooke spring (--k) to t = --t-final (1.5 s: two contacts, four kinks)
-// from --heights heights in [1, 1.25) m, so that the kinks fall at every phase of a fixed step. Error
-// of a drop: max(|x - x*| / h0, |v - v*| / V) at t-final against the closed form; a row reports its
-// maximum and RMS over the heights and the CPU time per solve.
-// Fixed steps dt = --dt-max / 2^j, j = 0..--halvings; rtol = 10^-3 .. --tol-min, atol = rtol / 100.
-// "unlocated": steps straddle the kink of F = k max(-x, 0), so an order p > 2 drops to 2. The fitted
-// order: the least-squares log-log slope (GSL) of the maximum error over the five finest rows with
-// 1e-9 < error < 1e-2. Under mpirun the (integrator, location, step) cases go over ranks. A failed
+// Problem: 1 kg dropped on a Hooke spring (--k) to t = --t-final (1.5 s: two contacts, four kinks) from
+// --heights heights in [1, 1.25) m, so that the kinks fall at every phase of a fixed step. Error of a
+// drop: max(|x - x*| / h0, |v - v*| / V) at t-final against the closed form; a row reports its maximum
+// and RMS over the heights and the CPU time per solve. Fixed steps dt = --dt-max / 2^j, j = 0..--halvings
+// (stopping at the first error below 1e-9: errors_down_to); rtol = 10^-3 .. --tol-min, atol = rtol / 100.
+// "unlocated": steps straddle the kink of F = k max(-x, 0), so an order p > 2 drops to 2. Fitted order:
+// the least-squares log-log slope (GSL) of the maximum error over the five finest rows with 1e-9 < error
+// < 1e-2. Under mpirun the ladders (integrator, location, fixed or adaptive) go over the ranks. A failed
 // run (say a stage's Newton iteration across an unlocated kink) is a row with its status, no error.
 // Outputs: fixed_step, adaptive, orders (.csv/.md/.tex), figures, meta.json. Exit 0, 1, 2 bad input.
 #include "contact_ode/analysis/table.hpp"
@@ -30,10 +30,10 @@ namespace {
 constexpr double kRoundOff = 1e-9, kAsymptotic = 1e-2;  // and dense output (RK4's located rows flatten)
 constexpr std::size_t kFitRows = 5;
 
-struct Case {
+struct Ladder {
   std::string integrator;
-  bool located, fixed;  // switches located; a fixed-step run (else adaptive)
-  double step;          // dt or rtol
+  bool located, fixed;        // switches located; fixed steps (else tolerances)
+  std::vector<double> steps;  // dt or rtol, coarsest first
 };
 using Points = std::map<bool, std::map<std::string, std::vector<ConvergencePoint>>>;  // [located][integrator]
 
@@ -63,25 +63,24 @@ int program(int argc, char** argv) {
     const auto dts = halved_steps("--halvings", dt_max, halvings, 1, t_final);
     const auto drops = ball_problems_over_heights(k, t_final, static_cast<std::size_t>(heights));
     const auto chosen = cli::chosen(integrators, integrator_names());
-    std::vector<Case> cases;
+    std::vector<Ladder> ladders;
     for (const auto& name : chosen)
       for (const bool located : {false, true}) {
-        if (integrator_info(name).fixed_step_capable)
-          for (const double dt : dts) cases.push_back({name, located, true, dt});
-        if (integrator_info(name).adaptive)
-          for (double tol = 1e-3; tol >= tol_min * (1 - 1e-9); tol /= 10)
-            cases.push_back({name, located, false, tol});
+        if (integrator_info(name).fixed_step_capable) ladders.push_back({name, located, true, dts});
+        if (integrator_info(name).adaptive) ladders.push_back({name, located, false, decades(1e-3, tol_min)});
       }
-    Progress progress("convergence_dt", cases.size());
-    const auto results = app.share(cases.size(), [&](std::size_t i) -> nlohmann::json {
-      const Case& c = cases[i];
-      progress.step(fmt::format("{} {} {:g}", c.integrator, c.located ? "located" : "unlocated", c.step));
-      PenaltyOptions o{.integrator = {.method = c.integrator, .max_steps = kSweepMaxSteps},
-                       .locate_switches = c.located};
-      o.integrator = with_setting(o.integrator, c.fixed, c.step);
-      return error_over(drops, [&](const Problem& drop) {
-        return run_penalty(*drop.model, o, {.t_end = t_final, .sample_dt = t_final});
-      });
+    Progress progress("convergence_dt", ladders.size());
+    const auto results = app.share(ladders.size(), [&](std::size_t i) -> nlohmann::json {
+      const Ladder& l = ladders[i];
+      progress.step(l.integrator + (l.located ? " located" : " unlocated") + (l.fixed ? " dt" : " rtol"));
+      return nlohmann::json(errors_down_to(l.steps, l.fixed ? kRoundOff : 0.0, [&](double step) {
+        PenaltyOptions o{.integrator = {.method = l.integrator, .max_steps = kSweepMaxSteps},
+                         .locate_switches = l.located};
+        o.integrator = with_setting(o.integrator, l.fixed, step);
+        return error_over(drops, [&](const Problem& drop) {
+          return run_penalty(*drop.model, o, {.t_end = t_final, .sample_dt = t_final});
+        });
+      }));
     });
     if (!results) return;  // another MPI rank: its share is done
     const auto columns = [](const char* step) {
@@ -91,22 +90,24 @@ int program(int argc, char** argv) {
     Table fixed(columns("dt_s")), adaptive(columns("rtol"));
     Points fixed_points, adaptive_points;
     std::map<bool, std::map<std::string, double>> tightest_rhs;  // [located][integrator], NaN: it failed
-    for (std::size_t i = 0; i < cases.size(); ++i) {
-      const Case& c = cases[i];
-      const auto r = (*results)[i].get<ErrorSpread>();
-      const std::string events = c.located ? "located" : "unlocated";
-      auto& points = (c.fixed ? fixed_points : adaptive_points)[c.located][c.integrator];
-      report(r, fmt::format("convergence_dt: {} {} ({} {:g})", c.integrator, events, c.fixed ? "dt" : "rtol",
-                            c.step));  // a row with the solver's verdict, not a point of the fits
-      const double order = points.empty() || !r.ok()
-                               ? std::nan("")
-                               : observed_order(points.back().step, points.back().error, c.step, r.max);
-      if (r.ok()) points.push_back({c.step, r.max, std::lround(r.rhs)});
-      if (!c.fixed) tightest_rhs[c.located][c.integrator] = r.ok() ? std::round(r.rhs) : std::nan("");
-      (c.fixed ? fixed : adaptive)
-          .add_row(
-              {c.integrator, events, c.step, r.max, r.rms, order, std::lround(r.rhs), r.cpu_s, r.status});
-    }
+    for (std::size_t i = 0; i < ladders.size(); ++i)
+      for (std::size_t j = 0; j < (*results)[i].size(); ++j) {
+        const Ladder& c = ladders[i];
+        const double step = c.steps[j];
+        const auto r = (*results)[i][j].get<ErrorSpread>();
+        const std::string events = c.located ? "located" : "unlocated";
+        auto& points = (c.fixed ? fixed_points : adaptive_points)[c.located][c.integrator];
+        report(r, fmt::format("convergence_dt: {} {} ({} {:g})", c.integrator, events,
+                              c.fixed ? "dt" : "rtol", step));
+        const double order = points.empty() || !r.ok()
+                                 ? std::nan("")
+                                 : observed_order(points.back().step, points.back().error, step, r.max);
+        if (r.ok()) points.push_back({step, r.max, std::lround(r.rhs)});
+        if (!c.fixed) tightest_rhs[c.located][c.integrator] = r.ok() ? std::round(r.rhs) : std::nan("");
+        Table& table = c.fixed ? fixed : adaptive;
+        table.add_row(
+            {c.integrator, events, step, r.max, r.rms, order, std::lround(r.rhs), r.cpu_s, r.status});
+      }
     Table orders({"integrator", "order", "expected_unlocated", "fixed_order_unlocated", "fixed_order_located",
                   "tol_exponent_unlocated", "tol_exponent_located", "rhs_evals_tightest_unlocated",
                   "rhs_evals_tightest_located"});

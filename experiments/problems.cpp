@@ -56,6 +56,16 @@ ErrorSpread error_over(const std::vector<Problem>& problems,
   return out;
 }
 
+std::vector<ErrorSpread> errors_down_to(const std::vector<double>& steps, double floor,
+                                        const std::function<ErrorSpread(double)>& at_step) {
+  std::vector<ErrorSpread> rows;
+  for (const double step : steps) {
+    rows.push_back(at_step(step));
+    if (rows.back().ok() && rows.back().max < floor) break;
+  }
+  return rows;
+}
+
 bool report(const ErrorSpread& r, const std::string& what) {
   if (!r.ok()) std::cerr << what << ": " << r.failure << "\n";
   return r.ok();

@@ -46,6 +46,11 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ErrorSpread, max, rms, rhs, cpu_s, status, fa
 bool report(const ErrorSpread& r, const std::string& what);
 ErrorSpread error_over(const std::vector<Problem>& problems,
                        const std::function<RunResult(const Problem&)>& solve_one);
+// at_step(step) for each of `steps`, coarsest first, stopping after the first that succeeds with a
+// maximum error below `floor` (0: never stops): a finer step would measure rounding, not the
+// method, and the finest of a halving ladder costs as much as all the others together.
+std::vector<ErrorSpread> errors_down_to(const std::vector<double>& steps, double floor,
+                                        const std::function<ErrorSpread(double)>& at_step);
 
 // ball_problem from `count` heights in [1, 1.25) m, quasi-random (the golden-ratio sequence): the
 // contacts of the drops fall at phases spread evenly over any fixed step, so that a convergence

@@ -42,6 +42,13 @@ inline std::vector<double> halved_steps(const std::string& option, double dt_max
   return steps;
 }
 
+// Tolerances from `loosest` down to `tightest` (within rounding), a decade apart.
+inline std::vector<double> decades(double loosest, double tightest) {
+  std::vector<double> out;
+  for (double tol = loosest; tol >= tightest * (1 - 1e-9); tol /= 10) out.push_back(tol);
+  return out;
+}
+
 // `o` with dt = value (fixed_step), or with rtol = value and atol = value * kAtolPerRtol.
 inline IntegratorOptions with_setting(IntegratorOptions o, bool fixed_step, double value) {
   if (fixed_step) {
