@@ -52,6 +52,11 @@ int program(int argc, char** argv) {
   app.add("--atol", atol, "CVODE absolute tolerance [m, m/s]", cli::positive());
   app.add("--out", out, "results folder (written by rank 0)");
   if (const int code = app.parse(argc, argv); code >= 0) return code;
+  // --out is replaced whole: only a new or empty folder or an earlier run's (it holds stats.csv).
+  if (const std::string refusal = check_output_dir(out, "stats.csv"); !refusal.empty()) {
+    if (rank == 0) std::cerr << "chain_mpi: " << refusal << "\n";
+    return cli::kExitBadInput;
+  }
   const BallChainParams p{.n = static_cast<std::size_t>(balls), .law = Hooke{k}};
   if (t_end == 0)
     t_end =
@@ -82,7 +87,7 @@ int program(int argc, char** argv) {
   OutputSet files;
   files.add("velocities.csv", velocities.to_csv());
   files.add("stats.csv", stats.to_csv());
-  files.write(out);
+  files.write(out, "stats.csv");
   fmt::print(
       "chain_mpi: {} balls on {} ranks to t = {:g} s: {} steps, {} GMRES iterations, {:.3f} s; energy error "
       "{:.2g}\n",

@@ -68,8 +68,12 @@ ScratchDir::~ScratchDir() {
   if (!path.empty()) fs::remove_all(path, ec);
 }
 
-void OutputSet::write(const fs::path& dir_in) const {
+void OutputSet::write(const fs::path& dir_in, const std::string& marker) const {
   throw_if_interrupted();
+  // Checked again here, whatever the caller checked: replacing a folder that is not an earlier
+  // run's results would delete what it holds (paper_numbers once replaced --out's whole folder).
+  if (const std::string refusal = check_output_dir(dir_in, marker); !refusal.empty())
+    throw std::runtime_error(refusal);
   if (!figures_.empty())
     throw std::logic_error(fmt::format("{} figure(s) queued but not drawn (draw_figures)", figures_.size()));
   const fs::path dir = fs::absolute(dir_in).lexically_normal();

@@ -46,7 +46,9 @@ class OutputSet {
   // Writes every file into a staging folder and swaps it in as `dir` (the previous `dir`, an
   // earlier run's results, is removed only then). Throws std::runtime_error naming the path on
   // failure, having removed the staging folder, and std::logic_error while figures wait undrawn.
-  void write(const std::filesystem::path& dir) const;
+  // A `dir` that check_output_dir(dir, marker) refuses (a folder holding anything but an earlier
+  // run's results, which hold `marker`) is never replaced: the refusal is thrown.
+  void write(const std::filesystem::path& dir, const std::string& marker = "meta.json") const;
   // Adds the files to the existing folder `dir`, each written to a temporary name and renamed
   // into place (the study's index beside the experiments' folders).
   void write_into(const std::filesystem::path& dir) const;

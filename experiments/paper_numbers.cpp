@@ -2,7 +2,7 @@
 // as LaTeX macros (\newcommand{\Name}{value}), so that no result in the text is typed by hand.
 // The list is data, paper/numbers.json: each macro names the CSV, the row (column = value pairs;
 // numbers compared numerically) and the column it comes from. A missing file, row or column is an
-// error: the paper must not build on a partial study.
+// error: the paper must not build on a partial study. FILE goes into its folder beside what is there.
 // Usage: paper_numbers --results DIR --out FILE [--numbers LIST]. Exit 0, 1 a number is missing, 2 bad input.
 #include "cli.hpp"
 #include "contact_ode/analysis/table.hpp"
@@ -139,7 +139,7 @@ int program(int argc, char** argv) {
   try {
     OutputSet files;
     files.add(fs::path(out).filename().string(), macros(results, list));
-    files.write(fs::path(out).parent_path().empty() ? fs::path(".") : fs::path(out).parent_path());
+    files.write_into(fs::path(out).parent_path().empty() ? fs::path(".") : fs::path(out).parent_path());
   } catch (const std::exception& ex) {
     std::cerr << "paper_numbers: " << ex.what() << "\n";
     return cli::kExitFailure;

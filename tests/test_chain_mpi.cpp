@@ -77,3 +77,18 @@ TEST_F(ChainMpi, OneAndTwoRanksAgreeWithTheSerialBandSolver) {
   // The pulse has dispersed along the chain: the result is not the trivial exchange.
   EXPECT_GT(std::abs(one[0]), 1e-2);
 }
+
+// --out is replaced whole, so it is checked first like every experiment's: a folder holding
+// anything but an earlier run's results (stats.csv) is refused, and what it holds stays. It was
+// replaced unchecked: `chain_mpi --out .` deleted the current folder's files.
+TEST_F(ChainMpi, AnOutFolderOfOtherFilesIsRefusedAndKept) {
+  fs::create_directories(dir_ / "mine");
+  std::ofstream(dir_ / "mine" / "keep.txt") << "kept\n";
+  const Outcome r = run(CHAIN_MPI_EXE, "--balls 4 --out mine");
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("--out: value 'mine'"), std::string::npos) << r.err;
+  EXPECT_EQ(slurp(dir_ / "mine" / "keep.txt"), "kept\n");
+  // An earlier run's folder is replaced, as before.
+  ASSERT_EQ(run(CHAIN_MPI_EXE, "--balls 4 --out fresh").code, 0);
+  EXPECT_EQ(run(CHAIN_MPI_EXE, "--balls 4 --out fresh").code, 0);
+}

@@ -1,11 +1,14 @@
-// One gnuplot run draws all of an experiment's figures (draw_figures): each figure starts from
-// gnuplot's defaults whatever the figure before it set, every queued figure gets its four files,
-// and a failure names the figure that failed, with gnuplot's message.
+// An experiment's OutputSet: one gnuplot run draws all of an experiment's figures (draw_figures),
+// each from gnuplot's defaults whatever the figure before it set, every queued figure gets its four
+// files, and a failure names the figure that failed, with gnuplot's message; and write() never
+// replaces a folder that is not an earlier run's results.
 #include "figure.hpp"
 #include "output.hpp"
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <stdexcept>
 #include <string>
 
@@ -48,6 +51,29 @@ TEST(FigureBatch, AnUndrawnFigureIsNotWrittenSilentlyAway) {
   contact::render({"pending", "1,1\n", "plot 'data.csv' using 1:2"}, out);
   const contact::ScratchDir scratch{contact::make_scratch_dir("figure_batch")};
   EXPECT_THROW(out.write(scratch.path / "results"), std::logic_error);
+}
+
+}  // namespace
+
+namespace {
+
+// OutputSet::write replaces its folder whole, so it checks the folder itself, whatever its caller
+// did: a folder holding anything but an earlier run's results (the marker file) is never replaced.
+TEST(OutputSetWrite, NeverReplacesAFolderOfOtherFiles) {
+  const contact::ScratchDir scratch{contact::make_scratch_dir("output_set")};
+  const auto mine = scratch.path / "mine";
+  std::filesystem::create_directories(mine);
+  std::ofstream(mine / "keep.txt") << "kept\n";
+  OutputSet out;
+  out.add("meta.json", "{}\n");
+  EXPECT_THROW(out.write(mine), std::runtime_error);
+  EXPECT_TRUE(std::filesystem::exists(mine / "keep.txt"));
+  // An earlier run's folder (it holds the marker) is replaced.
+  out.write(scratch.path / "earlier");
+  std::ofstream(scratch.path / "earlier" / "stale.txt") << "stale\n";
+  out.write(scratch.path / "earlier");
+  EXPECT_FALSE(std::filesystem::exists(scratch.path / "earlier" / "stale.txt"));
+  EXPECT_TRUE(std::filesystem::exists(scratch.path / "earlier" / "meta.json"));
 }
 
 }  // namespace
