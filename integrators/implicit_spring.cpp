@@ -8,12 +8,12 @@
 // LU of I - h J is kept across iterations and steps (a chord method, as CVODE keeps its Newton
 // matrix): forming it costs a Jacobian, n right-hand sides by difference quotients, and an O(n^3)
 // factorization, against one right-hand side per iteration. It is formed again when the modes
-// differ from those it was formed with (the Jacobian jumps where a law engages), when an
-// iteration fails to halve the correction, and after 20 steps; the converged step is the same
-// to the 1e-12 tolerance. Where the modes keep switching (the step's end sits on a switching
-// surface: 20 iterations without convergence) they are frozen at the last iterate's and Newton
-// finishes on that smooth system; 50 iterations in all without convergence are a typed
-// ConvergenceFailure.
+// differ from those it was formed with (the Jacobian jumps where a law engages), when the step
+// differs, when an iteration fails to halve the correction, and after 20 steps; the converged
+// step is the same to the 1e-12 tolerance. Where the modes keep switching (the step's end sits
+// on a switching surface: 20 iterations without convergence) they are frozen at the last
+// iterate's and Newton finishes on that smooth system; 50 iterations in all without convergence
+// are a typed ConvergenceFailure.
 #include "contact_ode/integrators/capabilities.hpp"
 #include "contact_ode/integrators/method_registry.hpp"
 #include "contact_ode/integrators/status.hpp"
@@ -41,6 +41,7 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
   Eigen::MatrixXd A(n, n);
   Eigen::PartialPivLU<Eigen::MatrixXd> lu(n);  // sized once: a step's iterations allocate nothing
   int lu_age = -1;                             // steps since the LU was formed; < 0: none
+  double formed_h = 0;                         // the step it was formed for (a run's last may be shorter)
   Vector z(n), f(n), fp(n), G(n), zp(n), dz(n);
   bool frozen = false;
   auto rhs_at = [&](double t, const Vector& x, Vector& out) {
@@ -67,6 +68,7 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
     A.diagonal().array() += 1.0;
     lu.compute(A);
     formed_with = modes;
+    formed_h = h;
     lu_age = 0;
     stats.jac_evals += 1;
     stats.linear_setups += 1;
@@ -81,7 +83,7 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
       rhs_at(t + h, z, f);
       stats.rhs_evals += 1;
       G = z - y - h * f;
-      if (lu_age < 0 || lu_age > kMaxLuAge || modes != formed_with) form(t + h, h, stats);
+      if (lu_age < 0 || lu_age > kMaxLuAge || modes != formed_with || h != formed_h) form(t + h, h, stats);
       stats.newton_iters += 1;
       dz = lu.solve(G);
       z -= dz;
