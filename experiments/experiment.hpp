@@ -2,9 +2,10 @@
 // The skeleton every experiment shares, so that an experiment file is only its recipe:
 //   options  declared on the Experiment (--out is added, with its default);
 //   run      parses the command line (exit 0 after --help, 2 on bad input), checks that --out can
-//            receive results before any work, starts the clock, runs the body, then writes the
-//            body's outputs with meta.json (options, command line, git revision, libraries, wall
-//            time) by a staged swap, and prints where.
+//            receive results before any work, starts the clock, runs the body, draws the figures
+//            it queued (render(): one gnuplot run for all), then writes the body's outputs with
+//            meta.json (options, command line, git revision, libraries, wall time) by a staged
+//            swap, and prints where.
 // Under mpirun (or srun) every rank runs the body and rank 0 alone writes; a sweep deals its
 // cases out over the ranks with share(), and only rank 0 goes on to tables and figures.
 // The body reports bad input by throwing std::invalid_argument (exit 2, nothing written) and a

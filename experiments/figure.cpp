@@ -117,13 +117,14 @@ void draw_figures(OutputSet& out) {
   const ScratchDir scratch{make_scratch_dir("contact_figure")};
   const fs::path& dir = scratch.path;
   std::string batch;
+  std::vector<std::string> scripts;  // each reading its own NAME-data.csv, as the saved NAME.gp does
   for (const Figure& f : figures) {
-    const std::string script = script_reading_own_data(f);
+    scripts.push_back(script_reading_own_data(f));
     std::ofstream(dir / (f.name + "-data.csv")) << f.data;
     batch += fmt::format(
         "reset\nprint '{4}{0}'\nset datafile separator ','\n{1}set output '{0}.png'\n{2}\n"
         "unset output\n{3}set output '{0}.pdf'\n{2}\nunset output\n",
-        f.name, kPng, script, kPdf, kMarker);
+        f.name, kPng, scripts.back(), kPdf, kMarker);
   }
   std::ofstream(dir / "plot.gp") << batch;
   const int code = run_process({"gnuplot", "plot.gp"}, dir, dir / "gnuplot.log");
@@ -138,14 +139,15 @@ void draw_figures(OutputSet& out) {
         fmt::format("gnuplot failed for {} (exit {}): {}", failed, code,
                     log.empty() ? "is gnuplot installed? (bash scripts/setup.sh)" : tail));
   }
-  for (const Figure& f : figures) {
+  for (std::size_t i = 0; i < figures.size(); ++i) {
+    const Figure& f = figures[i];
     for (const char* ext : {"png", "pdf"})
       out.add(fmt::format("{}.{}", f.name, ext), read_file(dir / fmt::format("{}.{}", f.name, ext)));
     // The saved script re-runs beside its data: `gnuplot NAME.gp` in the folder reads NAME-data.csv.
     out.add(f.name + "-data.csv", f.data);
     out.add(f.name + ".gp", "# gnuplot " + f.name + ".gp, in this folder, draws " + f.name + ".png from " +
                                 f.name + "-data.csv\nset datafile separator ','\n" + kPng + "set output '" +
-                                f.name + ".png'\n" + script_reading_own_data(f) + "\n");
+                                f.name + ".png'\n" + scripts[i] + "\n");
   }
 }
 
