@@ -57,8 +57,9 @@ int program(int argc, char** argv) {
       return cli::kExitBadInput;
     }
   // The study writes into --out (each experiment replaces its own folder), so a folder that
-  // holds other files is fine; it must only be a writable folder.
-  if (const auto err = check_output_dir(out, ""); !err.empty()) {
+  // holds other files is fine; it must be a writable folder whose index.md and study.json, if
+  // any, are an earlier study's.
+  if (auto err = check_output_dir(out, ""); !err.empty() || !(err = foreign_study_files(out)).empty()) {
     std::cerr << "study: " << err << "\n";
     return cli::kExitBadInput;
   }

@@ -126,6 +126,23 @@ void keep_earlier_runs(const StudyManifest& m, nlohmann::json& record, const fs:
   }
 }
 
+std::string foreign_study_files(const fs::path& out) {
+  std::error_code ec;
+  const fs::path record = out / "study.json", index = out / "index.md";
+  if (fs::exists(record, ec)) {
+    std::ifstream in(record);
+    const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);  // discarded on a parse error
+    if (j.is_object() && j.contains("experiments")) return "";
+  }
+  for (const fs::path& f : {record, index})
+    if (fs::exists(f, ec))
+      return fmt::format(
+          "--out: value '{}' holds a {} that no study wrote; accepted: a folder without "
+          "index.md and study.json, or an earlier study's results",
+          out.string(), f.filename().string());
+  return "";
+}
+
 double complete_wall_time(const nlohmann::json& study, const fs::path& file) {
   if (!study.contains("complete_wall_time_s"))
     throw std::runtime_error(

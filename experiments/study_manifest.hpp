@@ -47,6 +47,11 @@ std::vector<std::string> check_outputs(const StudyExperiment& experiment, const 
 void keep_earlier_runs(const StudyManifest& manifest, nlohmann::json& record,
                        const std::filesystem::path& results);
 
+// "" unless `out` holds an index.md or a study.json that no study wrote (a study.json without its
+// record of experiments, or an index.md without a study.json): the study writes both into --out
+// and would overwrite them. Otherwise the refusal, naming --out, the file and what is accepted.
+std::string foreign_study_files(const std::filesystem::path& out);
+
 // The wall time of the study's last run of every experiment, from its study.json (`file`, for the
 // message); throws std::runtime_error if it only holds runs of a few (study --only).
 double complete_wall_time(const nlohmann::json& study, const std::filesystem::path& file);

@@ -53,6 +53,25 @@ TEST_F(StudyCli, RerunningSomeExperimentsKeepsTheOthersOfTheFolder) {
   EXPECT_EQ(study().at("experiments").size(), 1u);
 }
 
+// The study writes index.md and study.json into --out, a folder that may hold other files: one of
+// those names that no study wrote is refused (exit 2) and kept. The study overwrote them: `study
+// --out ~/notes` replaced the notes' own index.md. An earlier study's folder is written as before.
+TEST_F(StudyCli, AnIndexNoStudyWroteIsRefusedAndKept) {
+  for (const char* name : {"index.md", "study.json"}) {
+    const fs::path mine = dir_ / (std::string("mine_") + name);
+    fs::create_directories(mine);
+    std::ofstream(mine / name) << "my own\n";
+    const Outcome r = run(STUDY_EXE, "--tiny --only contact_advisor --out " + mine.filename().string());
+    EXPECT_EQ(r.code, 2) << name << ": " << r.err;
+    EXPECT_NE(r.err.find("holds a " + std::string(name) + " that no study wrote"), std::string::npos)
+        << r.err;
+    EXPECT_EQ(slurp(mine / name), "my own\n") << name;
+    EXPECT_FALSE(fs::exists(mine / "contact_advisor")) << name;  // refused before any work
+  }
+  ASSERT_EQ(run(STUDY_EXE, "--tiny --only contact_advisor --out s").code, 0);
+  EXPECT_EQ(run(STUDY_EXE, "--tiny --only contact_advisor --out s").code, 0);
+}
+
 // The check is not vacuous: a missing column, a short row, a figure without its PDF and a missing
 // file are each reported.
 TEST_F(StudyCli, OutputCheckReportsEveryKindOfDefect) {
