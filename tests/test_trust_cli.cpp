@@ -129,8 +129,10 @@ TEST_F(TrustCli, InterruptsLeaveNothingBehindAndKeepEarlierResults) {
   Outcome r = run(exe("study"), "--tiny --only newton_cradle --out res");
   ASSERT_EQ(r.code, 0) << r.err;
   const std::string before = slurp(dir_ / "res" / "newton_cradle" / "meta.json");
-  // convergence_dt (~4 s, before newton_cradle in the manifest) is running when the signal comes.
-  r = run(exe("study"), "--only convergence_dt,newton_cradle --out res",
+  // One job at a time, so that convergence_dt (~3 s of CPU, before newton_cradle in the schedule)
+  // is running when the signal comes and newton_cradle is not begun; with a job per core both
+  // started together, and newton_cradle (0.5 s) could finish first and rightly replace its results.
+  r = run(exe("study"), "--jobs 1 --only convergence_dt,newton_cradle --out res",
           "timeout --preserve-status -s INT 1");
   EXPECT_EQ(r.code, 130) << r.err;
   EXPECT_EQ(slurp(dir_ / "res" / "newton_cradle" / "meta.json"), before)
