@@ -84,8 +84,8 @@ class BulletWorld final : public EngineWorld {
   BulletWorld(const BulletWorld&) = delete;
   BulletWorld& operator=(const BulletWorld&) = delete;
 
-  // One internal step of exactly dt (maxSubSteps 0: Bullet steps by the time given).
-  void step() override { world_.stepSimulation(scene_.dt, 0); }
+  // One internal step of exactly h (maxSubSteps 0: Bullet steps by the time given).
+  void step(double h) override { world_.stepSimulation(h, 0); }
 
   void read(std::vector<double>& centre, std::vector<double>& velocity) const override {
     centre.resize(bodies_.size());

@@ -81,7 +81,7 @@ MethodInfo engine_method(std::string name, std::string description, bool springs
     auto step = [&](double t, double h, Vector& y, StepReport& report, SolverStats& stats) {
       if (!world) throw SolverFailure(Status::SolverError, t, refused);
       try {
-        world->step();
+        world->step(h);
       } catch (const EngineError& failure) {
         throw SolverFailure(Status::SolverError, t, failure.what());
       }

@@ -39,9 +39,10 @@ class EngineError : public std::runtime_error {
 class EngineWorld {
  public:
   virtual ~EngineWorld() = default;
-  // One step of the engine's own loop, of the scene's dt; throws EngineError when the engine
-  // reports a failure.
-  virtual void step() = 0;
+  // One step of the engine's own loop, of length h: the scene's dt, or less for a run's last step
+  // where dt does not divide the span (the state is reported at the span's end, so the engine must
+  // stop there, not a whole dt later). Throws EngineError when the engine reports a failure.
+  virtual void step(double h) = 0;
   // Each sphere's centre along the axis and its velocity [m], [m/s].
   virtual void read(std::vector<double>& centre, std::vector<double>& velocity) const = 0;
   // The normal impulse each contact applied during the last step [N s], >= 0.

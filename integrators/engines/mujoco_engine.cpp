@@ -88,7 +88,10 @@ class MujocoWorld final : public EngineWorld {
     for (std::size_t b = 0; b < s.velocity.size(); ++b) data_->qvel[b] = s.velocity[b];
   }
 
-  void step() override { mj_step(model_.get(), data_.get()); }
+  void step(double h) override {
+    model_->opt.timestep = h;
+    mj_step(model_.get(), data_.get());
+  }
 
   void read(std::vector<double>& centre, std::vector<double>& velocity) const override {
     const std::size_t n = scene_.centre.size();
@@ -111,7 +114,7 @@ class MujocoWorld final : public EngineWorld {
       if (c < 0 || con.efc_address < 0) continue;
       mjtNum force[6];
       mj_contactForce(model_.get(), data_.get(), j, force);
-      impulse[static_cast<std::size_t>(c)] += force[0] * scene_.dt;
+      impulse[static_cast<std::size_t>(c)] += force[0] * model_->opt.timestep;
     }
   }
 

@@ -125,7 +125,8 @@ class OdeWorld final : public EngineWorld {
   OdeWorld(const OdeWorld&) = delete;
   OdeWorld& operator=(const OdeWorld&) = delete;
 
-  void step() override {
+  void step(double h) override {
+    h_ = h;
     dJointGroupEmpty(joints_);
     feedback_.clear();
     made_.clear();
@@ -133,9 +134,9 @@ class OdeWorld final : public EngineWorld {
     ode_message.clear();
     try {
       if (quick_)
-        dWorldQuickStep(world_, scene_.dt);
+        dWorldQuickStep(world_, h);
       else
-        dWorldStep(world_, scene_.dt);
+        dWorldStep(world_, h);
     } catch (const EngineError&) {
       interrupted_ = true;
       throw;
@@ -160,8 +161,7 @@ class OdeWorld final : public EngineWorld {
       // The force on the joint's first body; the floor's plane has none, and then the second's.
       const Made& m = made_[k];
       const dReal* f = m.first_body ? feedback_[k].f1 : feedback_[k].f2;
-      impulse[m.contact] +=
-          std::abs(f[0] * m.normal[0] + f[1] * m.normal[1] + f[2] * m.normal[2]) * scene_.dt;
+      impulse[m.contact] += std::abs(f[0] * m.normal[0] + f[1] * m.normal[1] + f[2] * m.normal[2]) * h_;
     }
   }
 
@@ -188,7 +188,7 @@ class OdeWorld final : public EngineWorld {
     contact.surface.mu = 0;
     if (spring_) {
       // ODE's spring constant is the force per unit overlap, whatever the masses.
-      const OdeErpCfm soft = to_ode(scene_.law[i].k, scene_.law[i].c, scene_.dt);
+      const OdeErpCfm soft = to_ode(scene_.law[i].k, scene_.law[i].c, h_);
       contact.surface.mode = dContactSoftERP | dContactSoftCFM;
       contact.surface.soft_erp = soft.erp;
       contact.surface.soft_cfm = soft.cfm;
@@ -212,6 +212,7 @@ class OdeWorld final : public EngineWorld {
   bool spring_;
   bool quick_;
   bool interrupted_ = false;  // an ODE error ended a step half-way: the world is not destroyed
+  double h_ = 0;              // the step being taken [s]: the soft contacts' ERP and CFM depend on it
   dWorldID world_ = nullptr;
   dSpaceID space_ = nullptr;
   dJointGroupID joints_ = nullptr;

@@ -26,9 +26,9 @@ class SiconosWorld final : public EngineWorld {
                              .rtol = 1e-10,
                              .atol = 1e-12}) {}
 
-  void step() override {
+  void step(double h) override {
     try {
-      line_.step();
+      line_.step(h);
     } catch (const std::runtime_error& e) {
       throw EngineError(e.what());
     }
@@ -47,7 +47,13 @@ class SiconosWorld final : public EngineWorld {
 std::vector<MethodInfo> siconos_methods() {
   return {engine_method("siconos",
                         "Siconos 4.4 event-driven: LSODAR flight, Newton's impact law by LCP, Zeno to rest",
-                        false, [](const EngineScene& s) { return std::make_unique<SiconosWorld>(s); })};
+                        false, [](const EngineScene& s) -> std::unique_ptr<EngineWorld> {
+                          try {  // Siconos's refusal of the scene fails the run, as its step failures do
+                            return std::make_unique<SiconosWorld>(s);
+                          } catch (const std::runtime_error& e) {
+                            throw EngineError(e.what());
+                          }
+                        })};
 }
 
 }  // namespace contact

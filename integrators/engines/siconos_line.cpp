@@ -3,7 +3,10 @@
 #include <SiconosKernel.hpp>
 #include <boost/exception/diagnostic_information.hpp>
 
+#include <fmt/format.h>
+
 #include <algorithm>
+#include <cmath>
 #include <iostream>
 #include <sstream>
 #include <stdexcept>
@@ -12,6 +15,11 @@
 namespace contact {
 
 namespace {
+
+// Siconos keeps event times as whole numbers of ticks of 1e-16 s in GMP integers, converted from
+// doubles: a time beyond DBL_MAX ticks is a floating-point exception (SIGFPE), not an error.
+constexpr double kLatestTime = 1e290;
+constexpr const char* kClockRange = "its clock counts ticks of 1e-16 s and ends near 1e292 s";
 
 // Siconos throws boost exceptions whose what() is only "std::exception": its message is one of
 // the tags of the diagnostic information, beside an errno left over from whatever call set it last
@@ -92,6 +100,8 @@ SiconosLine::SiconosLine(const SiconosSpheres& sp) : s_(std::make_unique<State>(
       nsds->link(inter, s_->bodies[upper - 1], s_->bodies[upper]);
     s_->contacts.push_back(inter);
   }
+  if (!(sp.dt < kLatestTime))
+    throw std::runtime_error(fmt::format("Siconos cannot step by {:g} s: {}", sp.dt, kClockRange));
   auto osi = std::make_shared<LsodarOSI>();
   osi->setTol(1, sp.rtol, sp.atol);
   s_->simulation = std::make_shared<EventDriven>(nsds, std::make_shared<TimeDiscretisation>(0.0, sp.dt));
@@ -122,13 +132,24 @@ SiconosLine::~SiconosLine() {
   }
 }
 
-void SiconosLine::step() {
+void SiconosLine::step(double h) {
   EventDriven& sim = *s_->simulation;
   std::fill(s_->impulse.begin(), s_->impulse.end(), 0.0);
-  const double target = sim.startingTime() + s_->spheres.dt * (1 - 1e-9);
+  const double start = sim.startingTime(), dt = s_->spheres.dt, target = start + h * (1 - 1e-9);
+  if (!(start + h + dt < kLatestTime))
+    throw std::runtime_error(fmt::format("Siconos cannot reach t = {:g} s: {}", start + h + dt, kClockRange));
   const QuietStdout quiet;
   try {
-    for (long events = 0; sim.nextTime() <= target + s_->spheres.dt * 1e-6; ++events) {
+    // Siconos stops only at its events: its time discretisation's every dt, and the impacts. A run's
+    // last step, shorter than dt, gets an event of its own at its end. EventsManager::insertEvent
+    // places a time-discretisation event at the discretisation's instant of the manager's current
+    // index k (the instants so far are 0, dt, ..., k dt), so the one given starts k steps earlier.
+    if (h < dt * (1 - 1e-9)) {
+      EventsManager& events = *sim.eventsManager();
+      const double k = std::round(events.getTk() / dt);
+      events.insertEvent(TD_EVENT, std::make_shared<TimeDiscretisation>(start + h - k * dt, dt));
+    }
+    for (long events = 0; sim.nextTime() <= target + h * 1e-6; ++events) {
       if (events > 1'000'000)
         throw std::runtime_error("more than a million events in one step at t = " +
                                  std::to_string(sim.startingTime()));

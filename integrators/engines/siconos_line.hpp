@@ -20,7 +20,7 @@ struct SiconosSpheres {
   double g;                                    // along -axis when vertical [m/s^2]
   std::vector<double> mass, centre, velocity;  // per sphere
   std::vector<double> restitution;             // per contact (floor first, then neighbours)
-  double dt;                                   // the output step: one step() advances by it [s]
+  double dt;                                   // the output step: a step() advances by it or less [s]
   double rtol, atol;                           // LSODAR's tolerances
 };
 
@@ -31,9 +31,10 @@ class SiconosLine {
   SiconosLine(const SiconosLine&) = delete;
   SiconosLine& operator=(const SiconosLine&) = delete;
 
-  // Processes every event up to the next output time; throws std::runtime_error with Siconos's
-  // message when it fails, or when more than a million events fall in one step.
-  void step();
+  // Processes every event up to the next output time, h later (dt, or less for a run's last
+  // step); throws std::runtime_error with Siconos's message when it fails, or when more than a
+  // million events fall in one step.
+  void step(double h);
   void read(std::vector<double>& centre, std::vector<double>& velocity) const;
   // Per contact over the last step: the impulses of its impacts plus its resting force times the
   // time it held [N s].
