@@ -92,3 +92,31 @@ TEST_F(ChainMpi, AnOutFolderOfOtherFilesIsRefusedAndKept) {
   ASSERT_EQ(run(CHAIN_MPI_EXE, "--balls 4 --out fresh").code, 0);
   EXPECT_EQ(run(CHAIN_MPI_EXE, "--balls 4 --out fresh").code, 0);
 }
+
+// A solver failure names the time CVODE reached and CVODE's own message. At k = 1e-300 the balls
+// pass through one another (the springs are nothing) and CVODE's error test fails at t ~ 3e122 s;
+// the run said "at t = 0 s" (the time was read before CVode set it) with only CVODE's flag name,
+// while CVODE printed its message raw on stderr.
+TEST_F(ChainMpi, ASolverFailureNamesTheTimeReachedAndCvodesMessage) {
+  const Outcome r = run(CHAIN_MPI_EXE, "--balls 10 --k 1e-300 --out soft");
+  ASSERT_EQ(r.code, 1) << r.err;
+  EXPECT_EQ(r.err.find("[CVODE ERROR]"), std::string::npos) << r.err;
+  const auto ours = r.err.find("at t = "), cvodes = r.err.find("At t = ");
+  ASSERT_NE(ours, std::string::npos) << r.err;
+  ASSERT_NE(cvodes, std::string::npos) << r.err;
+  const double reached = std::stod(r.err.substr(ours + 7)), cvode_t = std::stod(r.err.substr(cvodes + 7));
+  EXPECT_GT(reached, 0.0) << r.err;
+  EXPECT_NEAR(reached, cvode_t, 1e-5 * cvode_t) << r.err;  // CVODE prints six digits
+  EXPECT_FALSE(fs::exists(dir_ / "soft"));
+}
+
+// SIGINT stops the run within a few steps: exit 130, nothing written. The whole run was one
+// CVode call that looked at no interrupt (a 1000-ball run went on for its 26 s; at k = 1e-300,
+// for hours of steps that no longer advanced t); the outer KILL after 20 s bounds the test.
+TEST_F(ChainMpi, AnInterruptStopsTheRunWithinAFewSteps) {
+  const Outcome r = run(CHAIN_MPI_EXE, "--balls 1000 --out stopped",
+                        "timeout -s KILL 20 timeout --preserve-status -s INT 1");
+  EXPECT_EQ(r.code, 130) << r.err;
+  EXPECT_NE(r.err.find("interrupted"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "stopped"));
+}

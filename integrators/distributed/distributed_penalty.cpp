@@ -67,13 +67,23 @@ int rhs(double t, N_Vector y, N_Vector ydot, void* data) {
   return 0;
 }
 
-void check(int flag, const char* call, double t) {
+// CVODE's message for its failures, kept instead of printed (its warnings are not failures).
+void keep_message(int code, const char* module, const char* function, char* msg, void* user) {
+  if (code < 0) *static_cast<std::string*>(user) = fmt::format("{}:{}: {}", module, function, msg);
+}
+
+void check(int flag, const char* call, double t, const std::string& message = {}) {
   if (flag < 0)
     throw SolverFailure(flag == CV_TOO_MUCH_WORK  ? Status::MaxSteps
                         : flag == CV_CONV_FAILURE ? Status::ConvergenceFailure
                                                   : Status::SolverError,
-                        t, fmt::format("{}: {}", call, CVodeGetReturnFlagName(flag)));
+                        t,
+                        fmt::format("{}: {}{}", call, CVodeGetReturnFlagName(flag),
+                                    message.empty() ? "" : " (" + message + ")"));
 }
+
+// Steps between two checkpoints: a rank's interrupt is agreed on by all ranks this often.
+constexpr long kCheckpointSteps = 16;
 
 }  // namespace
 
@@ -110,8 +120,8 @@ RunResult run_distributed(const Dynamics& scene, const NeighbourDynamics& parts,
     counts[static_cast<std::size_t>(r)] = static_cast<int>(c * stride);
     offsets[static_cast<std::size_t>(r)] = static_cast<int>(f * stride);
   }
-  auto gather_sample = [&](double t) {
-    MPI_Gatherv(N_VGetArrayPointer_Parallel(y.get()), static_cast<int>(local), MPI_DOUBLE, whole.data(),
+  auto gather_sample = [&](N_Vector state, double t) {
+    MPI_Gatherv(N_VGetArrayPointer_Parallel(state), static_cast<int>(local), MPI_DOUBLE, whole.data(),
                 counts.data(), offsets.data(), MPI_DOUBLE, 0, comm);
     if (rank == 0) rec.sample(t, whole);
   };
@@ -119,9 +129,13 @@ RunResult run_distributed(const Dynamics& scene, const NeighbourDynamics& parts,
   SolverStats stats;
   const auto start = std::chrono::steady_clock::now();
   double t = 0;
+  std::string message;
   try {
     const sundials::CvodeMemory mem(CVodeCreate(CV_BDF, ctx.get()));
     if (!mem) throw std::runtime_error("CVodeCreate failed");
+    const sundials::NVector out(N_VClone(y.get()));
+    if (!out) throw std::runtime_error("N_VClone failed");
+    check(CVodeSetErrHandlerFn(mem.get(), keep_message, &message), "CVodeSetErrHandlerFn", 0.0);
     check(CVodeInit(mem.get(), rhs, 0.0, y.get()), "CVodeInit", 0.0);
     check(CVodeSetUserData(mem.get(), &block), "CVodeSetUserData", 0.0);
     check(CVodeSStolerances(mem.get(), options.integrator.rtol, options.integrator.atol), "CVodeSStolerances",
@@ -133,12 +147,38 @@ RunResult run_distributed(const Dynamics& scene, const NeighbourDynamics& parts,
     // A body couples to its neighbours' two entries: half-bandwidth 2 stride - 1 in the block.
     const auto band = static_cast<sunindextype>(2 * stride - 1);
     check(CVBBDPrecInit(mem.get(), local, band, band, band, band, 0.0, gloc, cfn), "CVBBDPrecInit", 0.0);
+    check(CVodeSetStopTime(mem.get(), span.t_end), "CVodeSetStopTime", 0.0);
     // Output times counted the same on every rank (only rank 0 records).
-    gather_sample(0.0);
-    for (long k = 1; t < span.t_end; ++k) {
-      const double t_out = std::min(static_cast<double>(k) * span.sample_dt, span.t_end);
-      check(CVode(mem.get(), t_out, y.get(), &t, CV_NORMAL), "CVode", t);
-      gather_sample(t_out);
+    gather_sample(y.get(), 0.0);
+    // One internal step at a time, so that between steps the run can check that t advanced (a
+    // step below the rounding of t leaves it where it was, and CVODE would go on so for max_steps
+    // steps: the chain at k = 1e-300 did, for hours) and let every rank look in at a checkpoint.
+    long k = 1, taken = 0;
+    double t_out = std::min(span.sample_dt, span.t_end);
+    bool recorded_end = false;
+    while (t < span.t_end) {
+      const double before = t;
+      const int flag = CVode(mem.get(), span.t_end, y.get(), &t, CV_ONE_STEP);  // t: the time reached
+      check(flag, "CVode", t, message);
+      if (!(t > before))
+        throw SolverFailure(
+            Status::NoProgress, t,
+            fmt::format("CVODE's step no longer advances t = {:g} s (below its rounding)", t));
+      if (++taken > options.integrator.max_steps)
+        throw SolverFailure(
+            Status::MaxSteps, t,
+            fmt::format("{} steps: more than the {} allowed", taken, options.integrator.max_steps));
+      for (; t_out <= t && !recorded_end;
+           t_out = std::min(static_cast<double>(++k) * span.sample_dt, span.t_end)) {
+        check(CVodeGetDky(mem.get(), t_out, 0, out.get()), "CVodeGetDky", t, message);
+        gather_sample(out.get(), t_out);
+        recorded_end = t_out >= span.t_end;
+      }
+      if (options.checkpoint && taken % kCheckpointSteps == 0) {
+        int stop = options.wants_stop && options.wants_stop() ? 1 : 0;
+        MPI_Allreduce(MPI_IN_PLACE, &stop, 1, MPI_INT, MPI_MAX, comm);
+        options.checkpoint(t, stop != 0);
+      }
     }
     long steps = 0, fails = 0, jac = 0, newton = 0, lin = 0, setups = 0;
     CVodeGetNumSteps(mem.get(), &steps);

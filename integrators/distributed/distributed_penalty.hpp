@@ -13,11 +13,19 @@
 
 #include <mpi.h>
 
+#include <functional>
+
 namespace contact {
 
 struct DistributedOptions {
-  IntegratorOptions integrator;  // rtol, atol, max_steps (CVODE BDF)
+  IntegratorOptions integrator;  // rtol, atol, max_steps (CVODE BDF; max_steps for the whole run)
   int krylov_dim = 30;           // GMRES's Krylov space (5 fails to converge on the chain)
+  // Every few steps, on every rank: whether this rank asks to stop (an interrupt), then, once the
+  // ranks have agreed (any one's request stops all, at the same step), checkpoint(t, stop). A
+  // checkpoint shows progress or, told to stop, throws (the same on every rank, or MPI waits for
+  // the ranks that went on). Empty: no checkpoints.
+  std::function<bool()> wants_stop;
+  std::function<void(double t, bool stop)> checkpoint;
 };
 
 // Every rank calls it. Rank 0's result holds the samples (the whole state gathered) with their
