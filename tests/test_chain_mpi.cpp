@@ -9,6 +9,8 @@
 #include "contact_ode/integrators/penalty.hpp"
 #include "contact_ode/models/ball_chain.hpp"
 
+#include <unistd.h>
+
 namespace {
 class ChainMpi : public CliTest {
  protected:
@@ -119,4 +121,17 @@ TEST_F(ChainMpi, AnInterruptStopsTheRunWithinAFewSteps) {
   EXPECT_EQ(r.code, 130) << r.err;
   EXPECT_NE(r.err.find("interrupted"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir_ / "stopped"));
+}
+
+// A chain that cannot fit in the machine's memory is refused before the run starts: 1e8 balls on
+// one rank needs ~1e11 bytes (about 1 kB per ball) and filled this 24 GB machine until the kernel
+// killed it. (A machine of over 100 GB would run it: skipped there.)
+TEST_F(ChainMpi, AChainBeyondTheMachinesMemoryIsRefusedFirst) {
+  if (static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGE_SIZE)) > 1e11)
+    GTEST_SKIP() << "this machine has the memory for 1e8 balls";
+  const Outcome r = run(CHAIN_MPI_EXE, "--balls 100000000 --out huge");
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("--balls: value '100000000' needs about 1"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("GB of memory on a machine that has"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "huge"));
 }

@@ -134,6 +134,17 @@ TEST(RunBounds, PenaltyStepsBeyondTheRunLimitFailTyped) {
   EXPECT_EQ(r.status, Status::WorkLimit);
 }
 
+// A dense Jacobian beyond 4 GiB is refused before it is allocated (SUNDenseMatrix returned NULL
+// for 1e5 balls, which was dereferenced): a typed work limit naming the sparse solvers instead.
+TEST(RunBounds, ADenseJacobianBeyondFourGibIsAWorkLimit) {
+  const BallChain chain({.n = 100000, .law = Hooke{1e6}});
+  const RunResult r = solve(chain, {.name = "penalty"}, {.t_end = 1e-3, .sample_dt = 1e-3});
+  EXPECT_EQ(r.status, Status::WorkLimit);
+  EXPECT_NE(r.message.find("a dense 200001 x 200001 Jacobian needs 298 GiB (at most 4)"), std::string::npos)
+      << r.message;
+  EXPECT_NE(r.message.find("band, klu or gmres"), std::string::npos) << r.message;
+}
+
 // A drop of 1e-9 m with e = 1 at atol = 1e-10: every bounce is below what the flight resolves.
 // It used to come to rest at the first impact having lost 99 % of its energy, with success.
 TEST(RunBounds, EventFlightBelowItsToleranceFailsTyped) {
