@@ -58,6 +58,7 @@ std::vector<double> restitutions(const RunResult& run) {
 }
 
 std::string EnergyGain::verdict(double tolerance) const {
+  if (!std::isfinite(rate)) return "energy not finite";
   return std::abs(final_gain) < tolerance ? "conserves" : final_gain > 0 ? "gains" : "loses";
 }
 
@@ -69,8 +70,14 @@ EnergyGain energy_gain(const RunResult& run) {
     g.gain.push_back(0.0 - drifts[i]);  // not -drifts[i]: no "-0" in the tables
   }
   if (g.gain.empty()) return g;
-  const LineFit fit = fit_line(g.t, g.gain);
   g.final_gain = g.gain.back();
+  // An energy beyond the doubles (k = 1e300: k x^2 / 2 overflows at any real overlap) has no
+  // rate: NaN, and the verdict says so, where the fit refused it and ended the experiment.
+  if (!std::all_of(g.gain.begin(), g.gain.end(), [](double v) { return std::isfinite(v); })) {
+    g.rate = g.rate_sd = std::numeric_limits<double>::quiet_NaN();
+    return g;
+  }
+  const LineFit fit = fit_line(g.t, g.gain);
   g.rate = fit.slope;
   g.rate_sd = fit.slope_sd;
   return g;

@@ -127,6 +127,7 @@ int program(int argc, char** argv) {
     if (o.sweep && !(o.k_max >= o.k_min))
       throw std::invalid_argument(fmt::format(
           "--k-max: value '{}' is below --k-min = {}; accepted range [k-min, inf)", o.k_max, o.k_min));
+    check_scales(o);
     const IntegratorOptions integrator = method_for(o, "penalty").integrator;
     validate(integrator);
     note_options_without_effect(o, app, integrator);

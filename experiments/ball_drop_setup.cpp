@@ -6,16 +6,24 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <stdexcept>
 
 namespace contact {
 
 double scaled_atol(const BallDropOptions& o) {
   if (o.atol > 0) return o.atol;
-  const double L = o.h0 + (o.g > 0 ? o.v0 * o.v0 / (2 * o.g) : 0.0);
-  return 1e-10 * L;
+  return 1e-10 * (o.h0 + (o.g > 0 ? o.v0 * o.v0 / (2 * o.g) : 0.0));
 }
 
 double impact_speed(const BallDropOptions& o) { return std::sqrt(o.v0 * o.v0 + 2 * o.g * o.h0); }
+
+void check_scales(const BallDropOptions& o) {
+  if (!std::isfinite(scaled_atol(o)) || !std::isfinite(impact_speed(o)))
+    throw std::invalid_argument(fmt::format(
+        "--h0, --v0: values '{}' and '{}' give a height scale h0 + v0^2 / (2 g) or an impact speed "
+        "sqrt(v0^2 + 2 g h0) beyond the doubles; accepted: both finite",
+        o.h0, o.v0));
+}
 
 ContactLaw law_for(const BallDropOptions& o, double k) {
   const double V = impact_speed(o);

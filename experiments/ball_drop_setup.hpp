@@ -33,6 +33,10 @@ struct BallDropOptions {
 // [m/s] alike. At L = 1 m it is the 1e-10 the study uses; a drop from 1e-9 m gets 1e-19, so that
 // its bounces stay far above what the flight resolves.
 double scaled_atol(const BallDropOptions& o);
+// Throws std::invalid_argument naming --h0 and --v0 when the drop's height scale or impact speed
+// is beyond the doubles (--v0 1e300): refused as "--atol: value 'inf'" or by a closed form
+// ("linear_law_first_contact: V = inf"), options and functions the user never named.
+void check_scales(const BallDropOptions& o);
 ContactLaw law_for(const BallDropOptions& o, double k);
 Method method_for(const BallDropOptions& o, const std::string& name);
 RunResult run_ball(const BallDropOptions& o, const std::string& method, double k);

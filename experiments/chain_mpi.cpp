@@ -38,19 +38,19 @@ struct MpiSession {
   MpiSession& operator=(const MpiSession&) = delete;
 };
 
-// A rank needs about 1 kB per ball it holds (CVODE's BDF history, GMRES's 31 Krylov vectors, the
-// preconditioner's band: measured 0.67 GB for 1e6 balls in a short run, 7.8 GB and growing for
-// 1e7) and ~100 bytes per ball of the whole chain (its state, gathered, and labels). The ranks on
-// one machine share its memory: a run that cannot fit in it is refused before it starts (1e8
-// balls on one rank filled the machine until the kernel killed it). Every rank gets the same
-// answer (the largest need of any machine decides).
+// A rank needs about 1.5 kB per ball it holds: CVODE's BDF history (~12 vectors), GMRES's 31
+// Krylov vectors and the preconditioner's two bands of 10 per entry, 74 doubles per entry, 1.2 kB
+// per ball (a run of 2e7 balls reached 23.4 GB), and ~100 bytes per ball of the whole chain (its
+// state, gathered, and labels). The ranks on one machine share its memory: a run that cannot fit
+// is refused before it starts (1e8 balls on one rank filled the machine until the kernel killed
+// it). Every rank gets the same answer (the largest need of any machine decides).
 std::string memory_refusal(long balls, int size) {
   MPI_Comm node = MPI_COMM_NULL;
   MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   const auto held = block_of(static_cast<std::size_t>(balls), rank, size).second;
-  double need = 1024.0 * static_cast<double>(held) + 100.0 * static_cast<double>(balls), here = 0, worst = 0;
+  double need = 1536.0 * static_cast<double>(held) + 100.0 * static_cast<double>(balls), here = 0, worst = 0;
   MPI_Allreduce(&need, &here, 1, MPI_DOUBLE, MPI_SUM, node);
   MPI_Comm_free(&node);
   const double memory =
@@ -59,8 +59,8 @@ std::string memory_refusal(long balls, int size) {
   MPI_Allreduce(&ratio, &worst, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
   if (worst <= 1) return {};
   return fmt::format(
-      "--balls: value '{}' needs about {:.3g} GB of memory on a machine that has {:.3g} GB (~1 kB per ball "
-      "a rank holds, shared by the ranks on a machine); use more machines or fewer balls",
+      "--balls: value '{}' needs about {:.3g} GB of memory on a machine that has {:.3g} GB (~1.5 kB per "
+      "ball a rank holds, shared by the ranks on a machine); use more machines or fewer balls",
       balls, worst * memory / 1e9, memory / 1e9);
 }
 

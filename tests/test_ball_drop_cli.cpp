@@ -49,6 +49,10 @@ TEST_F(BallDropCli, BadInputIsRefusedWithOptionValueAndRangeAndWritesNothing) {
       {"--linear-solver cholesky", "--linear-solver", "'cholesky'", "klu"},
       {"--integrator gsl-rk8pd --linear-solver klu", "--linear-solver", "'klu'", "implicit SUNDIALS methods"},
       {"--jacobian exact", "--jacobian", "'exact'", "analytic, dq"},
+      // A drop beyond the doubles was refused as "--atol: value 'inf'" (an atol derived from the
+      // height scale) or, with --atol, as "linear_law_first_contact: V = inf".
+      {"--v0 1e300", "--v0", "'1e+300'", "both finite"},
+      {"--v0 -1e160 --atol 1e-9", "--v0", "'-1e+160'", "both finite"},
   };
   expect_refused(BALL_DROP_EXE, cases);
 }

@@ -124,10 +124,10 @@ TEST_F(ChainMpi, AnInterruptStopsTheRunWithinAFewSteps) {
 }
 
 // A chain that cannot fit in the machine's memory is refused before the run starts: 1e8 balls on
-// one rank needs ~1e11 bytes (about 1 kB per ball) and filled this 24 GB machine until the kernel
-// killed it. (A machine of over 100 GB would run it: skipped there.)
+// one rank needs ~1.5e11 bytes (about 1.5 kB per ball) and filled this 24 GB machine until the kernel
+// killed it. (A machine of over 160 GB would run it: skipped there.)
 TEST_F(ChainMpi, AChainBeyondTheMachinesMemoryIsRefusedFirst) {
-  if (static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGE_SIZE)) > 1e11)
+  if (static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGE_SIZE)) > 1.6e11)
     GTEST_SKIP() << "this machine has the memory for 1e8 balls";
   const Outcome r = run(CHAIN_MPI_EXE, "--balls 100000000 --out huge");
   EXPECT_EQ(r.code, 2) << r.err;

@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 using namespace contact;
@@ -245,6 +246,25 @@ TEST(EnergyLedger, PenaltyDriftShrinksWithTheToleranceWhileTheLossIsPhysical) {
     // bounces leaves about e^12 of the energy above the floor, so > 90 % was dissipated.
     EXPECT_GT(r.samples.back().dissipated / r.energy0, 0.9);
   }
+}
+
+// A spring energy beyond the doubles (k = 1e300: k x^2 / 2 overflows at an overlap of 1e-4 m)
+// has no drift rate. energy_drift ended with "fit_line: x and y must be finite" and exit 2, as
+// if the user's input were wrong; the gain says it is not finite now, and the rate is NaN.
+TEST(EnergyLedger, AnEnergyBeyondTheDoublesHasNoRateAndSaysSo) {
+  RunResult r;
+  r.energy0 = 9.81;
+  for (double t : {0.0, 0.5, 1.0})
+    r.samples.push_back({t, Vector::Zero(2), t < 0.7 ? 9.81 : std::numeric_limits<double>::infinity(), 0.0});
+  EnergyGain g;
+  ASSERT_NO_THROW(g = energy_gain(r));
+  EXPECT_TRUE(std::isnan(g.rate));
+  EXPECT_TRUE(std::isnan(g.rate_sd));
+  EXPECT_EQ(g.verdict(), "energy not finite");
+  r.samples.back().energy = 9.81;  // finite again: a rate, and the verdict of a conserving run
+  g = energy_gain(r);
+  EXPECT_EQ(g.rate, 0.0);
+  EXPECT_EQ(g.verdict(), "conserves");
 }
 
 // A stiff Hertz contact (K = 4.3e9 N/m^1.5, m = 0.53 kg, g = 100: a found case) under every GSL

@@ -31,7 +31,8 @@ std::vector<double> energy_drifts(const RunResult& run);
 struct EnergyGain {
   std::vector<double> t, gain;
   double final_gain = 0, rate = 0, rate_sd = 0;  // [1], [1/s], [1/s]
-  // "conserves" when |final_gain| < tolerance, else "gains" or "loses". The default is the
+  // "conserves" when |final_gain| < tolerance, else "gains" or "loses" ("energy not finite" when
+  // an energy overflowed: then rate and rate_sd are NaN). The default is the
   // study's: far above the round-off of the energy over a long run, far below any method's drift.
   std::string verdict(double tolerance = 1e-10) const;
 };
