@@ -53,8 +53,7 @@ int program(int argc, char** argv) {
       "results/work_precision");
   app.add("--k", k, "ball spring stiffness [N/m]", cli::positive());
   app.add("--chain-k", chain_k, "chain spring stiffness [N/m]", cli::positive());
-  // At most 1000, as the other chains: the reference solve (CVODE, rtol 1e-12) forms a dense Jacobian,
-  // and an unbounded count was an out-of-memory kill (1e8 balls: 24 GB of state labels alone).
+  // At most 1000 as the other chains (the reference forms a dense Jacobian): 1e8 filled the memory.
   app.add("--balls", balls, "balls in the chain", cli::integer_in(2, 1000));
   app.add("--halvings", halvings, "fixed steps: the largest halved this many times",
           cli::integer_at_least(0));
