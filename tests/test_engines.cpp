@@ -304,3 +304,15 @@ TEST(Siconos, AStepBeyondItsClockIsASolverError) {
   EXPECT_EQ(r.status, Status::SolverError);
   EXPECT_NE(r.message.find("Siconos cannot step by 1e+300 s"), std::string::npos) << r.message;
 }
+
+// A span below Siconos's tick (1e-300 s): no event can fall inside it, and the one placed at its
+// end fell on its start, after which the state read back was NaN ('non-finite-state'). The state
+// stays where it is: it would move by g t = 1e-299 m/s.
+TEST(Siconos, ASpanBelowItsClockTickLeavesTheStateWhereItIs) {
+  REQUIRE_ENGINE("siconos");
+  const BallDrop ball({.m = 1.0, .law = Hooke{1e5}});
+  const RunResult r = solve(ball, {.name = "siconos", .dt = 1e-3}, {.t_end = 1e-300, .sample_dt = 1e-300});
+  ASSERT_TRUE(r.ok()) << r.message;
+  EXPECT_EQ(r.samples.back().y[0], 1.0);
+  EXPECT_EQ(r.samples.back().y[1], 0.0);
+}
