@@ -1,6 +1,7 @@
 #include "process.hpp"
 
 #include "cli.hpp"
+#include "contact_ode/integrators/status.hpp"
 
 #include <fmt/format.h>
 
@@ -36,6 +37,7 @@ static_assert(std::atomic<pid_t>::is_always_lock_free);
 
 extern "C" void on_signal(int sig) {
   g_signal = sig;
+  request_stop();  // a solve in progress ends within a step (Status::Interrupted)
   // Passed on to the children (kill is async-signal-safe): a Ctrl-C on a terminal reaches the
   // whole process group anyway, but a signal sent to this process alone must stop them too.
   for (auto& slot : g_children)
@@ -177,12 +179,14 @@ int guarded_main(const char* name, int argc, char** argv, int (*body)(int, char*
   } catch (const Interrupted&) {
     fmt::print(stderr, "{}: interrupted; nothing written\n", name);
     return 128 + (g_signal != 0 ? static_cast<int>(g_signal) : SIGINT);
-  } catch (const std::invalid_argument& e) {
-    fmt::print(stderr, "{}: {}\n", name, e.what());
-    return cli::kExitBadInput;
   } catch (const std::exception& e) {
+    // A run the interrupt ended (Status::Interrupted) may surface as the experiment's own failure.
+    if (interrupted()) {
+      fmt::print(stderr, "{}: interrupted; nothing written\n", name);
+      return 128 + static_cast<int>(g_signal);
+    }
     fmt::print(stderr, "{}: {}\n", name, e.what());
-    return cli::kExitFailure;
+    return dynamic_cast<const std::invalid_argument*>(&e) != nullptr ? cli::kExitBadInput : cli::kExitFailure;
   } catch (...) {
     fmt::print(stderr, "{}: unknown error\n", name);
     return cli::kExitFailure;

@@ -299,6 +299,7 @@ RunResult run_event_driven(const MechanicalSystem& model, const AnalyticFlight& 
   double t = 0.0;
   try {
     for (double t_out = rec.next_sample_time(); std::isfinite(t_out); t_out = rec.next_sample_time()) {
+      throw_if_stop_requested(t);
       // The earliest of: the next output, an impact, an apex (times from the leg's start).
       double tau = t_out - t_leg;
       std::size_t which = nc;

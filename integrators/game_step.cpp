@@ -75,6 +75,7 @@ RunResult run_game(const Dynamics& model, const GameOptions& opt, const SolveOpt
                     0.0);
     const auto n_steps = static_cast<long>(steps_needed);
     for (long n = 1; n <= n_steps; ++n) {
+      throw_if_stop_requested(t);
       const double t0 = t;
       const double h = std::min(opt.dt, span.t_end - t0);  // the last step lands on t_end
       t = n == n_steps ? span.t_end : static_cast<double>(n) * opt.dt;

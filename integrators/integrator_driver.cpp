@@ -37,6 +37,7 @@ RunResult drive(OdeSystem system, ConstVectorRef y0, const IntegratorOptions& op
   double t_last_root = -std::numeric_limits<double>::infinity();
   try {
     for (double t_out = rec.next_sample_time(); std::isfinite(t_out); t_out = rec.next_sample_time()) {
+      throw_if_stop_requested(t);
       if (t_out > t) {
         const auto out = integrator->advance(t_out);
         t = out.t;

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <atomic>
+
 namespace contact {
 
 const char* to_string(Status s) {
@@ -24,10 +26,24 @@ const char* to_string(Status s) {
       return "no-progress";
     case Status::WorkLimit:
       return "work-limit";
+    case Status::Interrupted:
+      return "interrupted";
     case Status::SolverError:
       return "solver-error";
   }
   return "unknown";
+}
+
+namespace {
+std::atomic<bool> g_stop{false};
+static_assert(std::atomic<bool>::is_always_lock_free, "request_stop must be safe in a signal handler");
+}  // namespace
+
+void request_stop() noexcept { g_stop.store(true, std::memory_order_relaxed); }
+bool stop_requested() noexcept { return g_stop.load(std::memory_order_relaxed); }
+void throw_if_stop_requested(double t) {
+  if (stop_requested())
+    throw SolverFailure(Status::Interrupted, t, "a stop was requested (SIGINT or SIGTERM)");
 }
 
 SolverFailure::SolverFailure(Status status, double t_reached, std::string message)

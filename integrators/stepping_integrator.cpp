@@ -65,6 +65,7 @@ SteppingIntegrator::Outcome SteppingIntegrator::advance(double t_out) {
     if (++steps > max_steps_)
       throw SolverFailure(Status::MaxSteps, t_,
                           fmt::format("more than {} steps before t = {:.17g}", max_steps_, t_out));
+    throw_if_stop_requested(t_);
     ta_ = tb_;
     ya_ = yb_;
     take_step(t_out);

@@ -18,6 +18,10 @@ CallbackData& data(void* user) { return *static_cast<CallbackData*>(user); }
 // solver then retries with a smaller step, failing only if the NaN persists.
 template <class F>
 int guarded(CallbackData& d, double t, Eigen::Map<Vector> out, F&& f) {
+  if (stop_requested()) {  // an unrecoverable refusal ends the solver's step at once
+    d.stopped = true;
+    return -1;
+  }
   try {
     f();
   } catch (const std::exception& e) {
@@ -47,7 +51,9 @@ SolverFailure CallbackData::failure(int flag, const char* flag_name, double t_re
   // CVODE and ARKODE share these codes: -1 too much work, -2 too much accuracy requested,
   // -3 repeated error-test failures, -4 repeated convergence failures, -6/-7 linear solver.
   Status status = Status::SolverError;
-  if (non_finite)
+  if (stopped)
+    status = Status::Interrupted;
+  else if (non_finite)
     status = Status::NonFiniteState;
   else if (flag == -1)
     status = Status::MaxSteps;

@@ -21,6 +21,7 @@ struct CallbackData {
   bool root_held_zero = false;  // that error: a root function zero at the last root and just after
   std::string callback_error;   // why one of our callbacks refused
   bool non_finite = false;
+  bool stopped = false;  // a right-hand side refused because a stop was requested
 
   Eigen::Map<Vector> map(N_Vector v) const {
     return {N_VGetArrayPointer(v), static_cast<Eigen::Index>(sys.size)};

@@ -82,6 +82,7 @@ RunResult run_time_stepping(const Dynamics& model, const std::string& method, do
                       span.limits.max_steps));
     const auto n_steps = static_cast<long>(steps_needed);
     for (long n = 1; n <= n_steps; ++n) {
+      throw_if_stop_requested(t);
       const double t0 = t, h = std::min(dt, span.t_end - t0);
       t = n == n_steps ? span.t_end : static_cast<double>(n) * dt;
       y_prev = y;

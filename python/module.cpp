@@ -201,6 +201,7 @@ PYBIND11_MODULE(contact_ode, mod) {
       .value("unresolved", Status::Unresolved)
       .value("no_progress", Status::NoProgress)
       .value("work_limit", Status::WorkLimit)
+      .value("interrupted", Status::Interrupted)
       .value("solver_error", Status::SolverError);
   static py::exception<SolverFailure> solver_error(mod, "SolverError", PyExc_RuntimeError);
   solver_error.doc() = "a run that failed: .status, .t_reached, .solver_message and the partial .result";

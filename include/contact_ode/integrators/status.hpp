@@ -15,10 +15,19 @@ enum class Status {
   Unresolved,          // event-driven: an impact below what the flight's tolerance resolves
   NoProgress,          // the solver kept returning at the same time without advancing
   WorkLimit,           // the run's bound on steps, samples or records (RunLimits) was reached
+  Interrupted,         // a stop was requested (request_stop: the program's SIGINT or SIGTERM)
   SolverError,         // any other solver error
 };
 
 const char* to_string(Status s);
+
+// A request to end every run in the process, made by a program's SIGINT or SIGTERM handler (a
+// lock-free atomic store: safe there). The integrators look at it at every step or right-hand side
+// and end the run as Status::Interrupted, so that a single long solve stops within a step.
+void request_stop() noexcept;
+bool stop_requested() noexcept;
+// Throws SolverFailure(Status::Interrupted, t, ...) when a stop was requested.
+void throw_if_stop_requested(double t);
 
 // Thrown by integrators when they cannot go on; carries where they stopped and why.
 class SolverFailure : public std::runtime_error {
