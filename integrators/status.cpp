@@ -34,17 +34,13 @@ const char* to_string(Status s) {
   return "unknown";
 }
 
-namespace {
-std::atomic<bool> g_stop{false};
+namespace detail {
+std::atomic<bool> stop_flag{false};
 static_assert(std::atomic<bool>::is_always_lock_free, "request_stop must be safe in a signal handler");
-}  // namespace
-
-void request_stop() noexcept { g_stop.store(true, std::memory_order_relaxed); }
-bool stop_requested() noexcept { return g_stop.load(std::memory_order_relaxed); }
-void throw_if_stop_requested(double t) {
-  if (stop_requested())
-    throw SolverFailure(Status::Interrupted, t, "a stop was requested (SIGINT or SIGTERM)");
+void throw_stopped(double t) {
+  throw SolverFailure(Status::Interrupted, t, "a stop was requested (SIGINT or SIGTERM)");
 }
+}  // namespace detail
 
 SolverFailure::SolverFailure(Status status, double t_reached, std::string message)
     : std::runtime_error(fmt::format("{} at t = {:.17g} s: {}", to_string(status), t_reached, message)),

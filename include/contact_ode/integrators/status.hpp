@@ -1,5 +1,6 @@
 #pragma once
 // How a run ended, and the typed error that carries a solver failure out of an integrator.
+#include <atomic>
 #include <stdexcept>
 #include <string>
 
@@ -24,10 +25,18 @@ const char* to_string(Status s);
 // A request to end every run in the process, made by a program's SIGINT or SIGTERM handler (a
 // lock-free atomic store: safe there). The integrators look at it at every step or right-hand side
 // and end the run as Status::Interrupted, so that a single long solve stops within a step.
-void request_stop() noexcept;
-bool stop_requested() noexcept;
+// Inline: it is looked at once per step of loops that take 100 ns per step.
+namespace detail {
+extern std::atomic<bool> stop_flag;
+[[noreturn]] void throw_stopped(double t);
+}  // namespace detail
+inline void request_stop() noexcept { detail::stop_flag.store(true, std::memory_order_relaxed); }
+inline bool stop_requested() noexcept { return detail::stop_flag.load(std::memory_order_relaxed); }
 // Throws SolverFailure(Status::Interrupted, t, ...) when a stop was requested.
-void throw_if_stop_requested(double t);
+inline void throw_if_stop_requested(double t) {
+  if (stop_requested()) [[unlikely]]
+    detail::throw_stopped(t);
+}
 
 // Thrown by integrators when they cannot go on; carries where they stopped and why.
 class SolverFailure : public std::runtime_error {
