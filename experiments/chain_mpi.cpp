@@ -101,19 +101,18 @@ int program(int argc, char** argv) {
   options.integrator.rtol = rtol;
   options.integrator.atol = atol;
   options.integrator.max_steps = 10'000'000;
-  // Progress by percent of the span on rank 0's terminal; an interrupt on any rank stops every rank
-  // at the same step (exit 130, nothing written).
+  // Progress by percent of the span on rank 0's terminal. An interrupt on any rank ends the run on
+  // every rank at the same step (exit 130, nothing written).
   std::optional<Progress> progress;
   if (rank == 0) progress.emplace("chain_mpi", 100);
   int shown = 0;
-  options.wants_stop = [] { return interrupted(); };
-  options.checkpoint = [&](double t, bool stop) {
-    if (stop) throw Interrupted();
+  options.progress = [&](double t) {
     for (; progress && shown < static_cast<int>(100 * t / t_end); ++shown)
       progress->step(fmt::format("t = {:.4g} s", t));
   };
   const RunResult r =
       run_distributed(chain, chain, options, {.t_end = t_end, .sample_dt = t_end}, MPI_COMM_WORLD);
+  if (r.status == Status::Interrupted) throw Interrupted();
   if (!r.ok()) {
     std::cerr << fmt::format("chain_mpi: rank {}: {} at t = {:.9g} s: {}\n", rank, to_string(r.status),
                              r.t_reached, r.message);

@@ -82,7 +82,7 @@ void check(int flag, const char* call, double t, const std::string& message = {}
                                     message.empty() ? "" : " (" + message + ")"));
 }
 
-// Steps between two checkpoints: a rank's interrupt is agreed on by all ranks this often.
+// Steps between two checkpoints: the ranks agree on a stop request this often.
 constexpr long kCheckpointSteps = 16;
 
 }  // namespace
@@ -174,10 +174,11 @@ RunResult run_distributed(const Dynamics& scene, const NeighbourDynamics& parts,
         gather_sample(out.get(), t_out);
         recorded_end = t_out >= span.t_end;
       }
-      if (options.checkpoint && taken % kCheckpointSteps == 0) {
-        int stop = options.wants_stop && options.wants_stop() ? 1 : 0;
+      if (taken % kCheckpointSteps == 0) {
+        int stop = stop_requested() ? 1 : 0;
         MPI_Allreduce(MPI_IN_PLACE, &stop, 1, MPI_INT, MPI_MAX, comm);
-        options.checkpoint(t, stop != 0);
+        if (stop != 0) throw SolverFailure(Status::Interrupted, t, "a stop was requested on a rank");
+        if (options.progress) options.progress(t);
       }
     }
     long steps = 0, fails = 0, jac = 0, newton = 0, lin = 0, setups = 0;

@@ -20,12 +20,11 @@ namespace contact {
 struct DistributedOptions {
   IntegratorOptions integrator;  // rtol, atol, max_steps (CVODE BDF; max_steps for the whole run)
   int krylov_dim = 30;           // GMRES's Krylov space (5 fails to converge on the chain)
-  // Every few steps, on every rank: whether this rank asks to stop (an interrupt), then, once the
-  // ranks have agreed (any one's request stops all, at the same step), checkpoint(t, stop). A
-  // checkpoint shows progress or, told to stop, throws (the same on every rank, or MPI waits for
-  // the ranks that went on). Empty: no checkpoints.
-  std::function<bool()> wants_stop;
-  std::function<void(double t, bool stop)> checkpoint;
+  // Called on every rank every few steps (empty: never), e.g. to show progress. At the same steps
+  // the ranks agree on the stop request (request_stop, a program's SIGINT): any one's ends the run
+  // on every rank as Status::Interrupted, at the same step, so that no rank waits in MPI for ranks
+  // that stopped.
+  std::function<void(double t)> progress;
 };
 
 // Every rank calls it. Rank 0's result holds the samples (the whole state gathered) with their
