@@ -6,7 +6,10 @@ import os
 import pathlib
 import re
 import runpy
+import signal
 import subprocess
+import sys
+import time
 
 import numpy as np
 import pytest
@@ -222,3 +225,44 @@ def test_a_setting_the_method_ignores_is_a_warning():
     accepted = set(str(info.value).split("accepted: ")[1].split(", "))
     for m in co.methods():
         assert set(m["settings"]) <= accepted, m["name"]
+
+
+# A solve that takes minutes (a 1000-ball chain for 1 s), interrupted by
+# SIGINT once it has begun. The module's result says where the run stopped.
+INTERRUPTED_CHILD = """
+import signal, sys
+import contact_ode as co
+if sys.argv[1] == "handler":  # a handler of the caller's own, which does not raise
+    signal.signal(signal.SIGINT, lambda *_: print("handler ran", flush=True))
+print("solving", flush=True)
+try:
+    co.solve("ball-chain", "penalty", n=1000, t_end=1.0)
+    print("finished")
+except KeyboardInterrupt:
+    print("KeyboardInterrupt")
+except co.SolverError as e:
+    print(e.status, e.t_reached < 1.0)
+# The interrupt ended that run only: the next one runs to its end.
+print(co.solve("ball-drop", "penalty", t_end=1.0).status)
+"""
+
+
+@pytest.mark.parametrize("handler,outcome", [("default", ["KeyboardInterrupt"]),
+                                             ("handler", ["handler ran", "Status.interrupted True"])])
+def test_ctrl_c_ends_a_solve_in_progress(handler, outcome):
+    """Python's SIGINT handler only marks the signal for the interpreter, which looked at it when
+    solve() returned: a Ctrl-C waited for the whole solve. The run stops within a step now and the
+    signal goes to Python's handler, or to the caller's."""
+    child = subprocess.Popen([sys.executable, "-c", INTERRUPTED_CHILD, handler], stdout=subprocess.PIPE,
+                             text=True, env=os.environ)
+    assert child.stdout.readline().strip() == "solving"
+    time.sleep(0.5)  # into the solve (the chain's set-up takes milliseconds)
+    child.send_signal(signal.SIGINT)
+    try:
+        out, _ = child.communicate(timeout=60)
+    except subprocess.TimeoutExpired:
+        child.kill()
+        child.communicate()
+        pytest.fail("the solve went on after SIGINT")
+    assert out.splitlines() == outcome + ["Status.success"]
+    assert child.returncode == 0

@@ -32,6 +32,9 @@ extern std::atomic<bool> stop_flag;
 }  // namespace detail
 inline void request_stop() noexcept { detail::stop_flag.store(true, std::memory_order_relaxed); }
 inline bool stop_requested() noexcept { return detail::stop_flag.load(std::memory_order_relaxed); }
+// For a process that outlives the interrupted run and goes on (the Python module, after it has
+// handed the interrupt to Python); a program's interrupt is its end.
+inline void clear_stop_request() noexcept { detail::stop_flag.store(false, std::memory_order_relaxed); }
 // Throws SolverFailure(Status::Interrupted, t, ...) when a stop was requested.
 inline void throw_if_stop_requested(double t) {
   if (stop_requested()) [[unlikely]]
