@@ -9,8 +9,8 @@ set -euo pipefail
 build=${1:-build}
 out=${2:-benchmarks/SCALING.md}
 repeats=${REPEATS:-5}
-n=${N:-20000}
-per_rank=${N_PER_RANK:-10000}
+n=${N:-10000}
+per_rank=${N_PER_RANK:-5000}
 t_end=${T_END:-0.015}
 ranks=${RANKS:-"1 2"}
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
@@ -23,7 +23,10 @@ median() {
   for _ in $(seq "$repeats"); do
     mpirun --oversubscribe -np "$2" "$build/experiments/chain_mpi" --balls "$1" --t-end "$t_end" \
       --out "$scratch/run" >/dev/null
-    times+=("$(tail -1 "$scratch/run/stats.csv" | awk -F, '{print $NF}')")
+    # the column by its name: stats.csv has gained columns after it before (energy_error_rel)
+    times+=("$(awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == "wall_time_s") c = i }
+                        END { if (!c || !($c > 0)) exit 1; print $c }' "$scratch/run/stats.csv")") ||
+      { echo "scaling_mpi.sh: no positive wall_time_s in chain_mpi's stats.csv" >&2; exit 1; }
   done
   printf '%s\n' "${times[@]}" | sort -g | awk '{a[NR]=$1} END {printf "%.4f\n", (NR % 2) ? a[(NR+1)/2] : (a[NR/2] + a[NR/2+1]) / 2}'
 }

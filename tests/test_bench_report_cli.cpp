@@ -5,7 +5,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <fstream>
+#include <map>
+#include <sstream>
 
 namespace {
 
@@ -82,4 +85,50 @@ TEST_F(BenchReportCli, UnknownOptionsAreRefused) {
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("unknown option '--bogus'; usage: bench_report"), std::string::npos) << r.err;
   EXPECT_EQ(run(BENCH_REPORT_EXE, "--help").code, 0);
+}
+
+// The README shows the committed benchmark results, not an older run's: every line of RESULTS.md's
+// Targets section begins a line of the README (which may add a note after one), and its scaling
+// sentence is SCALING.md's table. (The README's prose once cited the chain at 138x and 160x dense
+// where its block, from a later run, said 160x and 180x.)
+TEST(ReadmeResults, TheReadmeCitesTheCommittedBenchmarkResults) {
+  const fs::path root = fs::path(README).parent_path();
+  const std::string readme = slurp(README);
+  std::vector<std::string> readme_lines;
+  std::stringstream in(readme);
+  for (std::string line; std::getline(in, line);) readme_lines.push_back(line);
+  const std::string results = slurp(root / "benchmarks" / "RESULTS.md");
+  const auto targets = results.find("\n## Targets\n");
+  ASSERT_NE(targets, std::string::npos);
+  std::stringstream section(results.substr(targets + 12));
+  int bullets = 0;
+  for (std::string line; std::getline(section, line) && line.rfind("## ", 0) != 0;) {
+    if (line.find("- ") > 2) continue;  // bullets, and the list under the P1 bullet
+    ++bullets;
+    EXPECT_TRUE(std::any_of(readme_lines.begin(), readme_lines.end(),
+                            [&](const std::string& r) { return r.rfind(line, 0) == 0; }))
+        << "not in the README: " << line;
+  }
+  EXPECT_GE(bullets, 9);
+
+  // SCALING.md's rows: kind, ranks, balls, median solve [s], efficiency.
+  std::map<std::string, std::vector<double>> row;
+  std::stringstream scaling(slurp(root / "benchmarks" / "SCALING.md"));
+  for (std::string line; std::getline(scaling, line);) {
+    std::vector<std::string> cells;
+    std::stringstream cut(line);
+    for (std::string cell; std::getline(cut, cell, '|');) cells.push_back(cell);
+    if (cells.size() < 6 || (cells[1] != " strong " && cells[1] != " weak ")) continue;
+    row[cells[1] + cells[2]] = {std::stod(cells[3]), std::stod(cells[4]), std::stod(cells[5])};
+  }
+  ASSERT_EQ(row.size(), 4u);
+  ASSERT_EQ(row[" strong  1 "][0], 1e4);
+  ASSERT_EQ(row[" weak  1 "][0], 5e3);
+  std::string prose;  // the README's words with its line breaks as spaces
+  std::replace_copy(readme.begin(), readme.end(), std::back_inserter(prose), '\n', ' ');
+  const std::string sentence = fmt::format(
+      "strong scaling {:.2f} at 10⁴ balls ({:.1f} s on one rank, {:.1f} s on two), weak scaling {:.2f} at "
+      "5·10³ balls per rank",
+      row[" strong  2 "][2], row[" strong  1 "][1], row[" strong  2 "][1], row[" weak  2 "][2]);
+  EXPECT_NE(prose.find(sentence), std::string::npos) << "not in the README: " << sentence;
 }

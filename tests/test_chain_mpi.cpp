@@ -11,6 +11,11 @@
 
 #include <unistd.h>
 
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
 namespace {
 class ChainMpi : public CliTest {
  protected:
@@ -134,4 +139,28 @@ TEST_F(ChainMpi, AChainBeyondTheMachinesMemoryIsRefusedFirst) {
   EXPECT_NE(r.err.find("--balls: value '100000000' needs about 1"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("GB of memory on a machine that has"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir_ / "huge"));
+}
+
+// benchmarks/scaling_mpi.sh read the solve's wall time as stats.csv's last column; once
+// energy_error_rel followed it, SCALING.md's table held -0.0000 s and -nan efficiencies. A small
+// chain, once per case: every median a positive time, every efficiency a positive number.
+TEST_F(ChainMpi, TheScalingScriptTabulatesTheSolvesWallTime) {
+  const std::string build = std::filesystem::path(CHAIN_MPI_EXE).parent_path().parent_path().string();
+  const Outcome r = run("bash", "'" + std::string(SCALING_SCRIPT) + "' '" + build + "' scaling.md",
+                        "REPEATS=1 N=200 N_PER_RANK=100 T_END=0.002");
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::ifstream md(dir_ / "scaling.md");
+  int rows = 0;
+  for (std::string line; std::getline(md, line);) {
+    if (line.rfind("| strong |", 0) != 0 && line.rfind("| weak |", 0) != 0) continue;
+    ++rows;
+    std::vector<std::string> cells;  // "", kind, ranks, balls, time, efficiency, ""
+    std::stringstream row(line);
+    for (std::string cell; std::getline(row, cell, '|');) cells.push_back(cell);
+    ASSERT_GE(cells.size(), 6u) << line;
+    EXPECT_GT(std::stod(cells[4]), 0.0) << line;
+    const double efficiency = std::stod(cells[5]);
+    EXPECT_TRUE(std::isfinite(efficiency) && efficiency > 0) << line;
+  }
+  EXPECT_EQ(rows, 4);  // strong and weak, on one rank and two
 }
