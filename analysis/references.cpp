@@ -57,15 +57,106 @@ SpringContact hooke_contact(double m, double k, double V, double g) {
   return {(std::numbers::pi + 2.0 * std::atan(g / (w * V))) / w, s + R, V};
 }
 
-SpringContact kelvin_voigt_contact(double m, double k, double zeta, double V) {
-  require_in("kelvin_voigt_contact: m", m, kPositive);
-  require_in("kelvin_voigt_contact: k", k, kPositive);
-  require_in("kelvin_voigt_contact: zeta", zeta, kDampingRatio);  // underdamped: the ball comes back
-  require_in("kelvin_voigt_contact: V", V, kNonNegative);
-  const double w = std::sqrt(k / m), root = std::sqrt(1.0 - zeta * zeta), wd = w * root;
-  const double tm = std::atan2(root, zeta) / wd;
-  return {std::numbers::pi / wd, V / wd * std::exp(-zeta * w * tm) * std::sin(wd * tm),
-          V * std::exp(-zeta * std::numbers::pi / root)};
+namespace {
+
+// c + e^(-s t) (a cos(wd t) + b sin(wd t)): a Kelvin–Voigt contact's penetration about its static
+// sag c, and every linear combination of it and its derivatives (a damped wave about a constant).
+struct DampedWave {
+  double c, a, b, s, wd;
+  double operator()(double t) const {
+    return c + std::exp(-s * t) * (a * std::cos(wd * t) + b * std::sin(wd * t));
+  }
+  DampedWave derivative() const { return {0.0, -s * a + wd * b, -s * b - wd * a, s, wd}; }
+  DampedWave plus(double k, const DampedWave& o) const {
+    return {c + k * o.c, a + k * o.a, b + k * o.b, s, wd};
+  }
+  // The first time after t at which the wave turns (its derivative's zeros are pi / wd apart; one
+  // within 1e-9 of that of t, t's own by rounding, is not after it).
+  double next_turn(double t) const {
+    const DampedWave d = derivative();  // d = e^(-s t) r cos(wd t - psi): zero at wd t = psi + pi/2 + j pi
+    const double psi = std::atan2(d.b, d.a), period = std::numbers::pi / wd;
+    double turn = (psi + std::numbers::pi / 2) / wd;
+    turn += period * std::ceil((t - turn) / period);
+    return turn > t + 1e-9 * period ? turn : turn + period;
+  }
+  // Its zero in [lo, hi], where it falls from positive to at most zero, monotonically: bisection
+  // to the doubles' resolution (64 halvings at most).
+  double zero_between(double lo, double hi) const {
+    for (int i = 0; i < 64; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      if (!(mid > lo && mid < hi)) break;
+      ((*this)(mid) > 0 ? lo : hi) = mid;
+    }
+    return hi;
+  }
+};
+
+// The first contact of the Kelvin–Voigt ball: x'' = g - w^2 x - 2 zeta w x' for the penetration x,
+// x(0) = 0, x'(0) = V, until x returns to 0 (the unclamped law), or until the force w^2 x + 2 zeta w x'
+// falls to zero (the clamped law lets go there and the ball flies freely until the overlap closes).
+struct KelvinVoigtFirstContact {
+  double w, sigma, g;
+  DampedWave x;
+  double t_deepest, t_shallowest;  // x's first maximum, and the minimum after it
+
+  KelvinVoigtFirstContact(double m, double k, double zeta, double V, double g_)
+      : w(std::sqrt(k / m)), sigma(zeta * w), g(g_) {
+    const double wd = w * std::sqrt(1.0 - zeta * zeta), sag = g / (w * w);
+    x = {sag, -sag, (V - sigma * sag) / wd, sigma, wd};  // x(0) = 0, x'(0) = V
+    t_deepest = x.next_turn(0.0);
+    t_shallowest = x.next_turn(t_deepest);
+  }
+  // The overlap closes before the oscillation about the sag turns back; else the spring holds the
+  // ball for good (later turns are shallower still): an unending contact, left at speed 0.
+  SpringContact unclamped() const {
+    const double x_max = x(t_deepest);
+    if (x(t_shallowest) > 0) return {std::numeric_limits<double>::infinity(), x_max, 0.0};
+    const double t_end = x.zero_between(t_deepest, t_shallowest);
+    return {t_end, x_max, -x.derivative()(t_end)};
+  }
+  // The release: the force's first zero after the deepest point (it turns at most twice before
+  // x's next turn). Then free flight, x'' = g, until x = 0, provided the force stays <= 0 meanwhile
+  // (w^2 x + 2 sigma x' along the flight is tau (w^2 v_r + 2 sigma g + w^2 g tau / 2)); where the
+  // clamp takes hold again there is no closed form (NaN), and without a release the spring holds
+  // the ball as unclamped.
+  SpringContact clamped() const {
+    const double x_max = x(t_deepest);
+    const DampedWave force = DampedWave{0, 0, 0, sigma, x.wd}.plus(w * w, x).plus(2 * sigma, x.derivative());
+    double lo = t_deepest, t_release = NAN;
+    for (int piece = 0; piece < 3 && lo < t_shallowest && std::isnan(t_release); ++piece) {
+      const double hi = std::min(force.next_turn(lo), t_shallowest);
+      if (force(hi) <= 0) t_release = force.zero_between(lo, hi);
+      lo = hi;
+    }
+    if (std::isnan(t_release)) return {std::numeric_limits<double>::infinity(), x_max, 0.0};
+    const double x_r = x(t_release), v_r = x.derivative()(t_release);
+    const double discriminant = v_r * v_r - 2 * g * x_r;
+    if (!(v_r < 0 && discriminant >= 0)) return {NAN, x_max, NAN};
+    const double flight = 2 * x_r / (-v_r + std::sqrt(discriminant));
+    if (w * w * v_r + 2 * sigma * g + w * w * g * flight / 2 > 0) return {NAN, x_max, NAN};
+    return {t_release + flight, x_max, std::sqrt(discriminant)};
+  }
+};
+
+void require_kelvin_voigt(const char* name, double m, double k, double zeta, double V, double g) {
+  const std::string f(name);
+  require_in(f + ": m", m, kPositive);
+  require_in(f + ": k", k, kPositive);
+  require_in(f + ": zeta", zeta, kDampingRatio);  // underdamped: the ball comes back
+  require_in(f + ": g", g, kNonNegative);
+  require_in(f + ": V", V, g > 0 ? kNonNegative : kPositive);  // no contact without either
+}
+
+}  // namespace
+
+SpringContact kelvin_voigt_contact(double m, double k, double zeta, double V, double g) {
+  require_kelvin_voigt("kelvin_voigt_contact", m, k, zeta, V, g);
+  return KelvinVoigtFirstContact(m, k, zeta, V, g).unclamped();
+}
+
+SpringContact clamped_kelvin_voigt_contact(double m, double k, double zeta, double V, double g) {
+  require_kelvin_voigt("clamped_kelvin_voigt_contact", m, k, zeta, V, g);
+  return KelvinVoigtFirstContact(m, k, zeta, V, g).clamped();
 }
 
 double clamped_kelvin_voigt_restitution(double zeta) {
@@ -84,12 +175,7 @@ SpringContact linear_law_first_contact(const std::string& law, double m, double 
   const bool clamped = law == "kelvin-voigt-clamped";
   if ((law != "kelvin-voigt" && !clamped) || !(e > 0)) return {nan, nan, nan};
   const double zeta = damping_ratio_for_restitution(e);
-  SpringContact c = kelvin_voigt_contact(m, k, zeta, V);
-  if (clamped) {
-    c.duration = (std::numbers::pi - 2 * std::asin(zeta)) / (std::sqrt(k / m) * std::sqrt(1 - zeta * zeta));
-    c.exit_speed = clamped_kelvin_voigt_restitution(zeta) * V;
-  }
-  return c;
+  return clamped ? clamped_kelvin_voigt_contact(m, k, zeta, V, g) : kelvin_voigt_contact(m, k, zeta, V, g);
 }
 
 double power_law_time_factor(double n) {

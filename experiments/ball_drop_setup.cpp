@@ -75,7 +75,7 @@ std::string ball_references(const BallDropOptions& o) {
   }
   if (o.law == "hooke") s += "closed forms: Hooke spring with gravity (exact); restitution 1\n";
   if (o.law == "kelvin-voigt" || o.law == "kelvin-voigt-clamped")
-    s += "closed forms: Kelvin–Voigt without gravity (error O(g / (omega V))); restitution e\n";
+    s += "closed forms: Kelvin–Voigt with gravity (exact); restitution e without gravity\n";
   return s;
 }
 

@@ -6,7 +6,7 @@
 // and CVODE's cost per contact (steps, right-hand sides, Jacobians, Newton iterations, failed
 // steps); the largest stable explicit and semi-implicit Euler steps for that contact (linearised:
 // 2 zeta / w and 2 (sqrt(zeta^2 + 1) - zeta) / w, analysis/contact_advisor.hpp); beside them the
-// closed forms (Hooke with gravity, exact; Kelvin–Voigt without gravity) and the exponents of
+// closed forms (exact, gravity included: references.hpp) and the exponents of
 // penetration and duration against k fitted by least squares in log-log (GSL) over k >= 1e4,
 // where gravity's share g / (w V) is below 2 %. A row where a soft damped spring holds the ball for
 // good is "held", NaN for the bounce, out of figures and fits. Under mpirun cases go over ranks.
@@ -104,7 +104,6 @@ int program(int argc, char** argv) {
       const std::string& law = kLaws[li];
       const double k = grid[i % grid.size()];
       const auto get = [&c = (*cases)[i]](const char* key) { return c[key].get<double>(); };
-      // Closed forms: Hooke exactly (with gravity); Kelvin–Voigt in the gravity-free limit.
       const SpringContact ref = linear_law_first_contact(law, m, k, e, V, g);
       const double zeta = law_info(law).damped ? damping_ratio_for_restitution(e) : 0.0, w = std::sqrt(k / m);
       const double euler_dt = 2 * zeta / w, symplectic_dt = 2 * (std::sqrt(zeta * zeta + 1) - zeta) / w;

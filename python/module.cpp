@@ -373,10 +373,16 @@ PYBIND11_MODULE(contact_ode, mod) {
       py::arg("m"), py::arg("k"), py::arg("V"), py::arg("g") = 0.0);
   refs.def(
       "kelvin_voigt_contact",
-      [](double m, double k, double zeta, double V) {
-        return spring_contact(kelvin_voigt_contact(m, k, zeta, V));
+      [](double m, double k, double zeta, double V, double g) {
+        return spring_contact(kelvin_voigt_contact(m, k, zeta, V, g));
       },
-      py::arg("m"), py::arg("k"), py::arg("zeta"), py::arg("V"));
+      py::arg("m"), py::arg("k"), py::arg("zeta"), py::arg("V"), py::arg("g") = 0.0);
+  refs.def(
+      "clamped_kelvin_voigt_contact",
+      [](double m, double k, double zeta, double V, double g) {
+        return spring_contact(clamped_kelvin_voigt_contact(m, k, zeta, V, g));
+      },
+      py::arg("m"), py::arg("k"), py::arg("zeta"), py::arg("V"), py::arg("g") = 0.0);
   refs.def(
       "linear_law_first_contact",
       [](const std::string& law, double m, double k, double e, double V, double g) {

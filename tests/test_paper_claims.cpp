@@ -46,6 +46,22 @@ TEST(PaperClaims, PenetrationAndDurationScaleAsKToTheMinusHalf) {
       EXPECT_NEAR(cell("k_sweep/exponents.csv", {{"law", law}}, column), -0.5, 0.002) << law << " " << column;
 }
 
+// Section 4.1: "beside the closed forms, gravity included, which every measured contact matches to
+// 1e-7 for every law and every k". k_sweep solves at rtol 1e-10: ~300 steps per contact at that
+// local error leave ~3e-8 (measured: 3.4e-8, Hooke's duration at k = 1e9). The Kelvin–Voigt
+// references were the gravity-free limit, 1e-3 ... 0.5 off at k <= 1e4.
+TEST(PaperClaims, EveryMeasuredContactMatchesItsExactClosedForm) {
+  int rows = 0;
+  for (const auto& row : contact::read_csv(fs::path(PAPER_RESULTS) / "k_sweep" / "k_sweep.csv")) {
+    if (row.at("first_bounce") != "bounced") continue;
+    ++rows;
+    for (const char* what : {"penetration_m", "duration_s"})
+      EXPECT_NEAR(std::stod(row.at(what)) / std::stod(row.at(std::string("closed_form_") + what)), 1.0, 1e-7)
+          << row.at("law") << " k = " << row.at("k_N_per_m") << " " << what;
+  }
+  EXPECT_GE(rows, 3 * 17);  // three laws, k = 1e2 ... 1e10 at two points per decade at least
+}
+
 // "The cost per contact of every adaptive code, explicit or implicit, is flat in k" (a code whose step
 // were bound by stability in the contact would show k^(1/2)). The CPU times the text quotes beside it
 // are measurements, not claims a test could time: speed belongs in the benchmarks.

@@ -152,6 +152,26 @@ def test_time_stepping_settings_and_types_are_checked():
         co.solve("ball-drop", "event-exact", rest_speed=0.0, t_end=5.0)
 
 
+def test_kelvin_voigt_closed_forms_take_gravity():
+    """The Kelvin-Voigt contacts with gravity are the module's runs' first contacts (rtol 1e-10:
+    1e-7 relative, as the C++ tests); the clamped law's contact lasts its push and then 2 zeta / w
+    of free flight until the overlap closes."""
+    m, k, e, h0, g = 4.0, 300.0, 0.9, 0.05, 9.81
+    V = math.sqrt(2 * g * h0)
+    zeta = co.references.damping_ratio_for_restitution(e)
+    for law, closed_form in [("kelvin-voigt", co.references.kelvin_voigt_contact),
+                             ("kelvin-voigt-clamped", co.references.clamped_kelvin_voigt_contact)]:
+        ref = closed_form(m=m, k=k, zeta=zeta, V=V, g=g)
+        r = co.solve("ball-drop", "penalty", law=law, m=m, k=k, e=e, h0=h0, rtol=1e-10, atol=1e-14, t_end=1.0)
+        c = r.contacts
+        assert c["t_end"][0] - c["t_begin"][0] == pytest.approx(ref["duration"], rel=1e-7)
+        assert c["max_penetration"][0] == pytest.approx(ref["max_penetration"], rel=1e-7)
+        assert c["v_out"][0] == pytest.approx(ref["exit_speed"], rel=1e-7)
+    w, wd = math.sqrt(k / m), math.sqrt(k / m) * math.sqrt(1 - zeta ** 2)
+    free = co.references.clamped_kelvin_voigt_contact(m=m, k=k, zeta=zeta, V=V)
+    assert free["duration"] == pytest.approx((math.pi - 2 * math.asin(zeta)) / wd + 2 * zeta / w, rel=1e-12)
+
+
 def test_closed_forms_refuse_arguments_outside_their_domain():
     # Each used to return a number that means nothing: a negative damping ratio, NaN for g = 0.
     with pytest.raises(ValueError, match=r"damping_ratio_for_restitution: e = 1.5 is out of range; accepted range \[0, 1\]"):

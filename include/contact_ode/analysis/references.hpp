@@ -74,16 +74,29 @@ struct SpringContact {
 
 // Hooke spring of stiffness k on mass m, entered at speed V > 0, under gravity g >= 0.
 SpringContact hooke_contact(double m, double k, double V, double g);
-// Unclamped Kelvin–Voigt (damping ratio zeta < 1) without gravity.
-SpringContact kelvin_voigt_contact(double m, double k, double zeta, double V);
+// Kelvin–Voigt spring and dashpot of damping ratio zeta < 1 on mass m, entered at speed V under
+// gravity g >= 0, exactly: the penetration is a damped oscillation about the static sag g / w^2,
+// its deepest point and exit speed in closed form, its end (where the overlap closes) the one zero
+// of a monotone stretch, found by bisection to the doubles' resolution. Where the spring holds the
+// ball for good (the oscillation never returns to zero overlap: soft springs, heavy damping) the
+// duration is +inf and the exit speed 0. Without gravity: duration pi / w_d, restitution
+// exp(-zeta pi / sqrt(1 - zeta^2)).
+SpringContact kelvin_voigt_contact(double m, double k, double zeta, double V, double g = 0.0);
+// The same law clamped to a force >= 0: as above to the deepest point (the clamp acts only after
+// it), then the force falls to zero while the ball still overlaps and it flies freely (under
+// gravity) until the overlap closes: duration and exit speed at that point. NaN duration and exit
+// speed where the clamp takes hold again before the overlap closes (gravity's share g / (w V) of
+// order one or more); +inf and 0 where the spring never lets go. Without gravity: the push
+// (pi - 2 asin zeta) / w_d plus 2 zeta / w of free flight, exit speed
+// clamped_kelvin_voigt_restitution(zeta) V.
+SpringContact clamped_kelvin_voigt_contact(double m, double k, double zeta, double V, double g = 0.0);
 // Restitution achieved by the clamped law with damping ratio zeta < 1, no gravity.
 double clamped_kelvin_voigt_restitution(double zeta);
 // Undamped power-law contact: duration, maximum penetration, exit speed V.
 SpringContact power_law_contact(double m, double K, double n, double V);
-// The first contact of a linear law of the registry, tuned to restitution e, entered at speed V
-// under gravity g: "hooke" exactly; "kelvin-voigt" in its gravity-free limit (error O(g / (w V)));
-// "kelvin-voigt-clamped" likewise, with the unclamped penetration (the clamp acts only after the
-// deepest point) and the clamped duration (pi - 2 asin zeta) / w_d and exit speed. NaN for every
+// The first contact of a linear law of the registry, tuned to restitution e (its gravity-free
+// value), entered at speed V under gravity g, exactly: "hooke" (hooke_contact), "kelvin-voigt"
+// (kelvin_voigt_contact), "kelvin-voigt-clamped" (clamped_kelvin_voigt_contact). NaN for every
 // other law, and for e = 0 (critical damping: no bounce to compare).
 SpringContact linear_law_first_contact(const std::string& law, double m, double k, double e, double V,
                                        double g);
