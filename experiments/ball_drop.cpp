@@ -54,9 +54,12 @@ void run_single(const BallDropOptions& o, OutputSet& out) {
       "rtol = {:g}, atol = {:g}, t_end = {:g} s\n\n",
       o.m, o.g, o.h0, o.v0, o.e, describe(law_for(o, o.k)), o.dt, o.rtol, scaled_atol(o), o.t_end);
   fmt::print("{}\n{}", comparison.to_markdown(), ball_references(o));
-  if (const SpringContact c = closed_form_contact(o, o.k); !std::isnan(c.duration))
-    fmt::print("closed-form first contact at k = {:g}: duration {:.6g} s, max penetration {:.6g} m\n", o.k,
-               c.duration, c.max_penetration);
+  if (const SpringContact c = closed_form_contact(o, o.k); !std::isnan(c.max_penetration))
+    fmt::print("closed-form first contact at k = {:g}: {}, max penetration {:.6g} m\n", o.k,
+               std::isinf(c.duration)   ? "unending (the spring holds the ball)"
+               : std::isnan(c.duration) ? "duration unknown (the clamp takes hold again)"
+                                        : fmt::format("duration {:.6g} s", c.duration),
+               c.max_penetration);
   if (failures > 0)
     throw std::runtime_error(fmt::format("{} of {} methods failed", failures, methods.size()));
   out.add_table("comparison", comparison);

@@ -196,6 +196,21 @@ TEST_F(BallDropCli, TheOtherModesOptionsAreNoted) {
   EXPECT_EQ(plain.err.find("no effect"), std::string::npos) << plain.err;
 }
 
+// The closed-form first contact is exact with gravity: where a soft damped spring holds the ball
+// for good (k = 10 N/m, e = 0.3: the oscillation about the sag never returns to zero overlap) it
+// says so, as the run's first contact never ends, rather than "duration inf s" (or, before the
+// closed form took gravity, a gravity-free duration of 1.1 s for a contact that does not end).
+TEST_F(BallDropCli, AContactTheSpringHoldsForGoodIsSaidToBeUnending) {
+  const Outcome r = run("--method penalty --law kelvin-voigt --k 10 --e 0.3 --out held");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("closed-form first contact at k = 10: unending (the spring holds the ball), max "
+                       "penetration 1.64788 m"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("| penalty | success | 1        | 1.648               | —"), std::string::npos)
+      << r.out;
+}
+
 // The README's sample output is the program's: every cell but the wall times.
 TEST_F(BallDropCli, TheReadmeSampleIsWhatItPrints) {
   const Outcome r = run("");
