@@ -48,6 +48,14 @@ py::array_t<double> column(const std::vector<Row>& rows, const std::function<dou
   return a;
 }
 
+// A switch is True or False (Python's or NumPy's): pybind11 would take any object's truth, so that
+// warm_start=None ran without warm starting and warm_start=float('nan') with it.
+bool switch_value(const py::handle& v) {
+  if (!py::isinstance<py::bool_>(v) && !py::isinstance(v, py::module_::import("numpy").attr("bool_")))
+    throw py::cast_error("not a bool");
+  return v.cast<bool>();
+}
+
 // The method settings a keyword can set, each with how it is read.
 using Setter = std::function<void(Method&, const py::handle&)>;
 const std::map<std::string, Setter>& method_settings() {
@@ -64,9 +72,9 @@ const std::map<std::string, Setter>& method_settings() {
       {"rest_speed", [](Method& m, const py::handle& v) { m.rest_speed = v.cast<double>(); }},
       {"iterations", [](Method& m, const py::handle& v) { m.iterations = v.cast<int>(); }},
       {"substeps", [](Method& m, const py::handle& v) { m.substeps = v.cast<int>(); }},
-      {"warm_start", [](Method& m, const py::handle& v) { m.warm_start = v.cast<bool>(); }},
+      {"warm_start", [](Method& m, const py::handle& v) { m.warm_start = switch_value(v); }},
       {"erp", [](Method& m, const py::handle& v) { m.erp = v.cast<double>(); }},
-      {"split_impulse", [](Method& m, const py::handle& v) { m.split_impulse = v.cast<bool>(); }},
+      {"split_impulse", [](Method& m, const py::handle& v) { m.split_impulse = switch_value(v); }},
       {"restitution_threshold",
        [](Method& m, const py::handle& v) { m.restitution_threshold = v.cast<double>(); }},
       {"contact_hertz", [](Method& m, const py::handle& v) { m.contact_hertz = v.cast<double>(); }},

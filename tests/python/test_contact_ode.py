@@ -146,6 +146,14 @@ def test_time_stepping_settings_and_types_are_checked():
         co.solve("ball-drop", "moreau-jean", theta=2.0)
     with pytest.raises(ValueError, match="iterations: value 'many' has the wrong type"):
         co.solve("ball-drop", "sequential-impulses", iterations="many")
+    # A switch is a bool: any object's truth was taken (None ran without warm starting, NaN with it).
+    for value in [None, float("nan"), -1.0, 2, "no"]:
+        with pytest.raises(ValueError, match=f"warm_start: value '{value}' has the wrong type"):
+            co.solve("ball-drop", "sequential-impulses", warm_start=value)
+        with pytest.raises(ValueError, match=f"split_impulse: value '{value}' has the wrong type"):
+            co.solve("ball-drop", "sequential-impulses", split_impulse=value)
+    for value in [False, True, np.bool_(False)]:
+        co.solve("ball-drop", "sequential-impulses", warm_start=value, split_impulse=value, t_end=0.1)
     # Accepted before, though the command line refuses it: the exact flight then ran the Zeno
     # cascade into the record limit.
     with pytest.raises(ValueError, match=r"rest_speed: value '0' is out of range; accepted range \(0, inf\)"):
