@@ -4,10 +4,11 @@
 //   r.t, r.y, r.energy            NumPy arrays, one row per sample
 //   r.contacts["max_penetration"] one NumPy array per column of the contact log
 // Keyword options are the scene's parameters (co.scenes()), the method's settings (dt, rtol,
-// atol, integrator, iterations, ...; co.methods() lists what each reads, and a setting the method
-// ignores raises a UserWarning) and the span (t_end, sample_dt); any other name, and any value out
-// of range, raises ValueError naming it. A run that fails raises co.SolverError with
-// .status, .t_reached, .solver_message and the partial .result.
+// atol, integrator, linear_solver, iterations, ...; co.methods() lists what each reads, and a
+// setting the method ignores raises a UserWarning) and the span (t_end, sample_dt); any other
+// name, and any value out of range, raises ValueError naming it. A run that fails raises
+// co.SolverError with .status, .t_reached, .solver_message and the partial .result; Ctrl-C ends
+// a solve within a step (InterruptibleSolve).
 #include "contact_ode/analysis/contact_advisor.hpp"
 #include "contact_ode/analysis/references.hpp"
 #include "contact_ode/integrators/method_registry.hpp"
@@ -69,6 +70,11 @@ const std::map<std::string, Setter>& method_settings() {
       {"atol", [](Method& m, const py::handle& v) { m.integrator.atol = v.cast<double>(); }},
       {"integrator", [](Method& m, const py::handle& v) { m.integrator.method = v.cast<std::string>(); }},
       {"max_steps", [](Method& m, const py::handle& v) { m.integrator.max_steps = v.cast<long>(); }},
+      // The implicit SUNDIALS integrators' linear solver: band, klu or gmres for a long chain.
+      {"linear_solver",
+       [](Method& m, const py::handle& v) {
+         m.integrator.linear_solver = parse_linear_solver(v.cast<std::string>());
+       }},
       {"rest_speed", [](Method& m, const py::handle& v) { m.rest_speed = v.cast<double>(); }},
       {"iterations", [](Method& m, const py::handle& v) { m.iterations = v.cast<int>(); }},
       {"substeps", [](Method& m, const py::handle& v) { m.substeps = v.cast<int>(); }},

@@ -294,3 +294,21 @@ def test_ctrl_c_ends_a_solve_in_progress(handler, outcome):
         pytest.fail("the solve went on after SIGINT")
     assert out.splitlines() == outcome + ["Status.success"]
     assert child.returncode == 0
+
+
+def test_a_long_chain_takes_the_linear_solver_its_refusal_names():
+    """A chain whose dense Jacobian would not fit is refused with "use the band, klu or gmres
+    linear solver", a setting Python had no keyword for. The direct solvers give the dense run to
+    rounding (band bitwise, KLU 1e-14); GMRES's iterations stop at a fraction of the tolerance, so
+    its run differs within it (rtol 1e-8 over the pulse's 99 contacts: 4e-7 measured, 1e-6 allowed)."""
+    with pytest.raises(co.SolverError, match="use the band, klu or gmres linear solver"):
+        co.solve("ball-chain", "penalty", n=20000, t_end=1e-3)
+    long = co.solve("ball-chain", "penalty", n=20000, t_end=1e-3, linear_solver="band")
+    assert long.status == co.Status.success
+    dense = co.solve("ball-chain", "penalty", n=100, t_end=0.05)
+    for solver in ["band", "klu", "gmres"]:
+        other = co.solve("ball-chain", "penalty", n=100, t_end=0.05, linear_solver=solver)
+        np.testing.assert_allclose(other.y[-1], dense.y[-1], atol=1e-6)
+    with pytest.raises(ValueError, match="linear_solver: value 'sparse' is not one of: dense, band, klu, gmres"):
+        co.solve("ball-chain", "penalty", linear_solver="sparse")
+    assert "linear_solver" in next(m for m in co.methods() if m["name"] == "penalty")["settings"]
