@@ -26,6 +26,7 @@
 #include <csignal>
 #include <functional>
 #include <map>
+#include <optional>
 
 namespace py = pybind11;
 using namespace contact;
@@ -213,7 +214,15 @@ RunResult run(const std::string& scene, const std::string& method, const std::st
   warn_of_ignored_settings(m, options);
   const auto model = make_scene(scene, values, law);
   InterruptibleSolve interruptible;
-  RunResult r = solve(*model, m, span);
+  RunResult r;
+  {
+    // Other Python threads run meanwhile (a sweep over threads runs its solves side by side): the
+    // library keeps no shared state but the stop request. The engines keep the GIL: their own
+    // libraries' rules on threads are theirs (ODE's per-thread data, Siconos' globals).
+    std::optional<py::gil_scoped_release> others_run;
+    if (method_info(method).family != "engine") others_run.emplace();
+    r = solve(*model, m, span);
+  }
   interruptible.hand_over();
   if (!r.ok()) {
     py::object err = error_type(fmt::format("{} on {}: {} at t = {:.9g} s: {}", method, scene,
