@@ -34,11 +34,16 @@ RunResult run_penalty(const Dynamics& model, const PenaltyOptions& opt, const So
   for (std::size_t i = 0; i < nc; ++i) releasing = releasing || geo.releases_while_overlapping(i);
   const std::size_t per = releasing ? 3 : 2;
   base.root_count = per * nc;
+  // The mode each contact is recorded in, which its switching root is offset towards: the held
+  // mode, changed at located switches only. Unlocated, the force's modes follow the state in every
+  // call (modes_at) while the record keeps this one, so that a root function is a function of
+  // (t, y) alone and not of whichever right-hand side ran last (what the root location took it for).
+  ContactModes recorded = modes;
   base.roots = [&](double, ConstVectorRef y, VectorRef g) {
     for (std::size_t i = 0; i < nc; ++i) {
       const auto at = static_cast<Eigen::Index>(per * i);
       // Touching counts as the mode held (see contact_threshold).
-      const double side = modes[i] == ContactMode::Penalty ? threshold : -threshold;
+      const double side = recorded[i] == ContactMode::Penalty ? threshold : -threshold;
       g[at] = geo.switching(i, y) + side;
       g[at + 1] = geo.gap_rate(i, y);
       if (releasing) g[at + 2] = geo.gap(i, y) + threshold;
@@ -85,8 +90,9 @@ RunResult run_penalty(const Dynamics& model, const PenaltyOptions& opt, const So
         if (geo.gap(i, y) >= 0) rec.contact_end(i, t, geo.gap_rate(i, y));
       }
       if (closing > 0 && sw == 0 && !engaged) rec.contact_end(i, t, geo.gap_rate(i, y));
+      if (sw != 0) recorded[i] = sw > 0 ? ContactMode::Penalty : ContactMode::Free;
       if (sw != 0 && opt.locate_switches) {
-        modes[i] = sw > 0 ? ContactMode::Penalty : ContactMode::Free;
+        modes[i] = recorded[i];
         switched = true;
       }
     }

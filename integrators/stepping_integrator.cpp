@@ -170,6 +170,10 @@ bool SteppingIntegrator::locate_root(double t_hi, ConstVectorRef y_hi, Outcome& 
   const double tol = 100 * std::numeric_limits<double>::epsilon() * std::max(std::abs(t_), std::abs(t_hi));
   double t_root = std::numeric_limits<double>::infinity();
   Vector y(y_.size()), g(static_cast<Eigen::Index>(n));
+  // The state at the earliest root's bracket end, kept as the bracket narrows: the end is the last
+  // re-step on the new sign's side, so the root's state needs no re-step of its own (one of the
+  // 3-5 per root; bitwise the same state).
+  Vector y_root = y_hi;
   for (std::size_t i = 0; i < n; ++i) {
     const auto k = static_cast<Eigen::Index>(i);
     const int dir = crossing(g_[k], g_hi_[k]);
@@ -190,9 +194,15 @@ bool SteppingIntegrator::locate_root(double t_hi, ConstVectorRef y_hi, Outcome& 
         slope = (on_hermite(c) - on_hermite(a)) / (c - a);
       }
     }
+    double t_new_sign = t_hi;  // the bracket's upper end, and its state
+    Vector y_new_sign = y_hi;
     auto on_dense = [&](double t) {
       dense(t, y);
       eval_roots(t, y, g);
+      if ((g_[k] > 0 ? g[k] : -g[k]) <= 0) {  // narrow_sign_change makes t the bracket's upper end
+        t_new_sign = t;
+        y_new_sign = y;
+      }
       return g[k];
     };
     // After the first re-step (at the cubic's root), the root of the quintic through that point
@@ -218,11 +228,20 @@ bool SteppingIntegrator::locate_root(double t_hi, ConstVectorRef y_hi, Outcome& 
       return narrow_sign_change(on_quintic, {b.lo, q_lo, b.hi, q_hi}, tol).hi;
     };
     // The bracket's upper end: g already has its new sign there.
-    t_root = std::min(
-        t_root, narrow_sign_change(on_dense, {t_, g_[k], t_hi, g_hi_[k]}, tol, guess, 200, slope, refine).hi);
+    const double hi =
+        narrow_sign_change(on_dense, {t_, g_[k], t_hi, g_hi_[k]}, tol, guess, 200, slope, refine).hi;
+    if (hi < t_root) {
+      t_root = hi;
+      if (hi == t_new_sign) {
+        y_root = y_new_sign;
+      } else {  // not expected: every upper end but t_hi is a re-step's
+        dense(hi, y);
+        y_root = y;
+      }
+    }
   }
   if (!std::isfinite(t_root)) return false;
-  dense(t_root, y);
+  y = y_root;
   eval_roots(t_root, y, g);
   out = Outcome{t_root, true, std::vector<int>(n, 0)};
   for (std::size_t i = 0; i < n; ++i) {
