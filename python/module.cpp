@@ -14,6 +14,7 @@
 #include "contact_ode/integrators/method_registry.hpp"
 #include "contact_ode/models/law_registry.hpp"
 #include "contact_ode/models/scene_registry.hpp"
+#include "interruptible_solve.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -23,7 +24,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <csignal>
 #include <functional>
 #include <map>
 #include <optional>
@@ -137,48 +137,6 @@ void warn_of_ignored_settings(const Method& m, const py::kwargs& options) {
     throw py::error_already_set();
 }
 
-// Ctrl-C during a solve. Python's own SIGINT handler only marks the signal, and the interpreter
-// looks at the mark when solve() returns: a 1000-ball chain went on for its whole solve. While a
-// solve runs on Python's main thread (where Python takes its signals) SIGINT requests the
-// library's stop instead, which ends the run within a step; afterwards Python's handler is back
-// and the signal is handed to it, so that Python raises KeyboardInterrupt (or runs the handler the
-// caller set). A SIGINT that Python ignores (SIG_IGN) or leaves to the system is not intercepted.
-class InterruptibleSolve {
- public:
-  InterruptibleSolve() {
-    const auto threading = py::module_::import("threading");
-    if (!threading.attr("current_thread")().is(threading.attr("main_thread")())) return;
-    struct sigaction ours {};
-    ours.sa_handler = [](int) { request_stop(); };
-    sigemptyset(&ours.sa_mask);
-    if (sigaction(SIGINT, &ours, &python_) != 0) return;
-    installed_ = true;
-    if (python_.sa_handler == SIG_IGN || python_.sa_handler == SIG_DFL) release();
-  }
-  InterruptibleSolve(const InterruptibleSolve&) = delete;
-  InterruptibleSolve& operator=(const InterruptibleSolve&) = delete;
-  ~InterruptibleSolve() { release(); }
-
-  // Python's handler back; a SIGINT taken meanwhile is handed to it. Throws what it raises.
-  void hand_over() {
-    if (release() && PyErr_CheckSignals() != 0) throw py::error_already_set();
-  }
-
- private:
-  // Python's handler back, and a SIGINT taken meanwhile marked for it (also where solve() threw);
-  // whether one was.
-  bool release() {
-    if (!installed_) return false;
-    sigaction(SIGINT, &python_, nullptr);
-    installed_ = false;
-    const bool taken = stop_requested();
-    clear_stop_request();
-    return taken && PyErr_SetInterruptEx(SIGINT) == 0;
-  }
-  struct sigaction python_ {};
-  bool installed_ = false;
-};
-
 RunResult run(const std::string& scene, const std::string& method, const std::string& law,
               const py::kwargs& options, const py::object& error_type) {
   const SceneEntry& entry = scene_entry(scene);
@@ -213,7 +171,7 @@ RunResult run(const std::string& scene, const std::string& method, const std::st
   check_integrator(m);
   warn_of_ignored_settings(m, options);
   const auto model = make_scene(scene, values, law);
-  InterruptibleSolve interruptible;
+  python::InterruptibleSolve interruptible;
   RunResult r;
   {
     // Other Python threads run meanwhile (a sweep over threads runs its solves side by side): the
