@@ -15,13 +15,18 @@ RunResult run_penalty(const Dynamics& model, const PenaltyOptions& opt, const So
   const ContactGeometry& geo = contact_geometry(model);
   RunRecorder rec(model, "penalty " + opt.integrator.method, span);
   const Vector y0 = model.initial_state();
-  ContactModes modes(nc);
-  geo.modes_from_state(nc, y0, modes);
-
-  // Without located switches the modes follow the state inside every call.
+  // The held modes: the state's at the start, switched at the switching roots. The contact log
+  // follows them and each switching root is offset towards them. With located switches the force
+  // takes them too; without, the force's modes follow the state inside every call (state_modes),
+  // while the roots keep to the held ones, so that a root function is a function of (t, y) alone
+  // and not of whichever right-hand side ran last (what the root location takes it for).
+  ContactModes held(nc);
+  geo.modes_from_state(nc, y0, held);
+  ContactModes state_modes = held;
   auto modes_at = [&](ConstVectorRef y) -> const ContactModes& {
-    if (!opt.locate_switches) geo.modes_from_state(nc, y, modes);
-    return modes;
+    if (opt.locate_switches) return held;
+    geo.modes_from_state(nc, y, state_modes);
+    return state_modes;
   };
   OdeSystem base = mechanical_ode(model, modes_at);
   const double threshold = contact_threshold(opt.integrator);
@@ -34,16 +39,11 @@ RunResult run_penalty(const Dynamics& model, const PenaltyOptions& opt, const So
   for (std::size_t i = 0; i < nc; ++i) releasing = releasing || geo.releases_while_overlapping(i);
   const std::size_t per = releasing ? 3 : 2;
   base.root_count = per * nc;
-  // The mode each contact is recorded in, which its switching root is offset towards: the held
-  // mode, changed at located switches only. Unlocated, the force's modes follow the state in every
-  // call (modes_at) while the record keeps this one, so that a root function is a function of
-  // (t, y) alone and not of whichever right-hand side ran last (what the root location took it for).
-  ContactModes recorded = modes;
   base.roots = [&](double, ConstVectorRef y, VectorRef g) {
     for (std::size_t i = 0; i < nc; ++i) {
       const auto at = static_cast<Eigen::Index>(per * i);
       // Touching counts as the mode held (see contact_threshold).
-      const double side = recorded[i] == ContactMode::Penalty ? threshold : -threshold;
+      const double side = held[i] == ContactMode::Penalty ? threshold : -threshold;
       g[at] = geo.switching(i, y) + side;
       g[at + 1] = geo.gap_rate(i, y);
       if (releasing) g[at + 2] = geo.gap(i, y) + threshold;
@@ -62,7 +62,7 @@ RunResult run_penalty(const Dynamics& model, const PenaltyOptions& opt, const So
   y0_ledger << y0, 0.0;
 
   for (std::size_t i = 0; i < nc; ++i)
-    if (modes[i] == ContactMode::Penalty) rec.contact_begin(i, 0.0, geo.gap_rate(i, y0));
+    if (held[i] == ContactMode::Penalty) rec.contact_begin(i, 0.0, geo.gap_rate(i, y0));
 
   // A contact lasts from the law's first push to the overlap's closing: a clamped law lets go
   // while the bodies still overlap, and gravity may still slow them until they separate, so
@@ -90,10 +90,9 @@ RunResult run_penalty(const Dynamics& model, const PenaltyOptions& opt, const So
         if (geo.gap(i, y) >= 0) rec.contact_end(i, t, geo.gap_rate(i, y));
       }
       if (closing > 0 && sw == 0 && !engaged) rec.contact_end(i, t, geo.gap_rate(i, y));
-      if (sw != 0) recorded[i] = sw > 0 ? ContactMode::Penalty : ContactMode::Free;
-      if (sw != 0 && opt.locate_switches) {
-        modes[i] = recorded[i];
-        switched = true;
+      if (sw != 0) {
+        held[i] = sw > 0 ? ContactMode::Penalty : ContactMode::Free;
+        switched = switched || opt.locate_switches;  // a restart where the force's modes changed
       }
     }
     return switched;

@@ -194,12 +194,14 @@ bool SteppingIntegrator::locate_root(double t_hi, ConstVectorRef y_hi, Outcome& 
         slope = (on_hermite(c) - on_hermite(a)) / (c - a);
       }
     }
-    double t_new_sign = t_hi;  // the bracket's upper end, and its state
+    // The bracket's upper end and its state: t_hi until a re-step finds the new sign, and then
+    // that re-step's (narrow_sign_change moves the upper end only to a point it evaluated there).
+    double t_new_sign = t_hi;
     Vector y_new_sign = y_hi;
     auto on_dense = [&](double t) {
       dense(t, y);
       eval_roots(t, y, g);
-      if ((g_[k] > 0 ? g[k] : -g[k]) <= 0) {  // narrow_sign_change makes t the bracket's upper end
+      if ((g_[k] > 0 ? g[k] : -g[k]) <= 0) {  // the new sign: t becomes the bracket's upper end
         t_new_sign = t;
         y_new_sign = y;
       }
@@ -232,12 +234,7 @@ bool SteppingIntegrator::locate_root(double t_hi, ConstVectorRef y_hi, Outcome& 
         narrow_sign_change(on_dense, {t_, g_[k], t_hi, g_hi_[k]}, tol, guess, 200, slope, refine).hi;
     if (hi < t_root) {
       t_root = hi;
-      if (hi == t_new_sign) {
-        y_root = y_new_sign;
-      } else {  // not expected: every upper end but t_hi is a re-step's
-        dense(hi, y);
-        y_root = y;
-      }
+      y_root = y_new_sign;  // hi is t_new_sign
     }
   }
   if (!std::isfinite(t_root)) return false;
