@@ -77,6 +77,8 @@ const std::map<std::string, Setter>& method_settings() {
          m.integrator.linear_solver = parse_linear_solver(v.cast<std::string>());
        }},
       {"rest_speed", [](Method& m, const py::handle& v) { m.rest_speed = v.cast<double>(); }},
+      // The event-driven cap on impacts (ZenoLimit names it when a run reaches it).
+      {"max_events", [](Method& m, const py::handle& v) { m.max_events = v.cast<long>(); }},
       {"iterations", [](Method& m, const py::handle& v) { m.iterations = v.cast<int>(); }},
       {"substeps", [](Method& m, const py::handle& v) { m.substeps = v.cast<int>(); }},
       {"warm_start", [](Method& m, const py::handle& v) { m.warm_start = switch_value(v); }},

@@ -124,6 +124,18 @@ def test_solver_failure_raises_with_status_time_and_message():
     assert err.result.t[-1] <= err.t_reached
 
 
+def test_the_impact_limit_the_zeno_failure_names_is_a_keyword():
+    """ZenoLimit says to raise the impact limit: the keyword max_events does, for the event-driven
+    methods (e = 0.8 from 1 m: five bounces to 1.8 s, 20 to 2.4 s; the rest speed ends it near 2.7 s)."""
+    with pytest.raises(co.SolverError, match=r"more than 5 impacts before rest .*max_events") as info:
+        co.solve("ball-drop", "event-exact", max_events=5)
+    assert info.value.status == co.Status.zeno_limit
+    assert co.solve("ball-drop", "event-ode", max_events=200).status == co.Status.success
+    with pytest.raises(ValueError, match=re.escape("max_events: value '0' is out of range; accepted range [1, inf)")):
+        co.solve("ball-drop", "event-ode", max_events=0)
+    assert "max_events" in next(m for m in co.methods() if m["name"] == "event-exact")["settings"]
+
+
 def test_example_reproduces_the_heights_figure(tmp_path):
     out = tmp_path / "heights.png"
     runpy.run_path(str(EXAMPLES / "ball_drop_heights.py"))["main"](str(out))

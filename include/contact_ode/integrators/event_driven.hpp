@@ -12,6 +12,10 @@
 //                      ball), measured by a difference quotient of the gap rate along the flight;
 //   min_event_spacing  two impacts of one contact closer in time than this also mean rest;
 //   max_events         a hard cap: exceeding it ends the run with Status::ZenoLimit.
+// Simultaneous contacts (a row of touching balls struck at one end) take their impulses one at a
+// time, in sweeps over the contacts in index order (reverse_order: the highest first) until a sweep
+// finds none approaching: Gauss–Seidel. A plastic row converges to its common velocity in ~n^3
+// impulses; they count against max_events.
 // The first three rest only a contact that the flight pushes together (its gap's acceleration < 0,
 // as for the initial rest): two balls that leave an impact together fly on. A resting contact that
 // an impulse drives together faster than rest_speed takes its impact and leaves rest (a ball
