@@ -271,6 +271,26 @@ TEST(EventDriven, PlasticImpactsBetweenFreeBodiesKeepTheLedger) {
   }
 }
 
+// A column that bounces to rest is still: every ball's velocity is zero once its contact rests.
+// An impulse from above drove a resting contact together slower than the rest speed (1e-7 m/s) and
+// left that approach in the rested ball's frozen state (a column of four, e = 0.5: -8e-8 ... -2.3e-7
+// m/s at the end). The support takes it now; what remains is the sequential rule's rounding floor,
+// 1e-12 of the drop's impact speed (1.4 m/s) per impulse a ball takes at an instant.
+TEST(EventDriven, AColumnBouncedToRestIsStill) {
+  for (double e : {0.0, 0.5, 0.9}) {
+    const BallStack column({.n = 4, .drop = 0.1, .e = e});
+    EventOptions o;
+    o.integrator.method = "gsl-rk8pd";
+    o.integrator.rtol = 1e-10;
+    o.integrator.atol = 1e-13;
+    const RunResult r = run_event_driven(column, o, {.t_end = 3.0, .sample_dt = 3.0});
+    ASSERT_TRUE(r.ok()) << "e " << e << ": " << r.message;
+    const Vector& y = r.samples.back().y;
+    for (Eigen::Index b = 0; b < 4; ++b)
+      EXPECT_LE(std::abs(y[2 * b + 1]), 1e-10) << "e " << e << ", ball " << b;
+  }
+}
+
 // A striker into a row of touching balls at e = 0: the sequential rule's impulses converge to the
 // plastic answer, every ball at v0 / n (momentum, one common velocity). They pass back and forth
 // along the row, and rescanning from the first contact after each impulse took exponentially many

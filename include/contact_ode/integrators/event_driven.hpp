@@ -19,7 +19,8 @@
 // The first three rest only a contact that the flight pushes together (its gap's acceleration < 0,
 // as for the initial rest): two balls that leave an impact together fly on. A resting contact that
 // an impulse drives together faster than rest_speed takes its impact and leaves rest (a ball
-// landing on one at rest on the floor: the floor takes its share). Bodies that go on pressing into
+// landing on one at rest on the floor: the floor takes its share); one driven together slower than
+// that stays at rest and is settled again (its support takes the impulse). Bodies that go on pressing into
 // each other after an impact with no support holding them (a free cuboid turning under a ball at
 // e = 0) are a sustained contact impulses do not model: a sample that finds an overlap beyond
 // 100 atol ends the run with Status::Unresolved.
