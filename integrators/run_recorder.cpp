@@ -6,10 +6,18 @@
 #include <cmath>
 #include <limits>
 
+#include <unistd.h>
+
 namespace contact {
 
 namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+}
+
+double half_the_machines_memory() {
+  static const double half =
+      0.5 * static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGE_SIZE));
+  return half;
 }
 
 RunRecorder::RunRecorder(const Dynamics& model, std::string method, const SolveOptions& span)

@@ -187,3 +187,28 @@ TEST(Registries, ClosedFormsRefuseArgumentsOutsideTheirDomain) {
   EXPECT_NEAR(hooke_contact(1, 1e4, 0, 9.81).duration, 2 * std::numbers::pi / 100, 1e-14);
   EXPECT_EQ(damping_ratio_for_restitution(0.0), 1.0);
 }
+
+// A run that cannot fit is refused before it starts, naming what it would hold: its output samples
+// (the whole state each) and at least 16 working vectors per state entry for an ODE integrator, 8 for
+// a fixed-step method. A chain of 1e8 balls (the scene accepts up to 1e9), or 1e5 balls sampled every
+// 10 us for 0.1 s (16 GB), filled the machine until the kernel killed the process. Here the limit is
+// set to 1 MB: 1000 balls (2000 values) at 101 samples need 8 * 2000 * (16 + 101) B = 1.87 MB, at 6
+// samples 0.35 MB.
+TEST(Solve, ARunThatCannotFitIsRefusedBeforeItStarts) {
+  const auto chain = make_scene("ball-chain", {{"n", 1000.0}}, "hooke");
+  SolveOptions many{.t_end = 1e-4, .sample_dt = 1e-6};
+  many.limits.max_memory_bytes = 1e6;
+  const std::string why = refusal([&] { solve(*chain, {.name = "penalty"}, many); });
+  EXPECT_EQ(
+      why.rfind("penalty on ball-chain needs at least 0.001872 GB (101 output samples of its 2e+03 state "
+                "values, and 16 working vectors); a run may hold 0.001 GB",
+                0),
+      0u)
+      << why;
+  // A fixed-step method's samples are its steps at most: dt = 2e-5 s takes 5 steps, 6 samples.
+  SolveOptions few = many;
+  EXPECT_TRUE(solve(*chain, {.name = "game-symplectic-spring", .dt = 2e-5}, few).ok());
+  few.sample_dt = 2e-5;
+  EXPECT_TRUE(solve(*chain, {.name = "penalty"}, few).ok());
+  EXPECT_GT(RunLimits{}.max_memory_bytes, 1e8);  // half of any machine this runs on
+}

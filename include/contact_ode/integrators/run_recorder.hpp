@@ -15,10 +15,17 @@ namespace contact {
 // Status::WorkLimit and the time reached, instead of running for hours or exhausting memory.
 // The defaults are far above what any experiment here needs (the study's largest run takes
 // ~1e6 steps and keeps ~1e4 records) and far below what this machine can hold.
+// Half of this machine's physical memory [bytes]: what one run may hold (its caller, e.g. Python's
+// copy of the samples, needs room too).
+double half_the_machines_memory();
+
 struct RunLimits {
   long max_steps = 100'000'000;   // integrator steps over the whole run, restarts included
   long max_records = 1'000'000;   // contact records, apexes and notifications kept
   long max_samples = 10'000'000;  // output samples (about t_end / sample_dt)
+  // The run's samples and its method's working vectors, estimated from below before it starts
+  // (solve()): a run that cannot fit is refused instead of filling the machine.
+  double max_memory_bytes = half_the_machines_memory();
 };
 
 // What every run shares, whichever method: the time span, the output grid and the work bounds.
