@@ -125,12 +125,11 @@ class Impacts {
   }
 
   // Contact `first` closed at t. Impulses are resolved one contact at a time (the sequential
-  // rule): after each, every contact that still touches (gap <= 0) and approaches is resolved
-  // next, lowest index first (highest with reverse_order), until none does. A row of touching balls thus
-  // passes an impulse down the chain within one instant, as in Newton's cradle. The result depends on the
-  // order when contacts share a body; experiments measure that rather than hide it.
-  // The contacts are swept in index order (reversed with reverse_order), over and over until a
-  // sweep resolves none: Gauss–Seidel, as engines' sequential impulses. Rescanning from the first
+  // rule): the contacts are swept in index order (reversed with reverse_order), and each that still
+  // touches (gap <= 0) and approaches takes its impulse, over and over until a sweep resolves none:
+  // Gauss–Seidel, as engines' sequential impulses. A row of touching balls thus passes an impulse
+  // down the chain within one instant, as in Newton's cradle. The result depends on the order when
+  // contacts share a body; experiments measure that rather than hide it. Rescanning from the first
   // contact after every impulse (as before) took exponentially many in a plastic chain, which
   // passes each impulse back and forth: 4953 impulses for five balls, over the million-impact limit
   // for eight, against 249 and 1112 by sweeps.

@@ -11,14 +11,14 @@
 
 namespace contact {
 
-// Bounds on one run's work and memory, whatever the method: a run that would pass one ends with
-// Status::WorkLimit and the time reached, instead of running for hours or exhausting memory.
-// The defaults are far above what any experiment here needs (the study's largest run takes
-// ~1e6 steps and keeps ~1e4 records) and far below what this machine can hold.
 // Half of this machine's physical memory [bytes]: what one run may hold (its caller, e.g. Python's
 // copy of the samples, needs room too).
 double half_the_machines_memory();
 
+// Bounds on one run's work and memory, whatever the method: a run that would pass one ends with
+// Status::WorkLimit and the time reached, instead of running for hours or exhausting memory.
+// The defaults are far above what any experiment here needs (the study's largest run takes
+// ~1e6 steps and keeps ~1e4 records) and far below what this machine can hold.
 struct RunLimits {
   long max_steps = 100'000'000;   // integrator steps over the whole run, restarts included
   long max_records = 1'000'000;   // contact records, apexes and notifications kept
