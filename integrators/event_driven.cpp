@@ -328,6 +328,18 @@ RunResult run_event_driven(const MechanicalSystem& model, const AnalyticFlight& 
   SolverStats own;
   double t = 0.0;
   try {
+    // A contact that starts closed and approaching (a ball thrown down from the floor) strikes at
+    // t = 0. The legs look for impacts strictly after their start, so the ball fell through the
+    // floor and the run 'succeeded' (47 m down after 3 s, E + D off by 2e8 times E0).
+    for (std::size_t i = 0; i < nc; ++i) {
+      if (impacts.resting(i) || model.gap(i, y_leg) > 0 || !(model.gap_rate(i, y_leg) < 0)) continue;
+      impacts.resolve_from(i, 0.0, y_leg);
+      any_rest = impacts.resting(i);
+      y = y_leg;
+      start_leg();
+      own.events += 1;
+      break;
+    }
     for (double t_out = rec.next_sample_time(); std::isfinite(t_out); t_out = rec.next_sample_time()) {
       throw_if_stop_requested(t);
       // The earliest of: the next output, an impact, an apex (times from the leg's start).

@@ -271,6 +271,32 @@ TEST(EventDriven, PlasticImpactsBetweenFreeBodiesKeepTheLedger) {
   }
 }
 
+// A ball that starts on the floor moving down strikes it at once. The exact flight looked for
+// impacts strictly after each leg's start, so the ball fell through the floor (47 m down after
+// 3 s, "success", E + D 2e8 times E0); the numerical flight found it. Now both: at e = 1 it leaves
+// at 1 m/s and rises exactly v0^2 / (2g); at e = 0 it rests at once.
+TEST(EventDriven, ABallThrownDownFromTheFloorStrikesItAtOnce) {
+  for (const double e : {1.0, 0.0}) {
+    const BallDrop model({.h0 = 0.0, .v0 = -1.0, .e = e});
+    const RunResult exact = run_event_driven(model, model, {}, {.t_end = 1.0, .sample_dt = 0.01});
+    const RunResult numerical = run_event_driven(model, {}, {.t_end = 1.0, .sample_dt = 0.01});
+    for (const RunResult* r : {&exact, &numerical}) {
+      ASSERT_TRUE(r->ok()) << r->message;
+      ASSERT_FALSE(r->contacts.empty());
+      EXPECT_NEAR(r->contacts.front().t_begin, 0.0, 1e-15) << r->method;  // (the numerical: 4e-26 s)
+      for (const auto& x : r->samples) ASSERT_GE(x.y[0], -1e-12) << r->method << ", t " << x.t;
+    }
+    for (const auto& x : exact.samples) EXPECT_NEAR(x.energy + x.dissipated, exact.energy0, 1e-15) << x.t;
+    if (e == 1.0) {
+      ASSERT_FALSE(exact.apexes.empty());
+      EXPECT_NEAR(exact.apexes.front().gap, 1.0 / (2 * 9.81), 1e-15);
+    } else {
+      EXPECT_EQ(exact.contacts.size(), 1u);
+      EXPECT_EQ(exact.samples.back().y[1], 0.0);
+    }
+  }
+}
+
 // A column that bounces to rest is still: every ball's velocity is zero once its contact rests.
 // An impulse from above drove a resting contact together slower than the rest speed (1e-7 m/s) and
 // left that approach in the rested ball's frozen state (a column of four, e = 0.5: -8e-8 ... -2.3e-7
