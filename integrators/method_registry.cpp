@@ -69,9 +69,9 @@ void check_method_settings(const Method& m) {
 }
 
 // A run holds its output samples (the whole state each) and its method's working vectors: at least
-// 8 per state entry for a fixed-step method and 16 for an ODE integrator (measured on a chain of a
-// million balls: 10 for the game loops, 20 to 35 for CVODE, ARKODE and GSL with their linear
-// solvers). A run whose lower bound passes the limit is refused before it starts: a chain of 1e8
+// 16 per state entry for a method that runs an ODE integrator and 8 for the others (measured on a
+// chain of a million balls: 20 to 35 for CVODE, ARKODE and GSL with their linear solvers, 10 for
+// the game loops). A run whose lower bound passes the limit is refused before it starts: a chain of 1e8
 // balls, or 1e5 balls sampled every 10 us for 0.1 s (16 GB), filled the machine, which ends in the
 // kernel's OOM killer rather than an error.
 void refuse_what_cannot_fit(const Dynamics& scene, const MethodInfo& info, const Method& method,
@@ -80,7 +80,8 @@ void refuse_what_cannot_fit(const Dynamics& scene, const MethodInfo& info, const
   double samples = options.t_end / options.sample_dt;
   if (info.fixed_step) samples = std::min(samples, steps_to_cover(options.t_end, method.dt));
   samples = std::min(samples + 1, static_cast<double>(options.limits.max_samples));
-  const double vectors = info.fixed_step ? 8 : 16;
+  const bool integrates = std::ranges::find(info.settings, "integrator") != info.settings.end();
+  const double vectors = integrates ? 16 : 8;
   const double bytes = 8 * entries * (vectors + samples);
   if (bytes <= options.limits.max_memory_bytes) return;
   throw std::invalid_argument(fmt::format(

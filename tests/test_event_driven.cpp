@@ -286,6 +286,7 @@ TEST(EventDriven, ABallThrownDownFromTheFloorStrikesItAtOnce) {
       EXPECT_NEAR(r->contacts.front().t_begin, 0.0, 1e-15) << r->method;  // (the numerical: 4e-26 s)
       for (const auto& x : r->samples) ASSERT_GE(x.y[0], -1e-12) << r->method << ", t " << x.t;
     }
+    // The closed-form flight and Newton's law keep E + D = E0 (0.5 J) to a few ulps.
     for (const auto& x : exact.samples) EXPECT_NEAR(x.energy + x.dissipated, exact.energy0, 1e-15) << x.t;
     if (e == 1.0) {
       ASSERT_FALSE(exact.apexes.empty());
