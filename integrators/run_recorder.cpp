@@ -30,7 +30,9 @@ RunRecorder::RunRecorder(const Dynamics& model, std::string method, const SolveO
       start_(std::chrono::steady_clock::now()) {
   result_.method = std::move(method);
   result_.state_labels = model.state_labels();
-  result_.energy0 = model.energy(model.initial_state());
+  const Vector y0 = model.initial_state();
+  result_.energy0 = model.energy(y0);
+  if (y0.size() > 0 && y0.allFinite()) state_scale_ = std::max(1.0, y0.cwiseAbs().maxCoeff());
 }
 
 double RunRecorder::next_sample_time() const {
@@ -54,6 +56,7 @@ void RunRecorder::sample(double t, ConstVectorRef y, double dissipated) {
                     "sample spacing",
                     grid, limits_.max_samples));
   result_.samples.push_back({t, y, energy(y), dissipated});
+  check_diverged(t, y);  // after the push: the failed run's last sample shows the state
   // Fixed-step methods sample at step ends: skip every grid time this sample stands for, in one
   // jump (a step may stand for many grid times).
   if (next_sample_ < 0) return;
@@ -72,6 +75,23 @@ void RunRecorder::check_records(double t) const {
         Status::WorkLimit, t,
         fmt::format("more than {} contact records, apexes and notifications: the run's record limit",
                     limits_.max_records));
+}
+
+void RunRecorder::check_diverged(double t, ConstVectorRef y) const {
+  if (y.size() == 0 || !y.allFinite()) return;  // a non-finite state is the methods' own failure
+  Eigen::Index at = 0;
+  const double largest = y.cwiseAbs().maxCoeff(&at);
+  const double bound = limits_.max_state_growth * state_scale_;
+  if (largest > bound) {
+    const auto i = static_cast<std::size_t>(at);
+    throw SolverFailure(
+        Status::Diverged, t,
+        fmt::format("{} = {:.3g} is more than {:g} times the initial state's largest entry (or 1): the "
+                    "method is unstable at these settings (a fixed step beyond its stability bound: "
+                    "contact_advisor gives a stable one)",
+                    i < result_.state_labels.size() ? result_.state_labels[i] : fmt::format("y[{}]", i),
+                    y[at], limits_.max_state_growth));
+  }
 }
 
 void RunRecorder::check_steps(long steps, double t) const {

@@ -18,6 +18,8 @@ const char* to_string(Status s) {
       return "error-test-failure";
     case Status::NonFiniteState:
       return "non-finite-state";
+    case Status::Diverged:
+      return "diverged";
     case Status::ZenoLimit:
       return "zeno-limit";
     case Status::Unresolved:

@@ -225,6 +225,7 @@ PYBIND11_MODULE(contact_ode, mod) {
       .value("convergence_failure", Status::ConvergenceFailure)
       .value("error_test_failure", Status::ErrorTestFailure)
       .value("non_finite_state", Status::NonFiniteState)
+      .value("diverged", Status::Diverged)
       .value("zeno_limit", Status::ZenoLimit)
       .value("unresolved", Status::Unresolved)
       .value("no_progress", Status::NoProgress)

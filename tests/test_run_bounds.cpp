@@ -71,6 +71,46 @@ TEST(RunBounds, GameStepCountBeyondTheRunLimitFailsTyped) {
   EXPECT_NE(r.message.find("steps"), std::string::npos) << r.message;
 }
 
+// A fixed step beyond its scheme's stability bound 'succeeded' with the exploded state: the
+// default chain (k = 1e6 N/m, 0.1 kg balls, omega_max = 2 sqrt(k/m) = 6325/s) at dt = 1 ms
+// (omega dt = 6.3, semi-implicit Euler's bound is 2) ended at 1e43 m/s under the spring game loops
+// and the penalty ODE under Euler alike. It now ends diverged where a speed passes 1e10 times the
+// initial state's largest entry (1 m/s), naming the entry. At dt = 0.1 ms (omega dt = 0.63) every
+// one runs, and so does explicit Euler's energy growth on the ball that energy_drift measures (a
+// speed gain of ~50: far below the line).
+TEST(RunBounds, AFixedStepBeyondItsStabilityBoundEndsDivergedNotWithTheExplodedState) {
+  const BallChain chain{BallChainParams{}};
+  const SolveOptions span{.t_end = 0.05, .sample_dt = 1e-3};
+  Method euler_ode{.name = "penalty", .dt = 0.0};
+  euler_ode.integrator.method = "euler";
+  for (Method m :
+       {Method{.name = "game-symplectic-spring"}, Method{.name = "game-euler-spring"}, euler_ode}) {
+    if (m.name == "penalty") m.integrator.dt = 1e-3;
+    RunResult r = solve(chain, m, span);
+    const std::string what = m.name + (m.name == "penalty" ? " euler" : "");
+    EXPECT_EQ(r.status, Status::Diverged) << what << ": " << to_string(r.status) << " " << r.message;
+    EXPECT_LT(r.t_reached, span.t_end) << what;
+    EXPECT_NE(r.message.find("_mps = "), std::string::npos) << r.message;
+    EXPECT_NE(r.message.find("stability bound"), std::string::npos) << r.message;
+    ASSERT_FALSE(r.samples.empty());
+    EXPECT_GT(r.samples.back().y.cwiseAbs().maxCoeff(), 1e10) << what;  // the last sample shows it
+
+    if (m.name == "penalty")
+      m.integrator.dt = 1e-4;
+    else
+      m.dt = 1e-4;
+    r = solve(chain, m, span);
+    EXPECT_TRUE(r.ok()) << what << " at 0.1 ms: " << r.message;
+  }
+  // energy_drift's ball: Hooke k = 1e5 N/m, e = 1, 100 bounces of the rigid ball (2 t0 each).
+  const BallDrop ball({1.0, 9.81, 1.0, 0.0, 1.0, Hooke{1e5}});
+  const double t_ball = 200 * std::sqrt(2 / 9.81);
+  const RunResult grows =
+      solve(ball, {.name = "game-euler-spring", .dt = 1e-3}, {.t_end = t_ball, .sample_dt = t_ball / 200});
+  ASSERT_TRUE(grows.ok()) << grows.message;
+  EXPECT_GT(grows.samples.back().energy, 1000 * grows.energy0);  // it does gain energy: ~2650 E0
+}
+
 // A span below a billionth of the step was no step at all: every fixed-step method (game loops,
 // time stepping, the engines) 'succeeded' at t = 0 with no sample at t_end. One step, shortened
 // to the span, covers it; a span within 1e-9 dt of whole steps still takes that many.

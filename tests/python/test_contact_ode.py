@@ -124,6 +124,18 @@ def test_solver_failure_raises_with_status_time_and_message():
     assert err.result.t[-1] <= err.t_reached
 
 
+def test_a_step_beyond_the_stability_bound_raises_diverged_not_the_exploded_state():
+    """The default chain at the default 1 ms step is beyond semi-implicit Euler's bound (omega dt = 6.3
+    for its fastest mode): the run returned success at 1e43 m/s; it raises now, naming the entry."""
+    with pytest.raises(co.SolverError, match=r"v\d_mps = .* unstable at these settings") as info:
+        co.solve("ball-chain", "game-symplectic-spring", "kelvin-voigt")
+    assert info.value.status == co.Status.diverged
+    assert 0 < info.value.t_reached < 0.05
+    assert np.abs(np.asarray(info.value.result.y)[-1]).max() > 1e10  # the last sample shows why
+    stable = co.solve("ball-chain", "game-symplectic-spring", "kelvin-voigt", dt=1e-4)
+    assert stable.status == co.Status.success and np.abs(np.asarray(stable.y)).max() < 2
+
+
 def test_a_run_that_cannot_fit_is_refused_before_it_starts():
     """A chain of 5e8 balls (the scene accepts up to 1e9) needs terabytes: refused with what it would
     hold (a ValueError, before the run), where it filled the machine until the kernel killed the interpreter."""
