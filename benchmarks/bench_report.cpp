@@ -244,7 +244,9 @@ int main(int argc, char** argv) try {
       bdf_rhs = rhs;
       bdf_rtol = c.arg;
     }
-    if (rhs <= 500) meets.push_back(fmt::format("{} at rtol 1e-{} ({:.0f} rhs)", c.variant, c.arg, rhs));
+    if (rhs <= 500)
+      meets.push_back(c.arg == 0 ? fmt::format("{} ({:.0f} rhs, no tolerance)", c.variant, rhs)
+                                 : fmt::format("{} at rtol 1e-{} ({:.0f} rhs)", c.variant, c.arg, rhs));
   }
   const std::string bdf =
       std::isnan(bdf_rhs)

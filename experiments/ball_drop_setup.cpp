@@ -38,8 +38,8 @@ Method method_for(const BallDropOptions& o, const std::string& name) {
   m.integrator.max_steps = o.max_steps;
   m.integrator.jacobian = o.jacobian == "dq" ? JacobianMode::DifferenceQuotient : JacobianMode::Analytic;
   m.integrator.linear_solver = parse_linear_solver(o.linear_solver);
-  // Fixed-step integrators run at --dt; adaptive ones control their own step.
-  m.integrator.dt = integrator_info(o.integrator).adaptive ? 0.0 : o.dt;
+  // Fixed-step integrators run at --dt; adaptive and exact ones choose their own steps.
+  m.integrator.dt = needs_step(integrator_info(o.integrator)) ? o.dt : 0.0;
   return m;
 }
 

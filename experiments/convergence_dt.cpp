@@ -62,7 +62,7 @@ int program(int argc, char** argv) {
           "--dt-max: value '{}' is not below --t-final = {}; accepted range (0, t-final)", dt_max, t_final));
     const auto dts = halved_steps("--halvings", dt_max, halvings, 1, t_final);
     const auto drops = ball_problems_over_heights(k, t_final, static_cast<std::size_t>(heights));
-    const auto chosen = cli::chosen(integrators, integrator_names());
+    const auto chosen = converging_integrators(cli::chosen(integrators, integrator_names()), integrators);
     std::vector<Ladder> ladders;
     for (const auto& name : chosen)
       for (const bool located : {false, true}) {

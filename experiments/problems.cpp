@@ -126,6 +126,13 @@ std::vector<WorkJob> work_precision_jobs(const std::vector<Problem>& problems,
     // The largest fixed step is 1/16 of a contact (w dt = pi/16), halved `halvings` times.
     const auto dts = halved_steps("--halvings", pr.contact_duration / 16, halvings, 0, pr.t_end);
     for (const auto& name : integrators) {
+      if (integrator_info(name).family == "exact") {  // no setting: one run
+        Method m{.name = "penalty"};
+        m.integrator.method = name;
+        m.integrator.max_steps = kSweepMaxSteps;
+        jobs.push_back({&pr, "penalty", name, "exact", 0.0, m});
+        continue;
+      }
       const bool adaptive = integrator_info(name).adaptive;
       for (double v : adaptive ? tols : dts)
         jobs.push_back({&pr, "penalty", name, adaptive ? "rtol" : "dt", v, method_with("penalty", name, v)});

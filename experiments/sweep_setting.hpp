@@ -19,6 +19,20 @@ inline constexpr double kAtolPerRtol = 1e-2;
 // The most steps a sweep's run may take (its max_steps): a bound on the work of the finest step.
 inline constexpr long kSweepMaxSteps = 10000000;
 
+// The integrators among `names` (the list `given` to --integrators, expanded) that have a step or a
+// tolerance to converge in: the exact one is left out of 'all' and refused by name.
+inline std::vector<std::string> converging_integrators(std::vector<std::string> names,
+                                                       const std::string& given) {
+  for (const auto& name : names)
+    if (integrator_info(name).family == "exact" && given != "all")
+      throw std::invalid_argument(fmt::format(
+          "--integrators: value '{}' has no step or tolerance to converge in; accepted: the fixed-step and "
+          "adaptive integrators",
+          name));
+  std::erase_if(names, [](const std::string& name) { return integrator_info(name).family == "exact"; });
+  return names;
+}
+
 // The fixed steps of a sweep: dt_max / 2^j, j = 0 .. halvings. Refused (std::invalid_argument naming
 // `option`, the value and the accepted range from `least`) where the finest would take more than
 // kSweepMaxSteps steps over `span`: such a run could only fail, after minutes.

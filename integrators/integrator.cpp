@@ -2,6 +2,7 @@
 
 #include "contact_ode/models/registry.hpp"
 
+#include "exact_linear_integrator.hpp"
 #include "fixed_step_integrator.hpp"
 #include "gsl_integrator.hpp"
 #include "sundials_integrators.hpp"
@@ -31,6 +32,8 @@ const std::vector<IntegratorInfo>& integrator_catalog() {
        "GSL Runge-Kutta-Fehlberg (4,5), propagates the 5th-order solution"},
       {"gsl-msbdf", "GSL", 5, true, true, false, true, "GSL multistep BDF, orders 1-5"},
       {"gsl-bsimp", "GSL", 0, true, true, false, true, "GSL implicit Bulirsch-Stoer (Bader-Deuflhard)"},
+      {"exact-linear", "exact", 0, false, false, false, false,
+       "the exact solution, to rounding, of a right-hand side affine between switches (linear laws)"},
   };
   return catalog;
 }
@@ -84,7 +87,7 @@ void validate(const IntegratorOptions& o) {
   if (!(std::isfinite(o.dt) && o.dt >= 0))
     throw std::invalid_argument(
         fmt::format("--dt: value '{}' is out of range; accepted range (0, inf)", o.dt));
-  if (!info.adaptive && !(o.dt > 0))  // 0 is the default: no step was given
+  if (needs_step(info) && !(o.dt > 0))  // 0 is the default: no step was given
     throw std::invalid_argument(
         fmt::format("--dt: value '{}' is out of range: {} is a fixed-step method and needs a step; accepted "
                     "range (0, inf)",
@@ -120,6 +123,7 @@ std::unique_ptr<Integrator> make_integrator(const IntegratorOptions& o, OdeSyste
   if (info.family == "CVODE") return make_cvode(o, std::move(system), t0, y0);
   if (info.family == "ARKODE") return make_arkode(o, std::move(system), t0, y0);
   if (info.family == "GSL") return make_gsl(o, std::move(system), t0, y0);
+  if (info.family == "exact") return make_exact_linear(o, std::move(system), t0, y0);
   const FixedStepScheme scheme = o.method == "euler"                 ? FixedStepScheme::ExplicitEuler
                                  : o.method == "semi-implicit-euler" ? FixedStepScheme::SemiImplicitEuler
                                  : o.method == "velocity-verlet"     ? FixedStepScheme::VelocityVerlet

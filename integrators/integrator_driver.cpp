@@ -112,6 +112,9 @@ OdeSystem with_ledger(OdeSystem base, std::function<double(ConstVectorRef y)> po
     sys.positions.resize(n + 1);
     sys.positions << base.positions, false;
   }
+  sys.quadratures = Mask::Constant(n + 1, false);
+  if (base.quadratures.size() > 0) sys.quadratures.head(n) = base.quadratures;
+  sys.quadratures[n] = true;
   sys.rhs = [base, power, n](double t, ConstVectorRef y, VectorRef yd) {
     base.rhs(t, y.head(n), yd.head(n));
     yd[n] = power(y.head(n));

@@ -131,10 +131,11 @@ void warn_of_ignored_settings(const Method& m, const py::kwargs& options) {
                           ignored.size() == 1 ? "has" : "have", m.name,
                           reads.empty() ? "none" : fmt::format("{}", fmt::join(reads, ", ")));
   if (rtol_unread && rtol_given)
-    message += fmt::format(
-        "{}rtol has no effect on integrator '{}' at a fixed step (no error control; its accuracy is "
-        "set by dt)",
-        message.empty() ? "" : "; ", m.integrator.method);
+    message += fmt::format("{}rtol has no effect on integrator '{}' {}", message.empty() ? "" : "; ",
+                           m.integrator.method,
+                           integrator_info(m.integrator.method).family == "exact"
+                               ? "(the exact solution: no tolerance)"
+                               : "at a fixed step (no error control; its accuracy is set by dt)");
   if (!message.empty() && PyErr_WarnEx(PyExc_UserWarning, message.c_str(), 2) != 0)
     throw py::error_already_set();
 }

@@ -225,6 +225,22 @@ def test_closed_forms_refuse_arguments_outside_their_domain():
     assert math.isnan(co.references.linear_law_first_contact("hertz", 1.0, 1e5, 0.8, 1.0)["duration"])
 
 
+def test_exact_linear_gives_the_closed_forms_and_refuses_a_nonlinear_law():
+    """The exact integrator's first contact is the Kelvin-Voigt closed form with gravity to rounding;
+    a Hertz contact, which it cannot solve exactly, raises a solver error saying so."""
+    r = co.solve("ball-drop", "penalty", "kelvin-voigt", integrator="exact-linear", atol=1e-14, e=0.8)
+    c = r.contacts
+    zeta = co.references.damping_ratio_for_restitution(0.8)
+    ref = co.references.kelvin_voigt_contact(m=1.0, k=1e5, zeta=zeta, V=-c["v_in"][0], g=9.81)
+    assert c["v_out"][0] == pytest.approx(ref["exit_speed"], rel=1e-11)
+    assert c["max_penetration"][0] == pytest.approx(ref["max_penetration"], rel=1e-11)
+    with pytest.raises(co.SolverError, match="not affine") as info:
+        co.solve("ball-drop", "penalty", "hertz", integrator="exact-linear")
+    assert info.value.status == co.Status.solver_error
+    with pytest.warns(UserWarning, match=r"rtol has no effect on integrator 'exact-linear' \(the exact solution"):
+        co.solve("ball-drop", "penalty", "kelvin-voigt", integrator="exact-linear", rtol=1e-3)
+
+
 def test_dt_is_the_step_of_the_integrator_a_penalty_run_uses():
     """dt set only the game step, which penalty and event-driven runs ignore: a fixed-step
     integrator under them was refused with "value '0'" whatever dt was given."""

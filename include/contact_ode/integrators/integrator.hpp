@@ -64,6 +64,9 @@ class Integrator {
 };
 
 const std::vector<IntegratorInfo>& integrator_catalog();
+// Whether the method needs a fixed step dt (the fixed-step schemes): neither an adaptive method
+// nor an exact one (family "exact") takes one.
+inline bool needs_step(const IntegratorInfo& info) { return !info.adaptive && info.family != "exact"; }
 std::vector<std::string> integrator_names();
 // Throws std::invalid_argument for an unknown name.
 const IntegratorInfo& integrator_info(const std::string& name);

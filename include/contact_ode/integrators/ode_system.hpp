@@ -19,6 +19,10 @@ struct OdeSystem {
   // Which entries are positions q, with q' depending on the velocities only (needed by
   // semi-implicit schemes); empty = no split.
   Mask positions;
+  // Which entries are quadratures: integrals of the others (the energy ledger), which no
+  // derivative depends on, their own included; empty = none. The exact-linear integrator takes
+  // them as quadratic forms of the rest.
+  Mask quadratures;
   Rhs rhs;
   Jacobian jacobian;    // empty: none (implicit methods then use difference quotients)
   Bandwidth bandwidth;  // of the Jacobian; used by band solvers and preconditioners

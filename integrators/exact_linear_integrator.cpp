@@ -1,0 +1,349 @@
+#include "exact_linear_integrator.hpp"
+
+#include "stepping_integrator.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace contact {
+
+namespace {
+
+using Index = Eigen::Index;
+constexpr int kMaxTerms = 60;   // Taylor terms of one step; h rho <= 1 needs about 20
+constexpr int kRateTerms = 24;  // powers of A whose growth estimates rho
+constexpr Index kMaxQuadratureStates = 64;
+constexpr std::size_t kKeptSegments = 4;  // a ball's flight and contact; a short chain's few modes
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+
+// The largest magnitude of a vector expression (an indexed view included), without a temporary.
+template <typename V>
+double max_abs(const V& v) {
+  return v.size() == 0 ? 0.0 : v.cwiseAbs().maxCoeff();
+}
+
+// |value - predicted| within `rel` of the size of the terms that formed them.
+bool agrees(double value, double predicted, double size, double rel) {
+  return std::abs(value - predicted) <= rel * size + 1e-300;
+}
+
+// The right-hand side between two restarts, y_p' = f0_p + A (y_p - y0_p) for the affine entries p
+// and y_q' = f0_q + g_q . u + u' H_q u (u = y_p - y0_p) for each quadrature q.
+struct Segment {
+  Matrix A;
+  Vector y0, f0;
+  Matrix G;               // the quadratures' gradients at y0, a row each
+  std::vector<Matrix> H;  // and their Hessians / 2
+  double rho = 0;         // A's spectral radius: the segment's fastest frequency
+};
+
+class ExactLinearIntegrator final : public SteppingIntegrator {
+ public:
+  ExactLinearIntegrator(const IntegratorOptions& o, OdeSystem system, double t0, ConstVectorRef y0)
+      : SteppingIntegrator(std::move(system), t0, y0, o.max_steps), max_step_(o.max_step), atol_(o.atol) {
+    const Index n = y0.size();
+    const bool marked = sys_.quadratures.size() == n;
+    for (Index i = 0; i < n; ++i) (marked && sys_.quadratures[i] ? q_ : p_).push_back(i);
+  }
+
+  void reinit(double t, ConstVectorRef y) override {
+    SteppingIntegrator::reinit(t, y);
+    seg_ = nullptr;  // a restart: the right-hand side may have changed (a switch)
+  }
+
+  SolverStats stats() const override {
+    SolverStats s = SteppingIntegrator::stats();
+    s.jac_evals = jac_evals_;
+    return s;
+  }
+
+ private:
+  [[noreturn]] void refuse(const std::string& why) const {
+    throw SolverFailure(Status::SolverError, ta_, "exact-linear: " + why);
+  }
+
+  Vector rhs_at(double t, const Vector& y) {
+    Vector out(y.size());
+    f(t, y, out);
+    return out;
+  }
+
+  Matrix affine_block(double t, const Vector& y) {
+    sys_.jacobian(t, y, J_);
+    ++jac_evals_;
+    Jd_ = J_;
+    if (!q_.empty() && !Jd_(p_, q_).isZero(0))
+      refuse("a quadrature entry (the energy ledger) feeds the other entries' derivatives");
+    return Jd_(p_, p_);
+  }
+
+  // The first entry of f (at y, given there) that segment s does not predict, or -1: a
+  // quadrature's index is reported as is.
+  Index mismatch(const Segment& s, const Vector& y, const Vector& fy) {
+    u_ = (y - s.y0)(p_);
+    tmp_.noalias() = s.A * u_;
+    for (Index i = 0; i < static_cast<Index>(p_.size()); ++i) {
+      const double size =
+          std::abs(s.f0[p_[i]]) + (s.A.row(i).cwiseAbs() * (u_.cwiseAbs() + s.y0(p_).cwiseAbs())).value();
+      if (!agrees(fy[p_[i]], s.f0[p_[i]] + tmp_[i], size, 1e-9)) return p_[i];
+    }
+    for (std::size_t r = 0; r < q_.size(); ++r) {
+      const auto row = static_cast<Index>(r);
+      const Matrix& H = s.H[r];
+      const double predicted = s.f0[q_[r]] + s.G.row(row).dot(u_) + u_.dot(H * u_);
+      const double size = std::abs(s.f0[q_[r]]) + s.G.row(row).cwiseAbs().dot(u_.cwiseAbs()) +
+                          u_.cwiseAbs().dot(H.cwiseAbs() * u_.cwiseAbs());
+      if (!agrees(fy[q_[r]], predicted, size, 1e-8)) return q_[r];
+    }
+    return -1;
+  }
+
+  // The segment that starts at (ta_, ya_): one kept from an earlier restart if it has the same A
+  // and predicts f here (the flight and the contact of a bouncing ball recur), else a new one.
+  void enter_segment() {
+    if (!sys_.jacobian) refuse("needs the system's Jacobian (the A of y' = A y + b)");
+    Matrix A = affine_block(ta_, ya_);
+    const Vector f0 = rhs_at(ta_, ya_);
+    for (Segment& s : kept_)
+      if (s.A == A && mismatch(s, ya_, f0) < 0) {
+        seg_ = &s;
+        return;
+      }
+    if (kept_.size() == kKeptSegments) kept_.erase(kept_.begin());
+    kept_.push_back(new_segment(std::move(A), f0));
+    seg_ = &kept_.back();
+  }
+
+  // A new segment, checked on one probe off the state and later in time: the same Jacobian, and f
+  // moved by A d exactly, or the system is not affine (or not autonomous) and is refused.
+  Segment new_segment(Matrix A, const Vector& f0) {
+    const Index n = ya_.size(), m = static_cast<Index>(p_.size());
+    Segment s{.A = std::move(A), .y0 = ya_, .f0 = f0};
+    Vector d = Vector::Zero(n);
+    for (Index k = 0; k < m; ++k)
+      d[p_[k]] = (k % 2 == 0 ? 1e-3 : -7e-4) * std::max(1.0, std::abs(ya_[p_[k]]));
+    const double t_probe = ta_ + 1e-3 * std::max(1.0, std::abs(ta_));
+    const Vector y_probe = ya_ + d;
+    const Matrix moved = affine_block(t_probe, y_probe);
+    for (Index i = 0; i < m; ++i) {
+      const double row = s.A.row(i).cwiseAbs().maxCoeff();
+      for (Index j = 0; j < m; ++j)
+        if (!agrees(moved(i, j), s.A(i, j), row, 1e-12))
+          refuse(
+              fmt::format("the right-hand side is not affine in the state (its Jacobian's entry ({}, {}) "
+                          "moved from {:.6g} to {:.6g} on a probe; a nonlinear contact law?): use an "
+                          "adaptive integrator",
+                          p_[i], p_[j], s.A(i, j), moved(i, j)));
+    }
+    const Vector f_probe = rhs_at(t_probe, y_probe);
+    const Vector Ad = s.A * d(p_);
+    for (Index i = 0; i < m; ++i) {
+      const double size = std::abs(f0[p_[i]]) + (s.A.row(i).cwiseAbs() * y_probe(p_).cwiseAbs()).value();
+      if (!agrees(f_probe[p_[i]], f0[p_[i]] + Ad[i], size, 1e-9))
+        refuse(
+            fmt::format("the right-hand side of entry {} is not A y + b with A its Jacobian, or depends on "
+                        "time ({:.9g} against {:.9g} on a probe)",
+                        p_[i], f_probe[p_[i]], f0[p_[i]] + Ad[i]));
+    }
+    quadratic_forms(s);
+    const Index q = mismatch(s, y_probe, f_probe);
+    if (q >= 0)
+      refuse(
+          fmt::format("quadrature entry {} (the energy ledger) is not a quadratic form of the others "
+                      "(checked on a probe)",
+                      q));
+    s.rho = spectral_radius(s.A);
+    return s;
+  }
+
+  // Each quadrature's gradient and Hessian by polarisation on unit probes (exact for a quadratic;
+  // the state is in SI units): m (m + 3) / 2 right-hand sides.
+  void quadratic_forms(Segment& s) {
+    const Index m = static_cast<Index>(p_.size()), r = static_cast<Index>(q_.size());
+    s.G = Matrix::Zero(r, m);
+    s.H.assign(q_.size(), Matrix::Zero(m, m));
+    if (q_.empty()) return;
+    if (m > kMaxQuadratureStates)
+      refuse(
+          fmt::format("forms its quadratures (the energy ledger) from m (m + 3) / 2 right-hand sides at "
+                      "every restart; m = {} entries is beyond its {}: use an adaptive integrator",
+                      m, kMaxQuadratureStates));
+    const Vector c = s.f0(q_);
+    auto at = [&](Index k, double dk, Index l, double dl) -> Vector {
+      Vector y = ya_;
+      y[p_[k]] += dk;
+      if (l >= 0) y[p_[l]] += dl;
+      return rhs_at(ta_, y)(q_);
+    };
+    for (Index k = 0; k < m; ++k) {
+      const Vector plus = at(k, 1.0, -1, 0), minus = at(k, -1.0, -1, 0);
+      s.G.col(k) = 0.5 * (plus - minus);
+      for (Index i = 0; i < r; ++i)
+        s.H[static_cast<std::size_t>(i)](k, k) = 0.5 * (plus[i] + minus[i] - 2 * c[i]);
+    }
+    for (Index k = 0; k < m; ++k)
+      for (Index l = k + 1; l < m; ++l) {
+        const Vector both = at(k, 1.0, l, 1.0);
+        for (Index i = 0; i < r; ++i) {
+          Matrix& H = s.H[static_cast<std::size_t>(i)];
+          H(k, l) = H(l, k) = 0.5 * (both[i] - c[i] - s.G(i, k) - s.G(i, l) - H(k, k) - H(l, l));
+        }
+      }
+  }
+
+  // The growth rate of ||A^j u|| for a generic u: A's spectral radius, 0 for a nilpotent A (a free
+  // flight), whose series ends. Normalised at each power, so a stiff A does not overflow.
+  static double spectral_radius(const Matrix& A) {
+    Vector u = Vector::Ones(A.rows());
+    double log_growth = 0;
+    for (int j = 0; j < kRateTerms; ++j) {
+      u = A * u;
+      const double size = max_abs(u);
+      if (!(size > 0)) return 0.0;
+      log_growth += std::log(size);
+      u /= size;
+    }
+    return std::exp(log_growth / kRateTerms);
+  }
+
+  void step(double t_limit) override {
+    if (!seg_) enter_segment();
+    // (Not start_slope(): the base refreshes it only after the step is taken.)
+    fa_.resize(ya_.size());
+    f(ta_, ya_, fa_);
+    // A right-hand side that changed without a restart (switches not located) is refused, not
+    // integrated in the old mode.
+    if (const Index i = mismatch(*seg_, ya_, fa_); i >= 0)
+      refuse(
+          fmt::format("the right-hand side changed between restarts at t = {:.17g} (entry {}); it needs a "
+                      "restart at every switch (located switches)",
+                      ta_, i));
+    fp_ = fa_(p_);
+    double h = t_limit - ta_;
+    if (max_step_ > 0) h = std::min(h, max_step_);
+    if (seg_->rho > 0) h = std::min(h, 1.0 / seg_->rho);
+    const double size = std::max(max_abs(ya_(p_)), 1e-300);
+    // Terms b_j = (h A)^(j-1) h f / j!, in the step's fraction s = (t - ta) / h: y(t) = y_a + sum b_j s^j.
+    for (int tries = 0;; ++tries) {
+      B_.resize(static_cast<Index>(p_.size()), kMaxTerms);
+      b_ = h * fp_;
+      terms_ = 0;
+      bool converged = false;
+      double last = std::numeric_limits<double>::infinity();
+      for (int j = 1; j <= kMaxTerms; ++j) {
+        const double norm = max_abs(b_);
+        if (!std::isfinite(norm)) break;  // overflowed: rho underestimated the growth
+        if (norm == 0) {                  // the series ended: exact
+          converged = true;
+          break;
+        }
+        B_.col(terms_++) = b_;
+        const double floor = 0.25 * kEps * std::max(size, max_abs(B_.col(0)));
+        if (norm <= floor && last <= floor) {
+          converged = true;
+          break;
+        }
+        last = norm;
+        tmp_.noalias() = seg_->A * b_;
+        b_ = (h / (j + 1)) * tmp_;
+      }
+      if (converged) break;
+      if (tries > 60) refuse(fmt::format("its Taylor series did not converge at t = {:.17g}", ta_));
+      h *= 0.5;  // rho underestimated the growth: a shorter step
+    }
+    h_ = h;
+    collect_polynomial();
+    tb_ = h == t_limit - ta_ ? t_limit : ta_ + h;
+    yb_.resize(ya_.size());
+    dense(tb_, yb_);
+  }
+
+  // The whole state along the step as one polynomial in s = (t - ta) / h, a column per power:
+  // the affine entries' Taylor terms, and each quadrature's integral h sum a_n s^(n+1) / (n + 1)
+  // of its integrand a_0 = f_q(y_a), a_n = g_a . b_n + sum over i + j = n of b_i' H b_j (g_a the
+  // gradient at the step's start), cut where its terms fall below rounding.
+  void collect_polynomial() {
+    const Index n = ya_.size(), m = static_cast<Index>(p_.size()), r = static_cast<Index>(q_.size());
+    Index degree = terms_;
+    if (r > 0) {
+      Aq_.setZero(r, 2 * terms_ + 1);
+      u_ = (ya_ - seg_->y0)(p_);
+      for (Index s = 0; s < r; ++s) {
+        const Matrix& H = seg_->H[static_cast<std::size_t>(s)];
+        g_ = seg_->G.row(s).transpose() + 2 * (H * u_);
+        HB_.noalias() = H * B_.leftCols(terms_);
+        Aq_(s, 0) = fa_[q_[static_cast<std::size_t>(s)]];
+        // Plain loops: the vectors are a few entries long, below what Eigen's kernels pay off for.
+        for (Index i = 0; i < terms_; ++i) {
+          const double* bi = B_.col(i).data();
+          double gb = 0;
+          for (Index k = 0; k < m; ++k) gb += g_[k] * bi[k];
+          Aq_(s, i + 1) += gb;
+          for (Index j = 0; j < terms_; ++j) {
+            const double* hj = HB_.col(j).data();
+            double bhb = 0;
+            for (Index k = 0; k < m; ++k) bhb += bi[k] * hj[k];
+            Aq_(s, i + j + 2) += bhb;
+          }
+        }
+        for (Index k = 0; k <= 2 * terms_; ++k) Aq_(s, k) *= h_ / static_cast<double>(k + 1);
+      }
+      // The last power whose term is not below rounding of the quadrature's value.
+      Index used = 2 * terms_ + 1;
+      const double scale = std::max(max_abs(ya_(q_)), Aq_.cwiseAbs().maxCoeff());
+      while (used > 1 && Aq_.col(used - 1).cwiseAbs().maxCoeff() <= 0.25 * kEps * scale) --used;
+      degree = std::max(degree, used);
+    }
+    C_.setZero(n, degree + 1);
+    C_.col(0) = ya_;
+    for (Index j = 0; j < terms_; ++j) C_.col(j + 1)(p_) = B_.col(j);
+    for (Index s = 0; s < r; ++s)
+      for (Index k = 0; k + 1 <= degree && k < Aq_.cols(); ++k)
+        C_(q_[static_cast<std::size_t>(s)], k + 1) = Aq_(s, k);
+  }
+
+  void dense(double t, VectorRef y) override {
+    if (!(t > ta_)) {
+      y = ya_;
+      return;
+    }
+    const double s = (t - ta_) / h_;
+    y = C_.col(C_.cols() - 1);
+    for (Index k = C_.cols() - 1; k-- > 0;) y = y * s + C_.col(k);
+  }
+
+  bool dense_is_interpolant() const override { return true; }
+  // A step is at most 1 / rho, a sixth of the fastest period, as short against the oscillation as
+  // an RK8 step at rtol 1e-6: a root function of the state cannot cross zero and back within it
+  // but at a grazing extremum (as within any step). A free flight (rho = 0) is one step however
+  // long: a body under gravity follows a parabola, which the base's cubic Hermite check
+  // reproduces, so only a polynomial of higher degree is checked.
+  bool steps_may_cross_twice() const override { return seg_ && seg_->rho == 0 && terms_ > 3; }
+  double negligible_size() const override { return atol_; }
+
+  double max_step_, atol_;
+  std::vector<Index> p_, q_;  // the affine entries and the quadratures
+  std::vector<Segment> kept_;
+  const Segment* seg_ = nullptr;  // the current one, in kept_
+  SparseMatrix J_;
+  Matrix Jd_;
+  Matrix B_, Aq_, HB_, C_;  // the step's Taylor terms, quadrature integrals, the whole polynomial
+  Vector fa_, fp_, b_, tmp_, u_, g_;
+  Index terms_ = 0;
+  double h_ = 0;
+  long jac_evals_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<Integrator> make_exact_linear(const IntegratorOptions& o, OdeSystem system, double t0,
+                                              ConstVectorRef y0) {
+  return std::make_unique<ExactLinearIntegrator>(o, std::move(system), t0, y0);
+}
+
+}  // namespace contact

@@ -1,0 +1,166 @@
+// exact-linear: the exact solution of a penalty scene with linear laws, to rounding, and a clear
+// refusal of what it cannot solve exactly. Every step is the Taylor series of the exact solution
+// summed below rounding, roots are located on it to 100 ulps of t, and the energy ledger is the
+// exact integral of its quadratic dissipated power: so every number is held here to the closed
+// forms at 1e-11 relative or better (rounding accumulated over tens of steps and restarts, and
+// the closed forms' own bisection), a bound no tolerance-driven integrator meets at rtol 1e-6.
+#include "contact_ode/analysis/references.hpp"
+#include "contact_ode/integrators/integrator.hpp"
+#include "contact_ode/integrators/method_registry.hpp"
+#include "contact_ode/integrators/penalty.hpp"
+#include "contact_ode/models/ball_chain.hpp"
+#include "contact_ode/models/ball_drop.hpp"
+#include "contact_ode/models/scene_registry.hpp"
+#include "contact_ode/models/spring_mass.hpp"
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+using namespace contact;
+
+namespace {
+
+// Contacts begin and end at a thousandth of atol of overlap (contact_threshold), where the closed
+// forms start at zero: at the default 1e-10 that offset moved a slow late contact's exit speed by
+// 1e-10 of itself (2 zeta w delta / V at V = 5 cm/s), 1e-14 here.
+PenaltyOptions exact() {
+  PenaltyOptions o;
+  o.integrator.method = "exact-linear";
+  o.integrator.atol = 1e-14;
+  return o;
+}
+
+ContactLaw law_named(const std::string& name, double k, double m, double e) {
+  if (name == "hooke") return Hooke{k};
+  return kelvin_voigt_for_restitution(k, m, e, name == "kelvin-voigt-clamped");
+}
+
+}  // namespace
+
+// P1 (and its Hooke and clamped siblings): every contact's duration, deepest overlap and exit speed
+// against the exact closed forms with gravity, entered at the run's own incoming speed; every apex
+// at v_out^2 / 2g above the floor (the free flight between); the ledger E + D = E0 at every sample.
+TEST(ExactLinear, EveryContactOfTheBallDropIsTheClosedFormToRounding) {
+  const double m = 1, g = 9.81, k = 1e5, e = 0.8;
+  for (const std::string name : {"hooke", "kelvin-voigt", "kelvin-voigt-clamped"}) {
+    const BallDrop model({m, g, 1.0, 0.0, e, law_named(name, k, m, e)});
+    const RunResult r = run_penalty(model, exact(), {.t_end = 4.6, .sample_dt = 0.01});
+    ASSERT_TRUE(r.ok()) << name << ": " << r.message;
+    // The first ten of the damped laws (entered at 4.4 down to 0.6 m/s), Hooke's five: later ones,
+    // entered at centimetres per second, end where gravity nearly holds the ball (g / (w V) near
+    // one), and the closed forms' own bisection of the exit, at a grazing zero of the overlap, is
+    // no longer good to 1e-11.
+    const std::size_t checked = name == "hooke" ? 5 : 10;
+    ASSERT_GE(r.contacts.size(), checked) << name;
+    for (std::size_t i = 0; i < checked; ++i) {
+      const ContactRecord& c = r.contacts[i];
+      ASSERT_TRUE(c.closed()) << name << " contact " << i;
+      const SpringContact ref = linear_law_first_contact(name, m, k, e, -c.v_in, g);
+      const std::string what = fmt::format("{} contact at t = {:.6f}", name, c.t_begin);
+      // Both ends are roots located to 100 ulps of t (CVODE's root tolerance, 9e-14 s at 4 s).
+      const double located = 2 * 100 * std::numeric_limits<double>::epsilon() * c.t_end;
+      EXPECT_NEAR(c.duration(), ref.duration, located + 1e-12 * ref.duration) << what;
+      EXPECT_NEAR(c.max_penetration / ref.max_penetration, 1.0, 1e-11) << what;
+      EXPECT_NEAR(c.v_out / ref.exit_speed, 1.0, 1e-11) << what;
+    }
+    ASSERT_GE(r.apexes.size(), 5u) << name;
+    for (std::size_t n = 0; n < 5; ++n) {
+      const double v_out = r.contacts[n].v_out;
+      EXPECT_NEAR(r.apexes[n].gap / (v_out * v_out / (2 * g)), 1.0, 1e-12) << name << " apex " << n + 1;
+    }
+    for (const Sample& s : r.samples)
+      EXPECT_NEAR(s.energy + s.dissipated, r.energy0, 1e-13 * r.energy0) << name << " t = " << s.t;
+  }
+}
+
+// The free spring: x = cos(w t), v = -w sin(w t) at every sample, to rounding (w = 100/s, 16 periods).
+TEST(ExactLinear, TheFreeSpringIsItsClosedForm) {
+  const SpringMass spring(1.0, 1e4, 1.0, 0.0);
+  const RunResult r = solve(spring, [] {
+    Method m{.name = "penalty"};
+    m.integrator.method = "exact-linear";
+    return m;
+  }());
+  ASSERT_TRUE(r.ok()) << r.message;
+  for (const Sample& s : r.samples) {
+    EXPECT_NEAR(s.y[0], std::cos(100 * s.t), 1e-13) << s.t;
+    EXPECT_NEAR(s.y[1], -100 * std::sin(100 * s.t), 1e-11) << s.t;
+  }
+}
+
+// Newton's cradle with damped springs: momentum is conserved to rounding (internal forces only),
+// and E + D = E0 holds at every sample, whatever the tolerance-free steps were.
+TEST(ExactLinear, TheDampedCradleKeepsMomentumAndItsLedgerToRounding) {
+  BallChainParams p;
+  p.e = 0.7;
+  p.law = kelvin_voigt_for_restitution(1e6, p.m / 2, p.e, false);
+  const BallChain chain(p);
+  const RunResult r = run_penalty(chain, exact(), {.t_end = 0.05, .sample_dt = 1e-3});
+  ASSERT_TRUE(r.ok()) << r.message;
+  ASSERT_GE(r.contacts.size(), 4u);
+  for (const Sample& s : r.samples) {
+    double momentum = 0;
+    for (std::size_t b = 0; b < p.n; ++b) momentum += p.m * s.y[static_cast<Eigen::Index>(2 * b + 1)];
+    EXPECT_NEAR(momentum, p.m * p.v0, 1e-15) << s.t;
+    EXPECT_NEAR(s.energy + s.dissipated, r.energy0, 1e-13 * r.energy0) << s.t;
+  }
+}
+
+// What it cannot solve exactly it refuses, at the time it meets it, saying why: a nonlinear law
+// (Hertz, Hunt–Crossley), a right-hand side that changes without a restart (switches not located),
+// one that depends on time, a scene without a Jacobian (the rigid bodies), and a ledger over more
+// than 64 entries (its quadratic form costs m (m + 3) / 2 right-hand sides per restart).
+TEST(ExactLinear, RefusesWhatItCannotSolveExactlySayingWhy) {
+  auto refused = [](const RunResult& r, const std::string& why, const std::string& what) {
+    EXPECT_EQ(r.status, Status::SolverError) << what << ": " << to_string(r.status);
+    EXPECT_NE(r.message.find(why), std::string::npos) << what << ": " << r.message;
+  };
+  const double m = 1, k = 1e5;
+  // Hertz (n = 1.5, undamped) and the linear Hunt–Crossley law (n = 1, its dashpot k chi delta delta').
+  for (const ContactLaw law :
+       {ContactLaw{HuntCrossley{1e9, 1.5, 0.0}}, ContactLaw{HuntCrossley{k, 1.0, 0.2}}}) {
+    const RunResult r = run_penalty(BallDrop({m, 9.81, 1.0, 0.0, 0.8, law}), exact(), {.t_end = 1.0});
+    refused(r, "not affine", "a nonlinear law");
+    EXPECT_NEAR(r.t_reached, std::sqrt(2 / 9.81), 1e-6);  // at the first contact: the flight is affine
+  }
+  PenaltyOptions unlocated = exact();
+  unlocated.locate_switches = false;
+  refused(run_penalty(BallDrop({m, 9.81, 1.0, 0.0, 0.8, Hooke{k}}), unlocated, {.t_end = 1.0}),
+          "changed between restarts", "switches not located");
+  refused(solve(*make_scene("snooker"),
+                [] {
+                  Method mt{.name = "penalty"};
+                  mt.integrator.method = "exact-linear";
+                  return mt;
+                }()),
+          "needs the system's Jacobian", "a rigid scene");
+  BallChainParams forty;
+  forty.n = 40;
+  forty.law = kelvin_voigt_for_restitution(1e6, forty.m / 2, 0.9, false);
+  refused(run_penalty(BallChain(forty), exact(), {.t_end = 1e-3}), "beyond its 64", "a long damped chain");
+
+  OdeSystem forced;  // x' = v, v' = -x + sin(t): affine in the state, but not autonomous
+  forced.size = 2;
+  forced.rhs = [](double t, ConstVectorRef y, VectorRef yd) { yd << y[1], -y[0] + std::sin(t); };
+  forced.jacobian = [](double, ConstVectorRef, SparseMatrix& J) {
+    J.resize(2, 2);
+    J.setZero();
+    J.insert(0, 1) = 1;
+    J.insert(1, 0) = -1;
+  };
+  IntegratorOptions o;
+  o.method = "exact-linear";
+  auto integrator = make_integrator(o, forced, 0.5, Vector{{1.0, 0.0}});
+  try {
+    integrator->advance(1.0);
+    FAIL() << "integrated a time-dependent right-hand side";
+  } catch (const SolverFailure& f) {
+    EXPECT_EQ(f.status(), Status::SolverError);
+    EXPECT_NE(std::string(f.what()).find("depends on time"), std::string::npos) << f.what();
+    EXPECT_EQ(f.t_reached(), 0.5);
+  }
+}
