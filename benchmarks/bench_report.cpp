@@ -215,12 +215,14 @@ int main(int argc, char** argv) try {
             fmt::format("{} {:.0f}x (apex error {:.1e} m against {:.1e} m)", p["method"].get<std::string>(),
                         theirs / ours, err, their_err);
         parts.push_back(against);
-        (ok ? met : missed).push_back(ok ? p["method"].get<std::string>() : against);
+        (ok ? met : missed)
+            .push_back(ok ? fmt::format("{} {:.0f}x", p["method"].get<std::string>(), theirs / ours)
+                          : against);
       }
-      per_integrator.push_back(
-          fmt::format("  - {} ({:.3g} ms): meets it against {}{}{}", c.variant, ours * 1e3,
-                      met.empty() ? std::string("none") : fmt::format("{}", fmt::join(met, ", ")),
-                      missed.empty() ? "" : fmt::format("; not {}", fmt::join(missed, ", ")), absent));
+      per_integrator.push_back(fmt::format(
+          "  - {} ({:.3g} ms, apex error {:.1e} m): meets it against {}{}{}", c.variant, ours * 1e3, err,
+          met.empty() ? std::string("none") : fmt::format("{}", fmt::join(met, ", ")),
+          missed.empty() ? "" : fmt::format("; not {}", fmt::join(missed, ", ")), absent));
       if (c.variant == "cvode-bdf")
         fmt::print(
             "- P1 (rtol 1e-6), CVODE BDF at {:.3g} ms per solve: {}{}; target >= 50x less CPU than each, "

@@ -57,6 +57,12 @@ TEST_F(BenchReportCli, P1IsMetOnlyAgainstAllFourPeers) {
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("LSODA 100x (apex error 1.0e-08 m against 1.0e-06 m)"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("all four SciPy methods: cvode-bdf (0.1 ms)"), std::string::npos) << r.out;
+  // Each integrator's line gives its apex error and, for the peers it beats, by how much.
+  EXPECT_NE(
+      r.out.find("cvode-bdf (0.1 ms, apex error 1.0e-08 m): meets it against BDF 100x, Radau 100x, LSODA "
+                 "100x, RK45 100x"),
+      std::string::npos)
+      << r.out;
   // Radau missing from the SciPy run: before, `all` started true and the three present made it "met".
   write_inputs({"BDF", "LSODA", "RK45"});
   r = report();
