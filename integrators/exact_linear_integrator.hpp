@@ -8,10 +8,11 @@
 // error naming the reason) a system that is not affine (a nonlinear law such as Hertz's), depends
 // on time, or changes between restarts (switches not located); and it forms each quadrature's
 // quadratic form by polarisation, m (m + 3) / 2 right-hand sides for m other entries (at most 64).
+// A restart into a mode met before (the same A, and f as that segment predicts) reuses its forms.
 //   Steps: a step of length h sums the terms (h A)^j f / (j + 1)!; it is limited to h rho <= 1,
-// rho the growth rate of A's powers on f (the fastest frequency the state excites: a contact's
-// omega), which keeps the series short and a root function from crossing zero twice unseen. A free
-// flight, whose A is nilpotent, is one step to the next output or root, however long.
+// rho A's spectral radius (the segment's fastest frequency: a contact's omega), which keeps the
+// series short and a root function from crossing zero twice unseen. A free flight, whose A is
+// nilpotent, is one step to the next output or root, however long.
 #include "contact_ode/integrators/integrator.hpp"
 
 namespace contact {

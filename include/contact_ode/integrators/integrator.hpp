@@ -1,8 +1,9 @@
 #pragma once
 // One interface for every time integrator: fixed-step schemes, SUNDIALS CVODE and ARKODE, GSL
-// odeiv2. Each integrates an OdeSystem towards an output time, stops at the first root of its
-// root functions on the way, can be restarted from an edited state, and reports the same
-// SolverStats. Paradigms (penalty, event-driven) drive an Integrator without knowing which.
+// odeiv2, and the exact solution of a system affine between its switches. Each integrates an
+// OdeSystem towards an output time, stops at the first root of its root functions on the way, can
+// be restarted from an edited state, and reports the same SolverStats. Paradigms (penalty,
+// event-driven) drive an Integrator without knowing which.
 #include "contact_ode/integrators/ode_system.hpp"
 #include "contact_ode/integrators/solver_stats.hpp"
 #include "contact_ode/integrators/status.hpp"
@@ -31,9 +32,9 @@ struct IntegratorOptions {
 
 struct IntegratorInfo {
   std::string name;
-  std::string family;  // "fixed-step", "CVODE", "ARKODE", "GSL"
+  std::string family;  // "fixed-step", "CVODE", "ARKODE", "GSL", "exact"
   int order;           // theoretical order; the largest one for variable-order methods,
-                       // 0 where there is no single one (extrapolation)
+                       // 0 where there is no single one (extrapolation, the exact solution)
   bool variable_order;
   bool adaptive;            // error-controlled step size
   bool fixed_step_capable;  // can run at a fixed dt (order tests)
