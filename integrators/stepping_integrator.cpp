@@ -12,6 +12,17 @@
 
 namespace contact {
 
+namespace {
+
+// +1 if g rose through zero (or reached it) from a negative value, -1 if it fell, else 0.
+int crossing(double g_lo, double g_hi) {
+  if (g_lo < 0 && g_hi >= 0) return 1;
+  if (g_lo > 0 && g_hi <= 0) return -1;
+  return 0;
+}
+
+}  // namespace
+
 SteppingIntegrator::SteppingIntegrator(OdeSystem system, double t0, ConstVectorRef y0, long max_steps)
     : sys_(std::move(system)), ta_(t0), tb_(t0), ya_(y0), yb_(y0), t_(t0), y_(y0), max_steps_(max_steps) {
   gsl::report_errors_by_return_code();
@@ -42,12 +53,13 @@ SteppingIntegrator::Outcome SteppingIntegrator::advance(double t_out) {
   while (true) {
     if (t_ < tb_) {
       // Consume the current step up to t_out.
-      const double hi = std::min(tb_, t_out);
+      double hi = std::min(tb_, t_out);  // (an inner scan may move it back)
       Vector y_hi(yb_.size());
       if (hi == tb_)
         y_hi = yb_;
       else
         dense(hi, y_hi);
+      if (sys_.root_count > 0 && root_scan_parts() > 1) scan_for_crossing(hi, y_hi);
       if (sys_.root_count > 0 && locate_root(hi, y_hi, out)) return out;
       t_ = hi;
       y_ = y_hi;
@@ -104,13 +116,6 @@ void SteppingIntegrator::shorten_until_hermite_is_faithful() {
 
 namespace {
 
-// +1 if g rose through zero (or reached it) from a negative value, -1 if it fell, else 0.
-int crossing(double g_lo, double g_hi) {
-  if (g_lo < 0 && g_hi >= 0) return 1;
-  if (g_lo > 0 && g_hi <= 0) return -1;
-  return 0;
-}
-
 // The quintic through (a, ya, fa), (m, ym, fm), (b, yb, fb) with those values and slopes:
 // Newton's divided differences on the doubled nodes a, a, m, m, b, b. Its error at t is
 // ~ (t - a)^2 (t - m)^2 (t - b)^2 y^(6) / 720, so near m far below the cubic Hermite's.
@@ -158,6 +163,29 @@ void SteppingIntegrator::hermite(double t, VectorRef y) {
   const double h00 = (1 + 2 * s) * (1 - s) * (1 - s), h10 = s * (1 - s) * (1 - s);
   const double h01 = s * s * (3 - 2 * s), h11 = s * s * (s - 1);
   y = h00 * ya_ + h10 * H * f_a_ + h01 * yb_ + h11 * H * f_b_;
+}
+
+void SteppingIntegrator::scan_for_crossing(double& t_hi, Vector& y_hi) {
+  const int parts = root_scan_parts();
+  Vector& y = y_scan_;
+  Vector& g = g_scan_;
+  y.resize(y_.size());
+  g.resize(static_cast<Eigen::Index>(sys_.root_count));
+  for (int j = 1; j < parts; ++j) {
+    const double t = t_ + (t_hi - t_) * j / parts;
+    if (!(t > t_ && t < t_hi)) continue;
+    dense(t, y);
+    eval_roots(t, y, g);
+    for (std::size_t i = 0; i < sys_.root_count; ++i) {
+      const auto k = static_cast<Eigen::Index>(i);
+      const int dir = crossing(g_[k], g[k]);
+      if (dir != 0 && (directions_.empty() || directions_[i] == 0 || directions_[i] == dir)) {
+        t_hi = t;
+        y_hi = y;
+        return;
+      }
+    }
+  }
 }
 
 bool SteppingIntegrator::locate_root(double t_hi, ConstVectorRef y_hi, Outcome& out) {

@@ -42,6 +42,10 @@ class SteppingIntegrator : public Integrator {
   virtual double negligible_size() const { return 0.0; }
   // Told when a step was cut to length h (the next step should not propose much more).
   virtual void step_shortened(double /*h*/) {}
+  // How many equal parts of a step the root functions are also looked at inside, not only at its
+  // ends (1: the ends only). For a method whose dense() is cheap and exact, so that a root function
+  // that grazes zero, crossing and recrossing within one step, is seen where the parts are finer.
+  virtual int root_scan_parts() const { return 1; }
 
   // The cubic Hermite interpolant of the step from its end values and slopes (computed once).
   void hermite(double t, VectorRef y);
@@ -65,12 +69,15 @@ class SteppingIntegrator : public Integrator {
   const Vector& end_slope();  // f(tb_, yb_), computed once per step
   // A root in (t_, t_hi] given the state there; fills out and moves (t_, y_) to it.
   bool locate_root(double t_hi, ConstVectorRef y_hi, Outcome& out);
+  // Moves (t_hi, y_hi) back to the first inner point of root_scan_parts() where a root function
+  // has changed sign since t_, if any.
+  void scan_for_crossing(double& t_hi, Vector& y_hi);
   // step() from (ta_, ya_), then the checks every step gets: slopes dropped, a finite state.
   void take_step(double t_limit);
   void shorten_until_hermite_is_faithful();
 
   double t_;
-  Vector y_, g_, g_hi_, f_a_, f_b_;
+  Vector y_, g_, g_hi_, f_a_, f_b_, y_scan_, g_scan_;
   bool have_start_slope_ = false, have_end_slope_ = false;
   std::vector<int> directions_;
   long max_steps_;
