@@ -346,9 +346,8 @@ class ExactLinearIntegrator final : public SteppingIntegrator {
   double negligible_size() const override { return atol_; }
   // Its dense output is the exact solution, a polynomial: the roots are looked at in eight parts of
   // every step, so a switch that grazes zero within one (a slow contact's exit, the overlap closing
-  // and, in the held mode, opening again a few milliseconds later) is not stepped over. RK8PD at
-  // rtol 1e-6 steps over that one (ball drop, k = 3836 N/m: the eighth contact's exit missed, E + D
-  // off by 4e-5 E0).
+  // and, in the held mode, opening again a few milliseconds later) is not stepped over (ball drop,
+  // k = 3836 N/m: the eighth contact's exit was, E + D off by 4e-5 E0).
   int root_scan_parts() const override { return 8; }
 
   double max_step_, atol_;

@@ -129,7 +129,7 @@ TEST(ExactLinear, AFallingColumnSeesEverySwitch) {
 // 0.2 m/s, gravity's share g / (w V) = 0.8) leaves at 0.066 m/s, and in the held mode the spring's
 // extension would pull it back within milliseconds, so the overlap crosses zero twice inside one
 // step of 1 / w. Only the step's ends were looked at: the exit was stepped over and the contact
-// ended later at zero speed (E + D off by 4.2e-5 E0; RK8PD at rtol 1e-6 does the same). The exit
+// ended later at zero speed (E + D off by 4.2e-5 E0). The exit
 // speed is the closed form's for the incoming one, and the ledger closes.
 TEST(ExactLinear, ASlowContactsGrazingExitIsNotSteppedOver) {
   const double m = 1, g = 9.81, k = 3835.711146279457, e = 0.8;
