@@ -137,7 +137,7 @@ void register_all() {
           ->ComputeStatistics(
               "max", [](const std::vector<double>& v) { return *std::max_element(v.begin(), v.end()); });
       auto* apex = benchmark::RegisterBenchmark(("ApexTarget/" + info.name).c_str(), ApexTarget, info.name);
-      if (info.family == "exact")
+      if (is_exact(info))
         apex->Arg(0);  // no tolerance to sweep
       else
         apex->DenseRange(8, 12, 2);

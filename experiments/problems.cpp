@@ -108,11 +108,13 @@ Problem chain_problem(long balls, double k) {
 
 namespace {
 
+// The sweep's run at `value` (a step or a tolerance); the exact integrator has neither.
 Method method_with(const std::string& method, const std::string& integrator, double value) {
   Method m{.name = method};
   m.integrator.method = integrator;
   m.integrator.max_steps = kSweepMaxSteps;
-  m.integrator = with_setting(m.integrator, !integrator_info(integrator).adaptive, value);
+  const IntegratorInfo& info = integrator_info(integrator);
+  if (!is_exact(info)) m.integrator = with_setting(m.integrator, !info.adaptive, value);
   return m;
 }
 
@@ -126,11 +128,8 @@ std::vector<WorkJob> work_precision_jobs(const std::vector<Problem>& problems,
     // The largest fixed step is 1/16 of a contact (w dt = pi/16), halved `halvings` times.
     const auto dts = halved_steps("--halvings", pr.contact_duration / 16, halvings, 0, pr.t_end);
     for (const auto& name : integrators) {
-      if (integrator_info(name).family == "exact") {  // no setting: one run
-        Method m{.name = "penalty"};
-        m.integrator.method = name;
-        m.integrator.max_steps = kSweepMaxSteps;
-        jobs.push_back({&pr, "penalty", name, "exact", 0.0, m});
+      if (is_exact(integrator_info(name))) {  // no setting: one run
+        jobs.push_back({&pr, "penalty", name, "exact", 0.0, method_with("penalty", name, 0.0)});
         continue;
       }
       const bool adaptive = integrator_info(name).adaptive;

@@ -24,12 +24,12 @@ inline constexpr long kSweepMaxSteps = 10000000;
 inline std::vector<std::string> converging_integrators(std::vector<std::string> names,
                                                        const std::string& given) {
   for (const auto& name : names)
-    if (integrator_info(name).family == "exact" && given != "all")
+    if (is_exact(integrator_info(name)) && given != "all")
       throw std::invalid_argument(fmt::format(
           "--integrators: value '{}' has no step or tolerance to converge in; accepted: the fixed-step and "
           "adaptive integrators",
           name));
-  std::erase_if(names, [](const std::string& name) { return integrator_info(name).family == "exact"; });
+  std::erase_if(names, [](const std::string& name) { return is_exact(integrator_info(name)); });
   return names;
 }
 

@@ -83,7 +83,9 @@ class ExactLinearIntegrator final : public SteppingIntegrator {
   }
 
   // The first entry of f (at y, given there) that segment s does not predict, or -1: a
-  // quadrature's index is reported as is.
+  // quadrature's index is reported as is. A test of structure, not of accuracy: rounding moves f
+  // by ~1e-15 of the terms that form it, another mode or a nonlinear law by a share of order one,
+  // so 1e-9 (1e-8 for the quadratic forms, formed by polarisation) tells them apart with margin.
   Index mismatch(const Segment& s, const Vector& y, const Vector& fy) {
     u_ = (y - s.y0)(p_);
     tmp_.noalias() = s.A * u_;
@@ -130,6 +132,8 @@ class ExactLinearIntegrator final : public SteppingIntegrator {
     const double t_probe = ta_ + 1e-3 * std::max(1.0, std::abs(ta_));
     const Vector y_probe = ya_ + d;
     const Matrix moved = affine_block(t_probe, y_probe);
+    // An affine system's analytic Jacobian is the same matrix wherever it is formed (1e-12 of the
+    // row's largest entry allows for rounding in its assembly).
     for (Index i = 0; i < m; ++i) {
       const double row = s.A.row(i).cwiseAbs().maxCoeff();
       for (Index j = 0; j < m; ++j)
@@ -338,10 +342,9 @@ class ExactLinearIntegrator final : public SteppingIntegrator {
 
   bool dense_is_interpolant() const override { return true; }
   // A step is at most 1 / rho, a sixth of the fastest period, as short against the oscillation as
-  // an RK8 step at rtol 1e-6: a root function of the state cannot cross zero and back within it
-  // but at a grazing extremum (as within any step). A free flight (rho = 0) is one step however
-  // long: a body under gravity follows a parabola, which the base's cubic Hermite check
-  // reproduces, so only a polynomial of higher degree is checked.
+  // an RK8 step at rtol 1e-6, and its roots are looked at in eight parts (root_scan_parts). A free
+  // flight (rho = 0) is one step however long: a body under gravity follows a parabola, which the
+  // base's cubic Hermite check reproduces, so only a polynomial of higher degree is checked.
   bool steps_may_cross_twice() const override { return seg_ && seg_->rho == 0 && terms_ > 3; }
   double negligible_size() const override { return atol_; }
   // Its dense output is the exact solution, a polynomial: the roots are looked at in eight parts of

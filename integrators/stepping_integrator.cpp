@@ -165,6 +165,10 @@ void SteppingIntegrator::hermite(double t, VectorRef y) {
   y = h00 * ya_ + h10 * H * f_a_ + h01 * yb_ + h11 * H * f_b_;
 }
 
+bool SteppingIntegrator::allowed(std::size_t i, int dir) const {
+  return dir != 0 && (directions_.empty() || directions_[i] == 0 || directions_[i] == dir);
+}
+
 void SteppingIntegrator::scan_for_crossing(double& t_hi, Vector& y_hi) {
   const int parts = root_scan_parts();
   Vector& y = y_scan_;
@@ -178,8 +182,7 @@ void SteppingIntegrator::scan_for_crossing(double& t_hi, Vector& y_hi) {
     eval_roots(t, y, g);
     for (std::size_t i = 0; i < sys_.root_count; ++i) {
       const auto k = static_cast<Eigen::Index>(i);
-      const int dir = crossing(g_[k], g[k]);
-      if (dir != 0 && (directions_.empty() || directions_[i] == 0 || directions_[i] == dir)) {
+      if (allowed(i, crossing(g_[k], g[k]))) {
         t_hi = t;
         y_hi = y;
         return;
@@ -191,9 +194,6 @@ void SteppingIntegrator::scan_for_crossing(double& t_hi, Vector& y_hi) {
 bool SteppingIntegrator::locate_root(double t_hi, ConstVectorRef y_hi, Outcome& out) {
   eval_roots(t_hi, y_hi, g_hi_);
   const std::size_t n = sys_.root_count;
-  auto allowed = [&](std::size_t i, int dir) {
-    return dir != 0 && (directions_.empty() || directions_[i] == 0 || directions_[i] == dir);
-  };
   // CVODE's root tolerance: 100 ulps of t.
   const double tol = 100 * std::numeric_limits<double>::epsilon() * std::max(std::abs(t_), std::abs(t_hi));
   double t_root = std::numeric_limits<double>::infinity();

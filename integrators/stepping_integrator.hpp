@@ -69,6 +69,9 @@ class SteppingIntegrator : public Integrator {
   const Vector& end_slope();  // f(tb_, yb_), computed once per step
   // A root in (t_, t_hi] given the state there; fills out and moves (t_, y_) to it.
   bool locate_root(double t_hi, ConstVectorRef y_hi, Outcome& out);
+  // Whether a sign change of root function i in direction dir (+1 rising, -1 falling, 0 none)
+  // counts, given the directions asked for.
+  bool allowed(std::size_t i, int dir) const;
   // Moves (t_hi, y_hi) back to the first inner point of root_scan_parts() where a root function
   // has changed sign since t_, if any.
   void scan_for_crossing(double& t_hi, Vector& y_hi);

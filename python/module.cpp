@@ -133,7 +133,7 @@ void warn_of_ignored_settings(const Method& m, const py::kwargs& options) {
   if (rtol_unread && rtol_given)
     message += fmt::format("{}rtol has no effect on integrator '{}' {}", message.empty() ? "" : "; ",
                            m.integrator.method,
-                           integrator_info(m.integrator.method).family == "exact"
+                           is_exact(integrator_info(m.integrator.method))
                                ? "(the exact solution: no tolerance)"
                                : "at a fixed step (no error control; its accuracy is set by dt)");
   if (!message.empty() && PyErr_WarnEx(PyExc_UserWarning, message.c_str(), 2) != 0)

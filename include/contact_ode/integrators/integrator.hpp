@@ -65,9 +65,11 @@ class Integrator {
 };
 
 const std::vector<IntegratorInfo>& integrator_catalog();
+// Whether the method is the exact solution (family "exact"): no step and no tolerance to set.
+inline bool is_exact(const IntegratorInfo& info) { return info.family == "exact"; }
 // Whether the method needs a fixed step dt (the fixed-step schemes): neither an adaptive method
-// nor an exact one (family "exact") takes one.
-inline bool needs_step(const IntegratorInfo& info) { return !info.adaptive && info.family != "exact"; }
+// nor an exact one takes one.
+inline bool needs_step(const IntegratorInfo& info) { return !info.adaptive && !is_exact(info); }
 std::vector<std::string> integrator_names();
 // Throws std::invalid_argument for an unknown name.
 const IntegratorInfo& integrator_info(const std::string& name);
