@@ -8,6 +8,7 @@
 #include "contact_ode/analysis/references.hpp"
 #include "contact_ode/integrators/penalty.hpp"
 #include "contact_ode/models/ball_chain.hpp"
+#include "contact_ode/models/scene_registry.hpp"
 
 #include <unistd.h>
 
@@ -22,7 +23,7 @@ class ChainMpi : public CliTest {
   std::vector<double> velocities(int ranks) const {
     const std::string out = "np" + std::to_string(ranks);
     const Outcome r =
-        run(CHAIN_MPI_EXE, "--balls 50 --out " + out,
+        run(CHAIN_MPI_EXE, "--balls 50 --t-end 0 --out " + out,
             "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 " MPIEXEC " --oversubscribe -np " +
                 std::to_string(ranks));
     EXPECT_EQ(r.code, 0) << r.err;
@@ -48,6 +49,21 @@ TEST_F(ChainMpi, TheEnergyErrorShowsWhatATolerancePermits) {
           "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 " MPIEXEC " --oversubscribe -np 2");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_GT(std::abs(energy_error("loose")), 1.0);
+}
+
+// The default span was the pulse through the whole chain, which grows with the chain (three pair
+// contacts per ball), so its cost grew as N^2: the README's `--balls 100000` ran to t = 210 s,
+// days on two cores (0.05 s takes 93 s). It is now the ball-chain scene's span, as every other
+// entry point runs that scene, whatever the number of balls; 0 still asks for the pulse through
+// the chain (the test above).
+TEST_F(ChainMpi, ByDefaultAnyChainRunsTheScenesSpan) {
+  for (const int balls : {4, 300}) {
+    const std::string out = "span" + std::to_string(balls);
+    ASSERT_EQ(run(CHAIN_MPI_EXE, "--balls " + std::to_string(balls) + " --out " + out).code, 0);
+    EXPECT_EQ(std::stod(contact::read_csv(dir_ / out / "stats.csv").at(0).at("t_end_s")),
+              contact::ball_chain_scene().t_end)
+        << balls;
+  }
 }
 
 // --rtol took [0, 1], where every other experiment takes (0, 1): rtol 1 'succeeded' with an
@@ -105,7 +121,7 @@ TEST_F(ChainMpi, AnOutFolderOfOtherFilesIsRefusedAndKept) {
 // the run said "at t = 0 s" (the time was read before CVode set it) with only CVODE's flag name,
 // while CVODE printed its message raw on stderr.
 TEST_F(ChainMpi, ASolverFailureNamesTheTimeReachedAndCvodesMessage) {
-  const Outcome r = run(CHAIN_MPI_EXE, "--balls 10 --k 1e-300 --out soft");
+  const Outcome r = run(CHAIN_MPI_EXE, "--balls 10 --k 1e-300 --t-end 0 --out soft");
   ASSERT_EQ(r.code, 1) << r.err;
   EXPECT_EQ(r.err.find("[CVODE ERROR]"), std::string::npos) << r.err;
   const auto ours = r.err.find("at t = "), cvodes = r.err.find("At t = ");
@@ -121,7 +137,7 @@ TEST_F(ChainMpi, ASolverFailureNamesTheTimeReachedAndCvodesMessage) {
 // CVode call that looked at no interrupt (a 1000-ball run went on for its 26 s; at k = 1e-300,
 // for hours of steps that no longer advanced t); the outer KILL after 20 s bounds the test.
 TEST_F(ChainMpi, AnInterruptStopsTheRunWithinAFewSteps) {
-  const Outcome r = run(CHAIN_MPI_EXE, "--balls 1000 --out stopped",
+  const Outcome r = run(CHAIN_MPI_EXE, "--balls 1000 --t-end 0 --out stopped",
                         "timeout -s KILL 20 timeout --preserve-status -s INT 1");
   EXPECT_EQ(r.code, 130) << r.err;
   EXPECT_NE(r.err.find("interrupted"), std::string::npos) << r.err;
