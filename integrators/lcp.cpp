@@ -1,0 +1,80 @@
+#include "lcp.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace contact {
+
+namespace {
+
+// Block pivots allowed without fewer infeasible indices before single flips (Júdice and Pires).
+constexpr int kBlockTrials = 3;
+
+// p_F of W_FF p_F = -b_F. W is semidefinite, and a principal block can be singular (redundant
+// contacts): LDLT first, the minimum-norm least-squares solution where LDLT's is not a solution.
+Eigen::VectorXd solve_block(const Eigen::MatrixXd& A, const Eigen::VectorXd& r) {
+  const Eigen::LDLT<Eigen::MatrixXd> ldlt(A);
+  Eigen::VectorXd x = ldlt.solve(r);
+  const double scale = std::max(r.cwiseAbs().maxCoeff(), 1e-300);
+  if (ldlt.info() == Eigen::Success && x.allFinite() && (A * x - r).cwiseAbs().maxCoeff() <= 1e-10 * scale)
+    return x;
+  return Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(A).solve(r);
+}
+
+}  // namespace
+
+LcpSolution solve_lcp(const Eigen::MatrixXd& W, const Eigen::VectorXd& b, std::vector<bool> positive,
+                      double w_tol, int max_solves) {
+  const Eigen::Index n = b.size();
+  LcpSolution s{.p = Eigen::VectorXd::Zero(n)};
+  std::vector<Eigen::Index> free, infeasible;
+  std::size_t fewest = static_cast<std::size_t>(n) + 1;
+  int trials = kBlockTrials;
+  while (s.solves < max_solves) {
+    free.clear();
+    for (Eigen::Index i = 0; i < n; ++i)
+      if (positive[static_cast<std::size_t>(i)]) free.push_back(i);
+    s.p.setZero();
+    if (!free.empty()) {
+      const auto m = static_cast<Eigen::Index>(free.size());
+      Eigen::MatrixXd A(m, m);
+      Eigen::VectorXd r(m);
+      for (Eigen::Index a = 0; a < m; ++a) {
+        r(a) = -b(free[static_cast<std::size_t>(a)]);
+        for (Eigen::Index c = 0; c < m; ++c)
+          A(a, c) = W(free[static_cast<std::size_t>(a)], free[static_cast<std::size_t>(c)]);
+      }
+      const Eigen::VectorXd x = solve_block(A, r);
+      for (Eigen::Index a = 0; a < m; ++a) s.p(free[static_cast<std::size_t>(a)]) = x(a);
+    }
+    ++s.solves;
+    const Eigen::VectorXd w = W * s.p + b;
+    infeasible.clear();
+    for (Eigen::Index i = 0; i < n; ++i) {
+      // A free index whose w is not zero: its block had no solution (a singular W), only the
+      // least-squares one.
+      const bool out = positive[static_cast<std::size_t>(i)]
+                           ? !(s.p(i) >= -w_tol / std::max(W(i, i), 1e-300) && std::abs(w(i)) <= w_tol)
+                           : !(w(i) >= -w_tol);
+      if (out) infeasible.push_back(i);
+    }
+    if (infeasible.empty()) {
+      s.p = s.p.cwiseMax(0.0);  // within the tolerance: an impulse never pulls
+      s.solved = true;
+      return s;
+    }
+    if (infeasible.size() < fewest) {
+      fewest = infeasible.size();
+      trials = kBlockTrials;
+    } else if (trials > 0) {
+      --trials;
+    } else {  // Murty: flip only the largest infeasible index
+      infeasible.erase(infeasible.begin(), infeasible.end() - 1);
+    }
+    for (const Eigen::Index i : infeasible)
+      positive[static_cast<std::size_t>(i)] = !positive[static_cast<std::size_t>(i)];
+  }
+  return s;
+}
+
+}  // namespace contact
