@@ -19,8 +19,8 @@ namespace contact {
 struct LcpSolution {
   Eigen::VectorXd p;
   int solves = 0;  // linear solves on a principal block of W (pivot steps)
-  bool solved =
-      false;  // p_i >= -p_tol_i, w_i >= -w_tol, |w_i| <= w_tol where p_i > 0; else p is the last iterate
+  // p_i >= -p_tol_i, w_i >= -w_tol, and |w_i| <= w_tol where p_i > 0; else p is the last iterate.
+  bool solved = false;
 };
 
 // `positive`: the initial guess of the indices with p > 0. w_tol bounds the negative w allowed
