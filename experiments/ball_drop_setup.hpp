@@ -19,7 +19,7 @@ struct BallDropOptions {
   double dt = 1e-3, rtol = 1e-8, atol = 0.0, t_end = 3.0, sample_dt = 0.01;  // atol 0: scaled
   std::string jacobian = "analytic";
   std::string integrator = "cvode-bdf";
-  std::string linear_solver = "dense";
+  std::string linear_solver = "auto";
   long max_steps = 100000;
   long max_records = RunLimits{}.max_records;
   double rest_speed = 1e-7;

@@ -117,7 +117,8 @@ class ArkIntegrator final : public sundials::IntegratorBase {
     }
     if (o.linear_solver == LinearSolverKind::GmresBandPreconditioned) {
       const auto n = static_cast<sunindextype>(data_.sys.size);
-      check(ARKBandPrecInit(m, n, data_.sys.bandwidth.upper, data_.sys.bandwidth.lower), "ARKBandPrecInit");
+      check(ARKBandPrecInit(m, n, band_or_full(data_.sys).upper, band_or_full(data_.sys).lower),
+            "ARKBandPrecInit");
     }
     if (data_.sys.root_count > 0) {
       check(ARKStepRootInit(m, static_cast<int>(data_.sys.root_count), sundials::roots), "ARKStepRootInit");

@@ -44,10 +44,14 @@ const IntegratorInfo& integrator_info(const std::string& name) {
   return find_named(integrator_catalog(), name, "--integrator");
 }
 
-std::vector<std::string> linear_solver_names() { return {"dense", "band", "klu", "gmres", "gmres-band"}; }
+std::vector<std::string> linear_solver_names() {
+  return {"auto", "dense", "band", "klu", "gmres", "gmres-band"};
+}
 
 std::string_view to_string(LinearSolverKind kind) {
   switch (kind) {
+    case LinearSolverKind::Auto:
+      return "auto";
     case LinearSolverKind::Dense:
       return "dense";
     case LinearSolverKind::Band:
@@ -63,8 +67,8 @@ std::string_view to_string(LinearSolverKind kind) {
 }
 
 LinearSolverKind parse_linear_solver(const std::string& name) {
-  for (auto k : {LinearSolverKind::Dense, LinearSolverKind::Band, LinearSolverKind::Klu,
-                 LinearSolverKind::Gmres, LinearSolverKind::GmresBandPreconditioned})
+  for (auto k : {LinearSolverKind::Auto, LinearSolverKind::Dense, LinearSolverKind::Band,
+                 LinearSolverKind::Klu, LinearSolverKind::Gmres, LinearSolverKind::GmresBandPreconditioned})
     if (to_string(k) == name) return k;
   throw std::invalid_argument(fmt::format("--linear-solver: value '{}' is not one of: {}", name,
                                           fmt::join(linear_solver_names(), ", ")));
@@ -102,7 +106,8 @@ void validate(const IntegratorOptions& o) {
     throw std::invalid_argument(
         fmt::format("--max-step: value '{}' is out of range; accepted range [0, inf)", o.max_step));
   const bool sundials_implicit = info.implicit && (info.family == "CVODE" || info.family == "ARKODE");
-  if (o.linear_solver != LinearSolverKind::Dense && !sundials_implicit)
+  const bool chosen = o.linear_solver != LinearSolverKind::Auto && o.linear_solver != LinearSolverKind::Dense;
+  if (chosen && !sundials_implicit)
     throw std::invalid_argument(
         fmt::format("--linear-solver: value '{}' applies only to implicit SUNDIALS methods (cvode-bdf, "
                     "cvode-adams, arkode-dirk, arkode-imex); {} uses none",

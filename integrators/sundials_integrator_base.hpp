@@ -92,7 +92,10 @@ class IntegratorBase : public Integrator {
           "--linear-solver: value 'klu' needs an analytic Jacobian, and this system provides none; "
           "accepted for it: dense, band, gmres, gmres-band");
     if (o.jacobian == JacobianMode::Analytic && jac) jac(t_, y0, data_.J);
-    linear_ = sundials::make_linear_system(o.linear_solver, y_.get(), data_.sys.bandwidth,
+    const LinearSolverKind kind = o.linear_solver != LinearSolverKind::Auto ? o.linear_solver
+                                  : has_narrow_band(data_.sys)              ? LinearSolverKind::Band
+                                                                            : LinearSolverKind::Dense;
+    linear_ = sundials::make_linear_system(kind, y_.get(), band_or_full(data_.sys),
                                            static_cast<long>(data_.J.nonZeros()), ctx_.get());
   }
 

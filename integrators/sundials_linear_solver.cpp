@@ -37,6 +37,8 @@ LinearSystem make_linear_system(LinearSolverKind kind, N_Vector y, Bandwidth ban
   const sunindextype n = N_VGetLength(y);
   LinearSystem ls;
   switch (kind) {
+    case LinearSolverKind::Auto:
+      throw std::logic_error("make_linear_system: 'auto' is resolved by the caller (has_narrow_band)");
     case LinearSolverKind::Dense: {
       const double bytes = 8.0 * static_cast<double>(n) * static_cast<double>(n);
       if (bytes > kMaxDenseBytes)

@@ -16,6 +16,7 @@ struct LinearSystem {
   LinearSolver solver;
 };
 
+// `kind` is a concrete one (the caller resolves Auto: has_narrow_band).
 LinearSystem make_linear_system(LinearSolverKind kind, N_Vector y_template, Bandwidth band, long nonzeros,
                                 SUNContext ctx);
 

@@ -349,16 +349,20 @@ def test_a_long_chain_takes_the_linear_solver_its_refusal_names():
     """A chain whose dense Jacobian would not fit is refused with "use the band, klu or gmres
     linear solver", a setting Python had no keyword for. The direct solvers give the dense run to
     rounding (band bitwise, KLU 1e-14); GMRES's iterations stop at a fraction of the tolerance, so
-    its run differs within it (rtol 1e-8 over the pulse's 99 contacts: 4e-7 measured, 1e-6 allowed)."""
+    its run differs within it (rtol 1e-8 over the pulse's 99 contacts: 4e-7 measured, 1e-6 allowed).
+    The default, auto, takes band storage where the Jacobian's band is narrower than the system:
+    the long chain runs without asking."""
     with pytest.raises(co.SolverError, match="use the band, klu or gmres linear solver"):
-        co.solve("ball-chain", "penalty", n=20000, t_end=1e-3)
+        co.solve("ball-chain", "penalty", n=20000, t_end=1e-3, linear_solver="dense")
     long = co.solve("ball-chain", "penalty", n=20000, t_end=1e-3, linear_solver="band")
     assert long.status == co.Status.success
-    dense = co.solve("ball-chain", "penalty", n=100, t_end=0.05)
-    for solver in ["band", "klu", "gmres"]:
+    by_default = co.solve("ball-chain", "penalty", n=20000, t_end=1e-3)
+    np.testing.assert_array_equal(by_default.y[-1], long.y[-1])
+    dense = co.solve("ball-chain", "penalty", n=100, t_end=0.05, linear_solver="dense")
+    for solver in ["auto", "band", "klu", "gmres"]:
         other = co.solve("ball-chain", "penalty", n=100, t_end=0.05, linear_solver=solver)
         np.testing.assert_allclose(other.y[-1], dense.y[-1], atol=1e-6)
-    with pytest.raises(ValueError, match="linear_solver: value 'sparse' is not one of: dense, band, klu, gmres"):
+    with pytest.raises(ValueError, match="linear_solver: value 'sparse' is not one of: auto, dense, band, klu, gmres"):
         co.solve("ball-chain", "penalty", linear_solver="sparse")
     assert "linear_solver" in next(m for m in co.methods() if m["name"] == "penalty")["settings"]
 
