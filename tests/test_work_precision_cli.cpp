@@ -93,7 +93,7 @@ TEST_F(WorkPrecisionCli, ParadigmsReachTheirExactLimits) {
 
 TEST_F(WorkPrecisionCli, BadInputIsRefused) {
   expect_refused(WORK_PRECISION_EXE, {
-                                         {"--balls 1", "--balls", "'1'", "[2, 1000]"},
+                                         {"--balls 1", "--balls", "'1'", "[2, 50]"},
                                          {"--chain-k -5", "--chain-k", "'-5'", "(0, inf)"},
                                          {"--problems moon", "--problems", "'moon'", "chain"},
                                          {"--repeats 2", "--repeats", "'2'", "[3, 1000]"},
