@@ -117,8 +117,8 @@ class ArkIntegrator final : public sundials::IntegratorBase {
     }
     if (o.linear_solver == LinearSolverKind::GmresBandPreconditioned) {
       const auto n = static_cast<sunindextype>(data_.sys.size);
-      check(ARKBandPrecInit(m, n, band_or_full(data_.sys).upper, band_or_full(data_.sys).lower),
-            "ARKBandPrecInit");
+      const Bandwidth band = band_or_full(data_.sys);
+      check(ARKBandPrecInit(m, n, band.upper, band.lower), "ARKBandPrecInit");
     }
     if (data_.sys.root_count > 0) {
       check(ARKStepRootInit(m, static_cast<int>(data_.sys.root_count), sundials::roots), "ARKStepRootInit");

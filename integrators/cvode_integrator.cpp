@@ -35,8 +35,8 @@ class CvodeIntegrator final : public sundials::IntegratorBase {
     }
     if (o.linear_solver == LinearSolverKind::GmresBandPreconditioned) {
       const auto n = static_cast<sunindextype>(data_.sys.size);
-      check(CVBandPrecInit(m, n, band_or_full(data_.sys).upper, band_or_full(data_.sys).lower),
-            "CVBandPrecInit");
+      const Bandwidth band = band_or_full(data_.sys);
+      check(CVBandPrecInit(m, n, band.upper, band.lower), "CVBandPrecInit");
     }
     if (data_.sys.root_count > 0) {
       check(CVodeRootInit(m, static_cast<int>(data_.sys.root_count), sundials::roots), "CVodeRootInit");

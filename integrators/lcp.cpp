@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace contact {
 
@@ -12,6 +13,8 @@ constexpr int kBlockTrials = 3;
 
 // p_F of W_FF p_F = -b_F. W is semidefinite, and a principal block can be singular (redundant
 // contacts): LDLT first, the minimum-norm least-squares solution where LDLT's is not a solution.
+// A backward-stable solve leaves a residual of about eps cond(A) of r; a row of n contacts has
+// cond ~ 0.4 n^2 (4e5 at 1000), so 1e-10 passes every regular block and fails a singular one.
 Eigen::VectorXd solve_block(const Eigen::MatrixXd& A, const Eigen::VectorXd& r) {
   const Eigen::LDLT<Eigen::MatrixXd> ldlt(A);
   Eigen::VectorXd x = ldlt.solve(r);
@@ -26,6 +29,8 @@ Eigen::VectorXd solve_block(const Eigen::MatrixXd& A, const Eigen::VectorXd& r) 
 LcpSolution solve_lcp(const Eigen::MatrixXd& W, const Eigen::VectorXd& b, std::vector<bool> positive,
                       double w_tol, int max_solves) {
   const Eigen::Index n = b.size();
+  if (W.rows() != n || W.cols() != n || positive.size() != static_cast<std::size_t>(n))
+    throw std::invalid_argument("solve_lcp: W must be n x n and the guess of length n, n = b's length");
   LcpSolution s{.p = Eigen::VectorXd::Zero(n)};
   std::vector<Eigen::Index> free, infeasible;
   std::size_t fewest = static_cast<std::size_t>(n) + 1;

@@ -5,9 +5,9 @@
 // touching contacts (a 1-D Laplacian), so 1e-12 of a cradle's impulse needs ~3 n^2 sweeps:
 // 28000 for 100 balls. Block principal pivoting (Júdice and Pires 1994) instead guesses which p
 // are positive, solves W_FF p_F = -b_F on that set, and moves every index whose p or w comes out
-// negative to the other set; it falls back to one index at a time (Murty's rule, finite on a
-// positive definite W) when the number of infeasible indices stops falling. Started from PGS's
-// guess it takes a few solves.
+// negative (or, on a singular block, whose w does not vanish) to the other set; it falls back to one index at
+// a time (Murty's rule, finite on a positive definite W) when the number of infeasible indices stops falling.
+// Started from PGS's guess it takes a few solves.
 #pragma once
 
 #include <Eigen/Dense>
