@@ -7,8 +7,8 @@
 // .{png,pdf,gp}, meta.json; under mpirun the runs go over the ranks. Exit: 0, 1 solver failure, 2 bad input.
 #include "contact_ode/analysis/metrics.hpp"
 #include "contact_ode/analysis/table.hpp"
-#include "contact_ode/models/ball_drop.hpp"
 #include "contact_ode/models/rigid/rigid_scenes.hpp"
+#include "energy_drift_runs.hpp"
 #include "experiment.hpp"
 #include "figure.hpp"
 #include "process.hpp"
@@ -26,70 +26,32 @@ using namespace contact;
 
 namespace {
 constexpr double kLogFloor = 1e-17;  // zero errors are drawn here on the log axes
-// The runs: (system, method, setting name, setting value), the scene, the method and its span.
-struct Job {
-  std::string system, method, setting;
-  double value;
-  std::shared_ptr<const Dynamics> scene;
-  Method settings;
-  SolveOptions span;
-};
 }  // namespace
 
 int program(int argc, char** argv) {
-  double k = 1e5;
-  long bounces = 100;
-  std::vector<double> dts{1e-3, 1e-4}, rtols{1e-4, 1e-6, 1e-8}, rigid_dts{1e-4, 1e-5},
-      rigid_rtols{1e-6, 1e-8};
-  std::string scenes = "all";
+  DriftSettings s;
   Experiment app("energy_drift",
                  "Energy drift of every method over long undamped ball drops and the rigid-body scenes.",
                  "results/energy_drift");
-  app.add("--k", k, "penalty stiffness of the ball [N/m]", cli::positive());
-  app.add("--bounces", bounces, "bounces of the rigid ball solution to run", cli::integer_in(1, 10000));
-  app.add_list("--dts", dts, "ball game steps [s], comma-separated", cli::positive());
-  app.add_list("--rtols", rtols, "ball relative tolerances, comma-separated", cli::real_in(0, 1, true, true));
-  app.add_list("--rigid-dts", rigid_dts, "rigid-scene game steps [s]", cli::positive());
-  app.add_list("--rigid-rtols", rigid_rtols, "rigid-scene relative tolerances",
+  app.add("--k", s.k, "penalty stiffness of the ball [N/m]", cli::positive());
+  app.add("--bounces", s.bounces, "bounces of the rigid ball solution to run", cli::integer_in(1, 10000));
+  app.add_list("--dts", s.dts, "ball game steps [s], comma-separated", cli::positive());
+  app.add_list("--rtols", s.rtols, "ball relative tolerances, comma-separated",
                cli::real_in(0, 1, true, true));
-  app.add("--scene", scenes, "rigid scenes, comma-separated, 'all' or 'none'",
+  app.add_list("--rigid-dts", s.rigid_dts, "rigid-scene game steps [s]", cli::positive());
+  app.add_list("--rigid-rtols", s.rigid_rtols, "rigid-scene relative tolerances",
+               cli::real_in(0, 1, true, true));
+  app.add("--scene", s.scenes, "rigid scenes, comma-separated, 'all' or 'none'",
           cli::some_of(rigid::rigid_scene_names(), true));
   return app.run(argc, argv, [&](OutputSet& files) {
-    const double m = 1.0, g = 9.81, h0 = 1.0, t0 = std::sqrt(2 * h0 / g);
-    std::vector<Job> jobs;
-    auto ball = std::make_shared<BallDrop>(BallDropParams{m, g, h0, 0.0, 1.0, Hooke{k}});
-    const double t_ball = 2.0 * static_cast<double>(bounces) * t0;  // the n-th rigid impact is at (2n - 1) t0
-    const SolveOptions ball_span{.t_end = t_ball, .sample_dt = t_ball / 2000};
-    auto ball_job = [&](const std::string& method, const std::string& setting, double value) {
-      Method mt{.name = method, .integrator = {.max_steps = 10000000}};
-      jobs.push_back({"ball", method, setting, value, ball, setting == "exact" ? mt : with_setting(mt, value),
-                      ball_span});
-    };
-    for (const std::string method :
-         {"game-euler", "game-symplectic", "game-euler-spring", "game-symplectic-spring", "penalty",
-          "event-ode", "game-implicit-spring", "sequential-impulses", "soft-step", "xpbd", "moreau-jean"}) {
-      const bool fixed = method_info(method).fixed_step;
-      for (double v : fixed ? dts : rtols) ball_job(method, fixed ? "dt" : "rtol", v);
-    }
-    ball_job("event-exact", "exact", 0.0);
-    for (const auto& name : cli::chosen(scenes, rigid::rigid_scene_names())) {
-      const rigid::SceneInfo& info = rigid::rigid_scene(name);
-      auto scene = std::make_shared<rigid::RigidScene>(info.make({}));
-      const SolveOptions span{.t_end = info.t_end, .sample_dt = info.t_end / 200};
-      for (const auto& method : kRigidMethods) {
-        const bool fixed = method_info(method).fixed_step;
-        for (double v : fixed ? rigid_dts : rigid_rtols)
-          jobs.push_back(
-              {name, method, fixed ? "dt" : "rtol", v, scene, with_setting(rigid_method(method), v), span});
-      }
-    }
+    const std::vector<DriftRun> jobs = drift_runs(s);
     Table table({"system", "method", "setting", "value", "contacts", "final_energy_error_rel",
                  "max_abs_energy_error_rel", "drift_rate_per_s", "drift_rate_sd", "verdict", "rhs_evals"});
     std::map<std::string, Series> ball_figures;     // "game" loops and "other" methods: <= 10 series each
     std::map<std::string, std::string> rigid_rows;  // method -> "index,scene,max error" lines
     Progress progress("energy_drift", jobs.size());
     const auto results = app.share(jobs.size(), [&](std::size_t i) -> nlohmann::json {
-      const Job& job = jobs[i];
+      const DriftRun& job = jobs[i];
       const std::string what = fmt::format("{} {} {} = {:g}", job.system, job.method, job.setting, job.value);
       progress.step(what);
       const RunResult r = require(solve(*job.scene, job.settings, job.span), what);
@@ -105,12 +67,12 @@ int program(int argc, char** argv) {
     });
     if (!results) return;  // another MPI rank: its share is done
     for (std::size_t i = 0; i < jobs.size(); ++i) {
-      const Job& job = jobs[i];
+      const DriftRun& job = jobs[i];
       const auto row = row_from_json((*results)[i].at("row"));  // max error: column 6, verdict: 9
       table.add_row(row);
       // The ball figure shows each method at its first setting (the coarsest by default).
       if (job.system == "ball" &&
-          (job.setting == "exact" || job.value == (job.setting == "dt" ? dts : rtols).front())) {
+          (job.setting == "exact" || job.value == (job.setting == "dt" ? s.dts : s.rtols).front())) {
         const auto setting = job.setting == "exact" ? "" : fmt::format(" {}={:g}", job.setting, job.value);
         Series& figure = ball_figures[job.method.starts_with("game") ? "game" : "other"];
         figure.add((*results)[i].at("curve").get<std::string>(),
@@ -119,7 +81,8 @@ int program(int argc, char** argv) {
       }
       // The rigid figure shows each method at the coarsest step or the tightest tolerance.
       if (std::string& rows = rigid_rows[job.method];
-          job.system != "ball" && job.value == (job.setting == "dt" ? rigid_dts.front() : rigid_rtols.back()))
+          job.system != "ball" &&
+          job.value == (job.setting == "dt" ? s.rigid_dts.front() : s.rigid_rtols.back()))
         rows += fmt::format("{},{},{}\n", std::count(rows.begin(), rows.end(), '\n'), job.system,
                             std::max(std::get<double>(row[6]), kLogFloor));
     }
@@ -136,13 +99,13 @@ int program(int argc, char** argv) {
            logy("|E + dissipated - E_0| / E_0") + "set xlabel 't [s]'\n" + below + "plot " + figure.plot()},
           files);
     const std::string rigid_label =
-        fmt::format("max |energy error| (dt = {:g}, rtol = {:g})", rigid_dts.front(), rigid_rtols.back());
+        fmt::format("max |energy error| (dt = {:g}, rtol = {:g})", s.rigid_dts.front(), s.rigid_rtols.back());
     if (!rigid_figure.empty())
       render({"rigid_energy", rigid_figure.data(),
               logy(rigid_label) + "set xtics rotate by -30\nset offsets 0.3, 0.3, 0, 0\n" + below + "plot " +
                   rigid_figure.plot()},
              files);
-    fmt::print("Energy drift (ball: e = 1, k = {:g} N/m, {} bounces; rigid scenes)\n\n{}", k, bounces,
+    fmt::print("Energy drift (ball: e = 1, k = {:g} N/m, {} bounces; rigid scenes)\n\n{}", s.k, s.bounces,
                table.to_markdown());
   });
 }

@@ -8,7 +8,6 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <limits>
 
 namespace contact {
 
@@ -74,9 +73,10 @@ RunResult run_game(const Dynamics& model, const GameOptions& opt, const SolveOpt
   double t = 0.0;
   try {
     rec.sample(0.0, y);
+    // solve() checks the work too; run_game is called on its own as well.
     const double steps_needed = steps_to_cover(span.t_end, opt.dt);
-    rec.check_steps(steps_needed < 9e18 ? static_cast<long>(steps_needed) : std::numeric_limits<long>::max(),
-                    0.0);
+    if (const auto why = fixed_step_work_refusal(steps_needed, 1, span.limits))
+      throw SolverFailure(Status::WorkLimit, 0.0, *why);
     const auto n_steps = static_cast<long>(steps_needed);
     for (long n = 1; n <= n_steps; ++n) {
       throw_if_stop_requested(t);

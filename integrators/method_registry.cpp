@@ -92,7 +92,21 @@ void refuse_what_cannot_fit(const Dynamics& scene, const MethodInfo& info, const
       options.limits.max_memory_bytes / 1e9));
 }
 
+int passes(const MethodInfo& info, const Method& method) { return info.passes ? info.passes(method) : 1; }
+
 }  // namespace
+
+double fixed_step_work(const Method& method, const SolveOptions& options) {
+  const MethodInfo& info = method_info(method.name);
+  return info.fixed_step ? steps_to_cover(options.t_end, method.dt) * passes(info, method) : 0.0;
+}
+
+std::optional<std::string> work_refusal(const Method& method, const SolveOptions& options) {
+  const MethodInfo& info = method_info(method.name);
+  if (!info.fixed_step) return std::nullopt;
+  return fixed_step_work_refusal(steps_to_cover(options.t_end, method.dt), passes(info, method),
+                                 options.limits);
+}
 
 RunResult solve(const Dynamics& scene, const Method& method, const SolveOptions& options) {
   const MethodInfo& info = method_info(method.name);
@@ -110,6 +124,11 @@ RunResult solve(const Dynamics& scene, const Method& method, const SolveOptions&
         fmt::format("--dt: value '{}' is out of range; accepted range (0, inf)", method.dt));
   check_method_settings(method);
   refuse_what_cannot_fit(scene, info, method, options);
+  if (const auto why = work_refusal(method, options)) {  // a work limit at t = 0, its initial state kept
+    RunRecorder refused(scene, info.name, options);
+    refused.sample(0.0, scene.initial_state());
+    return refused.fail(SolverFailure(Status::WorkLimit, 0.0, *why), {});
+  }
   RunResult r = info.run(scene, method, options);
   r.method = info.name;
   return r;

@@ -94,6 +94,13 @@ void RunRecorder::check_diverged(double t, ConstVectorRef y) const {
   }
 }
 
+std::optional<std::string> fixed_step_work_refusal(double steps, int passes, const RunLimits& limits) {
+  if (steps * passes <= static_cast<double>(limits.max_steps)) return std::nullopt;
+  return fmt::format("{:g} steps{}: more than the {} steps a run may take", steps,
+                     passes > 1 ? fmt::format(" of {} sub-steps or sweeps each", passes) : "",
+                     limits.max_steps);
+}
+
 void RunRecorder::check_steps(long steps, double t) const {
   if (steps > limits_.max_steps)
     throw SolverFailure(Status::WorkLimit, t,

@@ -77,7 +77,7 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
       motion.copy_positions(ghost, y);
     }
   };
-  return run_time_stepping(scene, m.name, m.dt, step, span, false, m.iterations);
+  return run_time_stepping(scene, m.name, m.dt, step, span, false);
 }
 
 }  // namespace
@@ -87,7 +87,8 @@ std::vector<MethodInfo> sequential_impulses_methods() {
       "sequential-impulses",
       "projected Gauss-Seidel impulses, 10 sweeps, warm starting, split-impulse "
       "push-out (Bullet, ODE, PhysX)",
-      run, {"dt", "iterations", "warm_start", "erp", "split_impulse", "restitution_threshold"})};
+      run, {"dt", "iterations", "warm_start", "erp", "split_impulse", "restitution_threshold"},
+      [](const Method& m) { return m.iterations; })};
 }
 
 }  // namespace contact

@@ -97,7 +97,7 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
             lambda[i], y);
     }
   };
-  return run_time_stepping(scene, m.name, m.dt, step, span, false, m.substeps);
+  return run_time_stepping(scene, m.name, m.dt, step, span, false);
 }
 
 }  // namespace
@@ -108,7 +108,8 @@ std::vector<MethodInfo> soft_step_methods() {
                                   "4 sub-steps, relax and restitution passes",
                                   run,
                                   {"dt", "substeps", "warm_start", "restitution_threshold", "contact_hertz",
-                                   "contact_damping_ratio", "push_max"})};
+                                   "contact_damping_ratio", "push_max"},
+                                  [](const Method& m) { return m.substeps; })};
 }
 
 }  // namespace contact

@@ -46,7 +46,7 @@ double accumulate_impulse(const NormalImpulses& normal, std::size_t i, double d,
 MethodInfo impulse_stepping_method(
     std::string name, std::string description,
     std::function<RunResult(const Dynamics&, const Method&, const SolveOptions&)> run,
-    std::vector<std::string> settings) {
+    std::vector<std::string> settings, std::function<int(const Method&)> passes) {
   return {.name = std::move(name),
           .description = std::move(description),
           .family = "time-stepping",
@@ -55,11 +55,12 @@ MethodInfo impulse_stepping_method(
           .needs = "dynamics, contact geometry, an impulse map and normal impulses",
           .can_run = [](const Dynamics& s) { return has_impulse_map(s) && has_normal_impulses(s); },
           .run = std::move(run),
-          .settings = std::move(settings)};
+          .settings = std::move(settings),
+          .passes = std::move(passes)};
 }
 
 RunResult run_time_stepping(const Dynamics& model, const std::string& method, double dt,
-                            const StepFunction& step, const SolveOptions& span, bool springs, int passes) {
+                            const StepFunction& step, const SolveOptions& span, bool springs) {
   const std::size_t nc = model.contact_count();
   const ContactGeometry& geo = contact_geometry(model);
   RunRecorder rec(model, method, span);
@@ -72,14 +73,7 @@ RunResult run_time_stepping(const Dynamics& model, const std::string& method, do
     rec.sample(0.0, y);
     for (std::size_t i = 0; i < nc; ++i)
       if (geo.gap(i, y) < -kContactMargin) rec.contact_begin(i, 0.0, geo.gap_rate(i, y));
-    const double steps_needed = steps_to_cover(span.t_end, dt);
-    if (steps_needed * passes > static_cast<double>(span.limits.max_steps))
-      throw SolverFailure(
-          Status::WorkLimit, 0.0,
-          fmt::format("{:g} steps{}: more than the {} steps a run may take", steps_needed,
-                      passes > 1 ? fmt::format(" of {} sub-steps or sweeps each", passes) : "",
-                      span.limits.max_steps));
-    const auto n_steps = static_cast<long>(steps_needed);
+    const auto n_steps = static_cast<long>(steps_to_cover(span.t_end, dt));  // solve() checked the work
     for (long n = 1; n <= n_steps; ++n) {
       throw_if_stop_requested(t);
       const double t0 = t, h = std::min(dt, span.t_end - t0);

@@ -49,11 +49,10 @@ using StepFunction =
     std::function<void(double t, double h, Vector& y, StepReport& report, SolverStats& stats)>;
 
 // `springs`: whether the method's contacts are the scene's penalty springs (their elastic energy
-// counts); impulse methods pass false, and an overlap they leave holds no energy. `passes`: the
-// sub-steps or solver sweeps each step makes; the run's work bound (RunLimits::max_steps) counts
-// steps times passes, so that 2^31 sweeps a step fail at once instead of running for days.
+// counts); impulse methods pass false, and an overlap they leave holds no energy. The run's work
+// bound (steps times the method's MethodInfo::passes) solve() checks before it starts.
 RunResult run_time_stepping(const Dynamics& model, const std::string& method, double dt,
-                            const StepFunction& step, const SolveOptions& span, bool springs, int passes = 1);
+                            const StepFunction& step, const SolveOptions& span, bool springs);
 
 // Adds d to contact i's accumulated impulse `lambda`, clamped at >= 0 (a contact pushes, never
 // pulls), and applies what changed to the velocities. Returns the change [N s].
@@ -65,7 +64,7 @@ double accumulate_impulse(const NormalImpulses& normal, std::size_t i, double d,
 MethodInfo impulse_stepping_method(
     std::string name, std::string description,
     std::function<RunResult(const Dynamics&, const Method&, const SolveOptions&)> run,
-    std::vector<std::string> settings);
+    std::vector<std::string> settings, std::function<int(const Method&)> passes = {});
 
 // The smooth part of a step, every contact free (gravity and the scene's other forces). It keeps
 // the scene's position mask, the all-free modes and a scratch rate, so that a step allocates

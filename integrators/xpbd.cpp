@@ -48,7 +48,7 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
       stats.newton_iters += 1;
     }
   };
-  return run_time_stepping(scene, m.name, m.dt, step, span, true, m.substeps);
+  return run_time_stepping(scene, m.name, m.dt, step, span, true);
 }
 
 }  // namespace
@@ -63,7 +63,8 @@ std::vector<MethodInfo> xpbd_methods() {
            .needs = "dynamics, contact geometry and normal impulses, with linear penalty laws",
            .can_run = has_linear_laws,
            .run = run,
-           .settings = {"dt", "substeps"}}};
+           .settings = {"dt", "substeps"},
+           .passes = [](const Method& m) { return m.substeps; }}};
 }
 
 }  // namespace contact

@@ -81,5 +81,11 @@ TEST_F(EnergyDriftCli, BadInputIsRefused) {
                                        // 1e9 bounces failed as 'work-limit', naming no option.
                                        {"--bounces 1000000000", "--bounces", "'1000000000'", "[1, 10000]"},
                                        {"--scene moon", "--scene", "'moon'", "snooker"},
+                                       // Runs that could only end in a work limit, refused before any
+                                       // starts (at 10000 bounces after 42 s of the others): sequential
+                                       // impulses at dt = 1e-4 s take 10 sweeps a step, 2 t0 / 1e-4 = 9030
+                                       // steps a bounce, so 1e8 sweeps hold 1107 bounces.
+                                       {"--bounces 10000", "--bounces", "'10000'", "[1, 1107]"},
+                                       {"--rigid-dts 1e-9", "--rigid-dts", "'1e-09'", "inf)"},
                                    });
 }

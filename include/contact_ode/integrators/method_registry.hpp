@@ -17,6 +17,7 @@
 
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -64,6 +65,9 @@ struct MethodInfo {
   // Forms its integrator's Jacobian by difference quotients whatever Method::integrator says
   // (penalty-dq): it cannot run with a sparse linear solver (KLU needs the analytic Jacobian).
   bool dq_jacobian = false;
+  // The sub-steps or solver sweeps each of its fixed steps makes (sequential impulses' iterations,
+  // soft step's and XPBD's sub-steps); empty: one. The run's work bound counts steps times these.
+  std::function<int(const Method&)> passes;
 };
 
 // The settings of a method that runs an ODE integrator (IntegratorOptions): a fixed step ("dt")
@@ -83,6 +87,15 @@ const MethodInfo& method_info(const std::string& name);
 // time step, span and the time-stepping settings here; the integrator's when it is built); a
 // solver failure is a RunResult with its status, the time reached and the solver's message.
 RunResult solve(const Dynamics& scene, const Method& method, const SolveOptions& options = {});
+
+// The steps times sub-steps or solver sweeps (MethodInfo::passes) a fixed-step method takes over
+// options' span: what RunLimits::max_steps bounds (2^31 sweeps a step, or 1 ns steps over an hour,
+// could only fail, after hours). 0 for a method whose steps its error control decides.
+double fixed_step_work(const Method& method, const SolveOptions& options);
+// Why solve() would end `method` over `options`' span in a work limit at t = 0, if it would. A
+// sweep asks it of every run before the first starts, so that its last run is not refused after
+// minutes of the others.
+std::optional<std::string> work_refusal(const Method& method, const SolveOptions& options);
 
 // The families, each defined beside its paradigm.
 std::vector<MethodInfo> penalty_methods();

@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
+#include <string>
 
 namespace contact {
 
@@ -47,6 +49,10 @@ struct SolveOptions {
 // a whole number of steps takes that many. Counted in floating point: t_end / dt can exceed every
 // integer type (1e4 s at 1e-16 s).
 inline double steps_to_cover(double t_end, double dt) { return std::max(1.0, std::ceil(t_end / dt - 1e-9)); }
+
+// Why `steps` fixed steps of `passes` sub-steps or solver sweeps each exceed `limits`' work bound,
+// if they do (the run then fails at once, as Status::WorkLimit, instead of running for days).
+std::optional<std::string> fixed_step_work_refusal(double steps, int passes, const RunLimits& limits);
 
 class RunRecorder {
  public:

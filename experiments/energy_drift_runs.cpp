@@ -1,0 +1,60 @@
+#include "energy_drift_runs.hpp"
+
+#include "cli.hpp"
+#include "contact_ode/models/ball_drop.hpp"
+#include "contact_ode/models/rigid/rigid_scenes.hpp"
+#include "sweep_setting.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace contact {
+
+std::vector<DriftRun> drift_runs(const DriftSettings& s) {
+  const double m = 1.0, g = 9.81, h0 = 1.0, t0 = std::sqrt(2 * h0 / g);
+  std::vector<DriftRun> runs;
+  auto ball = std::make_shared<BallDrop>(BallDropParams{m, g, h0, 0.0, 1.0, Hooke{s.k}});
+  const double t_ball = 2.0 * static_cast<double>(s.bounces) * t0;  // the n-th rigid impact is at (2n - 1) t0
+  const SolveOptions ball_span{.t_end = t_ball, .sample_dt = t_ball / 2000};
+  auto ball_run = [&](const std::string& method, const std::string& setting, double value) {
+    Method mt{.name = method, .integrator = {.max_steps = 10000000}};
+    runs.push_back(
+        {"ball", method, setting, value, ball, setting == "exact" ? mt : with_setting(mt, value), ball_span});
+  };
+  for (const std::string method :
+       {"game-euler", "game-symplectic", "game-euler-spring", "game-symplectic-spring", "penalty",
+        "event-ode", "game-implicit-spring", "sequential-impulses", "soft-step", "xpbd", "moreau-jean"}) {
+    const bool fixed = method_info(method).fixed_step;
+    for (double v : fixed ? s.dts : s.rtols) ball_run(method, fixed ? "dt" : "rtol", v);
+  }
+  ball_run("event-exact", "exact", 0.0);
+  for (const auto& name : cli::chosen(s.scenes, rigid::rigid_scene_names())) {
+    const rigid::SceneInfo& info = rigid::rigid_scene(name);
+    auto scene = std::make_shared<rigid::RigidScene>(info.make({}));
+    const SolveOptions span{.t_end = info.t_end, .sample_dt = info.t_end / 200};
+    for (const auto& method : kRigidMethods) {
+      const bool fixed = method_info(method).fixed_step;
+      for (double v : fixed ? s.rigid_dts : s.rigid_rtols)
+        runs.push_back(
+            {name, method, fixed ? "dt" : "rtol", v, scene, with_setting(rigid_method(method), v), span});
+    }
+  }
+  if (const auto [worst, over] = furthest_past_work_bound(runs); worst) {
+    const bool on_ball = worst->system == "ball";  // its work scales with the span, or with 1 / dt
+    const std::string why = *work_refusal(worst->settings, worst->span);
+    throw std::invalid_argument(
+        on_ball
+            ? fmt::format(
+                  "--bounces: value '{}' makes {} at dt = {:g} s take {}; accepted [1, {:.0f}] at these "
+                  "--dts",
+                  s.bounces, worst->method, worst->value, why,
+                  std::floor(static_cast<double>(s.bounces) / over))
+            : fmt::format("--rigid-dts: value '{:g}' makes {} on {} take {}; accepted [{:.3g}, inf) there",
+                          worst->value, worst->method, worst->system, why, worst->value * over));
+  }
+  return runs;
+}
+
+}  // namespace contact
