@@ -103,12 +103,13 @@ void BallChain::project(std::size_t i, VectorRef y) const {
   y[static_cast<Eigen::Index>(2 * i + 2)] += 0.5 * overlap;
 }
 
-void BallChain::apply_impulse(std::size_t i, double e, VectorRef y) const {
+double BallChain::apply_impulse(std::size_t i, double e, VectorRef y) const {
   // Normal from ball i to ball i+1; v_r.n = v_{i+1} - v_i = gap rate.
   const double inv_m = 1.0 / p_.m;
   const double J = -(1.0 + e) * gap_rate(i, y) / (inv_m + inv_m);
   y[static_cast<Eigen::Index>(2 * i + 1)] -= J * inv_m;
   y[static_cast<Eigen::Index>(2 * i + 3)] += J * inv_m;
+  return J;
 }
 
 void BallChain::apply_normal_impulse(std::size_t i, double lambda, VectorRef y) const {

@@ -53,11 +53,12 @@ void BallDrop::project(std::size_t, VectorRef y) const {
   y[0] += penetration * inv_m / (inv_m + kFloorInverseMass);
 }
 
-void BallDrop::apply_impulse(std::size_t, double e, VectorRef y) const {
+double BallDrop::apply_impulse(std::size_t, double e, VectorRef y) const {
   // Normal n = +1 from floor to ball; relative normal velocity v_r.n = v - 0.
   const double inv_m = 1.0 / p_.m;
   const double J = -(1.0 + e) * y[1] / (inv_m + kFloorInverseMass);
   y[1] += J * inv_m;
+  return J;
 }
 
 void BallDrop::propagate(ConstVectorRef y0, double dt, VectorRef y) const {

@@ -98,8 +98,10 @@ void BallStack::project(std::size_t i, VectorRef y) const {
   if (overlap > 0) push_apart(i, i ? 0.5 * overlap : overlap, 0, y);
 }
 
-void BallStack::apply_impulse(std::size_t i, double e, VectorRef y) const {
-  apply_normal_impulse(i, -(1.0 + e) * gap_rate(i, y) / inverse_mass(i, y), y);
+double BallStack::apply_impulse(std::size_t i, double e, VectorRef y) const {
+  const double J = -(1.0 + e) * gap_rate(i, y) / inverse_mass(i, y);
+  apply_normal_impulse(i, J, y);
+  return J;
 }
 
 void BallStack::settle(std::size_t i, VectorRef y) const {

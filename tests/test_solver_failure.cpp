@@ -52,7 +52,9 @@ class PoisonedBall final : public MechanicalSystem {
   double elastic_energy(std::size_t i, ConstVectorRef y) const override { return ball_.elastic_energy(i, y); }
   double restitution(std::size_t i) const override { return ball_.restitution(i); }
   void project(std::size_t i, VectorRef y) const override { ball_.project(i, y); }
-  void apply_impulse(std::size_t i, double e, VectorRef y) const override { ball_.apply_impulse(i, e, y); }
+  double apply_impulse(std::size_t i, double e, VectorRef y) const override {
+    return ball_.apply_impulse(i, e, y);
+  }
   void settle(std::size_t i, VectorRef y) const override { ball_.settle(i, y); }
 
  private:

@@ -195,10 +195,11 @@ void RigidScene::project(std::size_t i, VectorRef y) const {
   store_local(i, l, y);
 }
 
-void RigidScene::apply_impulse(std::size_t i, double e, VectorRef y) const {
+double RigidScene::apply_impulse(std::size_t i, double e, VectorRef y) const {
   Local l = local(i, y);
-  rigid::apply_impulse(l.bodies, l.contact, e);
+  const double J = rigid::apply_impulse(l.bodies, l.contact, e);
   store_local(i, l, y);
+  return J;
 }
 
 double RigidScene::inverse_mass(std::size_t i, ConstVectorRef y) const {

@@ -57,7 +57,7 @@ class BallChain final : public OneLawSystem,
   double gap_rate(std::size_t i, ConstVectorRef y) const override { return v(y, i + 1) - v(y, i); }
   double restitution(std::size_t) const override { return p_.e; }
   void project(std::size_t i, VectorRef y) const override;
-  void apply_impulse(std::size_t i, double e, VectorRef y) const override;
+  double apply_impulse(std::size_t i, double e, VectorRef y) const override;
   void settle(std::size_t i, VectorRef y) const override;
 
   // Ball i and i+1 take -lambda/m and +lambda/m: w = 2/m.

@@ -59,7 +59,7 @@ class BallDrop final : public MechanicalSystem,
   double elastic_energy(std::size_t, ConstVectorRef y) const override { return stored_energy(p_.law, -y[0]); }
   double restitution(std::size_t) const override { return p_.e; }
   void project(std::size_t i, VectorRef y) const override;
-  void apply_impulse(std::size_t i, double e, VectorRef y) const override;
+  double apply_impulse(std::size_t i, double e, VectorRef y) const override;
   void settle(std::size_t, VectorRef y) const override { y << 0.0, 0.0; }
 
   double inverse_mass(std::size_t, ConstVectorRef) const override { return 1.0 / p_.m; }

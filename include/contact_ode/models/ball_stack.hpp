@@ -46,7 +46,7 @@ class BallStack final : public OneLawSystem, public NormalImpulses, public Spher
 
   double restitution(std::size_t) const override { return p_.e; }
   void project(std::size_t i, VectorRef y) const override;
-  void apply_impulse(std::size_t i, double e, VectorRef y) const override;
+  double apply_impulse(std::size_t i, double e, VectorRef y) const override;
   void settle(std::size_t i, VectorRef y) const override;
 
   // The floor takes no share: w = 1/m for it, 2/m between two balls.

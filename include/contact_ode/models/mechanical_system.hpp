@@ -113,8 +113,11 @@ class ImpulseMap {
   virtual double restitution(std::size_t i) const = 0;
   // Projection: move the bodies apart along the normal, by inverse-mass share, until gap = 0.
   virtual void project(std::size_t i, VectorRef y) const = 0;
-  // Impulse J = -(1+e) v_r.n / (sum of inverse masses [+ angular terms]) along the normal.
-  virtual void apply_impulse(std::size_t i, double e, VectorRef y) const = 0;
+  // Impulse J = -(1+e) v_r.n / (sum of inverse masses [+ angular terms]) along the normal; returns
+  // J [N s] (0 where the contact does not approach). The kinetic energy it takes is then
+  // -J (u- + u+) / 2 exactly, u the gap rate before and after (the energy is quadratic in the
+  // velocities, which J changes by M^-1 G^T J): a method books it without the whole scene's energy.
+  virtual double apply_impulse(std::size_t i, double e, VectorRef y) const = 0;
   // Put contact i at rest on its surface (gap 0, no normal velocity).
   virtual void settle(std::size_t i, VectorRef y) const = 0;
 };

@@ -66,7 +66,7 @@ class RigidScene final : public MechanicalSystem, public NormalImpulses {
 
   double restitution(std::size_t i) const override;
   void project(std::size_t i, VectorRef y) const override;
-  void apply_impulse(std::size_t i, double e, VectorRef y) const override;
+  double apply_impulse(std::size_t i, double e, VectorRef y) const override;
   void settle(std::size_t i, VectorRef y) const override;
 
   double inverse_mass(std::size_t i, ConstVectorRef y) const override;
