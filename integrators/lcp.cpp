@@ -10,16 +10,19 @@ namespace {
 
 // Block pivots allowed without fewer infeasible indices before single flips (Júdice and Pires).
 constexpr int kBlockTrials = 3;
+// What a block solve's residual may be, relative to the largest right-hand side (below).
+constexpr double kResidual = 1e-10;
 
 // p_F of W_FF p_F = -b_F. W is semidefinite, and a principal block can be singular (redundant
 // contacts): LDLT first, the minimum-norm least-squares solution where LDLT's is not a solution.
 // A backward-stable solve leaves a residual of about eps cond(A) of r; a row of n contacts has
-// cond ~ 0.4 n^2 (4e5 at 1000), so 1e-10 passes every regular block and fails a singular one.
+// cond ~ 0.4 n^2 (4e5 at 1000), so kResidual passes every regular block and fails a singular one.
 Eigen::VectorXd solve_block(const Eigen::MatrixXd& A, const Eigen::VectorXd& r) {
   const Eigen::LDLT<Eigen::MatrixXd> ldlt(A);
   Eigen::VectorXd x = ldlt.solve(r);
   const double scale = std::max(r.cwiseAbs().maxCoeff(), 1e-300);
-  if (ldlt.info() == Eigen::Success && x.allFinite() && (A * x - r).cwiseAbs().maxCoeff() <= 1e-10 * scale)
+  if (ldlt.info() == Eigen::Success && x.allFinite() &&
+      (A * x - r).cwiseAbs().maxCoeff() <= kResidual * scale)
     return x;
   return Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(A).solve(r);
 }
@@ -32,6 +35,11 @@ LcpSolution solve_lcp(const Eigen::MatrixXd& W, const Eigen::VectorXd& b, std::v
   if (W.rows() != n || W.cols() != n || positive.size() != static_cast<std::size_t>(n))
     throw std::invalid_argument("solve_lcp: W must be n x n and the guess of length n, n = b's length");
   LcpSolution s{.p = Eigen::VectorXd::Zero(n)};
+  // w's own rounding: a solved block's w_F is zero only to its solve's residual, and a w that is
+  // exactly zero comes out of W p + b with the rounding of that product. Asked of w alone, a w_tol
+  // below it (1e-15 m/s on a falling 1500-ball column, the residual 2e-15) flipped a solved index
+  // out and back for ever. Moreau–Jean's sweeps take the answer on to w_tol.
+  const double w_floor = std::max(w_tol, kResidual * (n > 0 ? b.cwiseAbs().maxCoeff() : 0.0));
   std::vector<Eigen::Index> free, infeasible;
   std::size_t fewest = static_cast<std::size_t>(n) + 1;
   int trials = kBlockTrials;
@@ -59,8 +67,8 @@ LcpSolution solve_lcp(const Eigen::MatrixXd& W, const Eigen::VectorXd& b, std::v
       // A free index whose w is not zero: its block had no solution (a singular W), only the
       // least-squares one.
       const bool out = positive[static_cast<std::size_t>(i)]
-                           ? !(s.p(i) >= -w_tol / std::max(W(i, i), 1e-300) && std::abs(w(i)) <= w_tol)
-                           : !(w(i) >= -w_tol);
+                           ? !(s.p(i) >= -w_tol / std::max(W(i, i), 1e-300) && std::abs(w(i)) <= w_floor)
+                           : !(w(i) >= -w_floor);
       if (out) infeasible.push_back(i);
     }
     if (infeasible.empty()) {

@@ -19,12 +19,13 @@ namespace contact {
 struct LcpSolution {
   Eigen::VectorXd p;
   int solves = 0;  // linear solves on a principal block of W (pivot steps)
-  // p_i >= -p_tol_i, w_i >= -w_tol, and |w_i| <= w_tol where p_i > 0; else p is the last iterate.
+  // p_i >= -p_tol_i, w_i >= -w_floor, and |w_i| <= w_floor where p_i > 0; else p is the last iterate.
   bool solved = false;
 };
 
 // `positive`: the initial guess of the indices with p > 0. w_tol bounds the negative w allowed
-// (the velocities' tolerance); p's is w_tol / W_ii. At most max_solves pivot steps.
+// (the velocities' tolerance), raised to the rounding of w itself (w_floor: 1e-10 of the largest
+// |b|); p's is w_tol / W_ii. At most max_solves pivot steps.
 LcpSolution solve_lcp(const Eigen::MatrixXd& W, const Eigen::VectorXd& b, std::vector<bool> positive,
                       double w_tol, int max_solves);
 
