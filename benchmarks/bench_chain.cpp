@@ -6,9 +6,8 @@
 #include "contact_ode/integrators/penalty.hpp"
 #include "contact_ode/models/ball_chain.hpp"
 
-#include <benchmark/benchmark.h>
+#include "bench_repeated.hpp"
 
-#include <algorithm>
 #include <ctime>
 
 using namespace contact;
@@ -55,55 +54,16 @@ void Chain(benchmark::State& state, LinearSolverKind solver) {
   if (!r.ok()) state.SkipWithError(r.message.c_str());
 }
 
-double smallest(const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); }
-double largest(const std::vector<double>& v) { return *std::max_element(v.begin(), v.end()); }
+// Dense to 1e3, where its N^3 factorisations already take seconds; the others to 1e5.
+void up_to_1e3(benchmark::internal::Benchmark* b) { bench::repeated_sizes(b, 1000); }
+void up_to_1e5(benchmark::internal::Benchmark* b) { bench::repeated_sizes(b, 100000); }
 
 }  // namespace
 
-BENCHMARK_CAPTURE(Chain, dense, LinearSolverKind::Dense)
-    ->RangeMultiplier(10)
-    ->Range(10, 1000)
-    ->Iterations(1)
-    ->Repetitions(5)
-    ->ReportAggregatesOnly(true)
-    ->ComputeStatistics("min", smallest)
-    ->ComputeStatistics("max", largest)
-    ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(Chain, band, LinearSolverKind::Band)
-    ->RangeMultiplier(10)
-    ->Range(10, 100000)
-    ->Iterations(1)
-    ->Repetitions(5)
-    ->ReportAggregatesOnly(true)
-    ->ComputeStatistics("min", smallest)
-    ->ComputeStatistics("max", largest)
-    ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(Chain, klu, LinearSolverKind::Klu)
-    ->RangeMultiplier(10)
-    ->Range(10, 100000)
-    ->Iterations(1)
-    ->Repetitions(5)
-    ->ReportAggregatesOnly(true)
-    ->ComputeStatistics("min", smallest)
-    ->ComputeStatistics("max", largest)
-    ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(Chain, gmres, LinearSolverKind::Gmres)
-    ->RangeMultiplier(10)
-    ->Range(10, 100000)
-    ->Iterations(1)
-    ->Repetitions(5)
-    ->ReportAggregatesOnly(true)
-    ->ComputeStatistics("min", smallest)
-    ->ComputeStatistics("max", largest)
-    ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(Chain, gmres_band, LinearSolverKind::GmresBandPreconditioned)
-    ->RangeMultiplier(10)
-    ->Range(10, 100000)
-    ->Iterations(1)
-    ->Repetitions(5)
-    ->ReportAggregatesOnly(true)
-    ->ComputeStatistics("min", smallest)
-    ->ComputeStatistics("max", largest)
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(Chain, dense, LinearSolverKind::Dense)->Apply(up_to_1e3);
+BENCHMARK_CAPTURE(Chain, band, LinearSolverKind::Band)->Apply(up_to_1e5);
+BENCHMARK_CAPTURE(Chain, klu, LinearSolverKind::Klu)->Apply(up_to_1e5);
+BENCHMARK_CAPTURE(Chain, gmres, LinearSolverKind::Gmres)->Apply(up_to_1e5);
+BENCHMARK_CAPTURE(Chain, gmres_band, LinearSolverKind::GmresBandPreconditioned)->Apply(up_to_1e5);
 
 BENCHMARK_MAIN();

@@ -1,8 +1,8 @@
-// bench_report — turns the benchmark run (Google Benchmark JSON of bench_integrators and
-// bench_chain, the SciPy peer's JSON lines, the study's timing) into Markdown: the machine, its
-// load and the project's build type, one table per benchmark family (CPU time: median and range
-// of the repetitions), and every target of the study with its verdict computed from the numbers.
-// Usage: bench_report --build-type T --load L [--scipy P1.jsonl] [--timing TIMING.json] RESULT.json...
+// bench_report — turns the benchmark run (Google Benchmark JSON of bench_integrators,
+// bench_chain and bench_column, the SciPy peer's JSON lines, the study's timing) into Markdown: the machine,
+// its load and the project's build type, one table per benchmark family (CPU time: median and range of the
+// repetitions), and every target of the study with its verdict computed from the numbers. Usage: bench_report
+// --build-type T --load L [--scipy P1.jsonl] [--timing TIMING.json] RESULT.json...
 #include "contact_ode/analysis/fit.hpp"
 
 #include <fmt/format.h>
@@ -295,6 +295,19 @@ int main(int argc, char** argv) try {
                  verdict(speedup >= 100));
     }
   }
+  // Not an issue target: each fixed-step method's cost per step on the column, from N = 100 to 1e3.
+  std::vector<std::string> column;
+  for (const auto& c : cases)
+    if (c.family == "Column" && c.arg == 1000)
+      if (const Case* small = find("Column", c.variant, 100);
+          small && !c.median.value("error_occurred", false))
+        column.push_back(fmt::format(
+            "{} N^{:.2f}", c.variant,
+            contact::fit_power_law({100, 1000}, {num(small->median, "cpu_time"), num(c.median, "cpu_time")})
+                .exponent));
+  if (!column.empty())
+    fmt::print("- column (not a target; linear expected): CPU per step grows from N = 100 to 1e3 as {}\n",
+               fmt::join(column, ", "));
   if (!timing_path.empty()) {
     const json t = json::parse(read_text(timing_path));
     const double total = t.value("study_s", NAN) + t.value("paper_s", NAN);

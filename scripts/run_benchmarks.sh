@@ -20,6 +20,8 @@ echo "run_benchmarks: integrators (P1 and the exact bounces nine times each, the
 build/benchmarks/bench_integrators --benchmark_out="$out/integrators.json" --benchmark_out_format=json >/dev/null
 echo "run_benchmarks: the chain, N = 10 ... 1e5, five times each"
 build/benchmarks/bench_chain --benchmark_out="$out/chain.json" --benchmark_out_format=json >/dev/null
+echo "run_benchmarks: the fixed-step methods on a column, N = 10 ... 1e3, five times each"
+build/benchmarks/bench_column --benchmark_out="$out/column.json" --benchmark_out_format=json >/dev/null
 
 # P1 for SciPy: the same Kelvin–Voigt law, c = 2 zeta sqrt(k m) with zeta tuned to e = 0.8
 # (models/contact_law.hpp: zeta = -ln e / sqrt(pi^2 + ln^2 e)), nine solves each.
@@ -47,7 +49,7 @@ fi
 echo "$timing}" > "$out/timing.json"
 
 build/benchmarks/bench_report --build-type "$build_type" --load "$load" --scipy "$out/scipy_p1.jsonl" \
-  --timing "$out/timing.json" "$out/integrators.json" "$out/chain.json" > benchmarks/RESULTS.md.tmp
+  --timing "$out/timing.json" "$out/integrators.json" "$out/chain.json" "$out/column.json" > benchmarks/RESULTS.md.tmp
 mv benchmarks/RESULTS.md.tmp benchmarks/RESULTS.md
 echo "wrote benchmarks/RESULTS.md"
 grep -A30 '^## Targets' benchmarks/RESULTS.md
