@@ -9,8 +9,8 @@
 // is larger. Gauss–Seidel needs ~3 n^2 sweeps for that on a row of n touching contacts, so after
 // 100 sweeps the step's LCP is solved exactly instead (lcp.hpp: block principal pivoting from
 // Gauss–Seidel's guess, up to 3000 closed contacts), and the sweeps go on from its answer (a
-// failure to converge in 10000 is a typed ConvergenceFailure). With one contact u+ = -e u exactly, at every step: the
-// restitution is that of the law, whatever h (tests).
+// failure to converge in 10000 is a typed ConvergenceFailure). With one contact u+ = -e u
+// exactly, at every step: the restitution is that of the law, whatever h (tests).
 #include "contact_ode/integrators/capabilities.hpp"
 #include "contact_ode/integrators/method_registry.hpp"
 #include "contact_ode/integrators/status.hpp"
