@@ -35,7 +35,16 @@ class BenchReportCli : public CliTest {
         << "{\"name\": \"Chain/band/10000/repeats:5_median\", \"cpu_time\": 10, \"time_unit\": \"ms\", "
            "\"time_per_sim_s\": 10.0},\n"
         << "{\"name\": \"Chain/band/100000/repeats:5_median\", \"error_occurred\": true, \"error_message\": "
-           "\"max-steps\"}\n"
+           "\"max-steps\"},\n"
+        << "{\"name\": \"Column/xpbd/100/repeats:5_median\", \"cpu_time\": 1, \"time_unit\": \"ms\"},\n"
+        << "{\"name\": \"Column/xpbd/1000/repeats:5_median\", \"cpu_time\": 10, \"time_unit\": \"ms\"},\n"
+        << "{\"name\": \"Column/moreau_jean/100/repeats:5_median\", \"cpu_time\": 1, \"time_unit\": "
+           "\"ms\"},\n"
+        << "{\"name\": \"Column/moreau_jean/1000/repeats:5_median\", \"cpu_time\": 100, \"time_unit\": "
+           "\"ms\"},\n"
+        << "{\"name\": \"Column/soft_step/100/repeats:5_median\", \"cpu_time\": 1, \"time_unit\": \"ms\"},\n"
+        << "{\"name\": \"Column/soft_step/1000/repeats:5_median\", \"error_occurred\": true, "
+           "\"error_message\": \"diverged\"}\n"
         << "]}\n";
     std::ofstream scipy(dir_ / "scipy.jsonl");
     for (const auto& method : peers) {
@@ -84,6 +93,18 @@ TEST_F(BenchReportCli, AFailedChainSizeFailsTheLinearTarget) {
             std::string::npos)
       << r.out;
   EXPECT_NE(r.out.find("chain: 2 cases ran, 1 failed"), std::string::npos) << r.out;
+}
+
+// The column line fits each method's growth per step from N = 100 to 1e3 (x10 in CPU: N^1, x100:
+// N^2) and leaves out a method whose 1e3 case failed, rather than fitting a missing time.
+TEST_F(BenchReportCli, TheColumnLineFitsEachMethodsGrowthAndLeavesOutAFailedSize) {
+  write_inputs({"BDF", "Radau", "LSODA", "RK45"});
+  const Outcome r = report();
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("CPU per step grows from N = 100 to 1e3 as xpbd N^1.00, moreau_jean N^2.00\n"),
+            std::string::npos)
+      << r.out;
+  EXPECT_EQ(r.out.find("soft_step N^"), std::string::npos) << r.out;
 }
 
 TEST_F(BenchReportCli, UnknownOptionsAreRefused) {
