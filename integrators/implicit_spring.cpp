@@ -7,7 +7,7 @@
 // and an LU, to 1e-12 of the state's size, each contact's mode read off the iterate: sparse on the
 // Jacobian's fixed pattern (analysed once) where the scene declares a narrow band (a chain, a
 // column), dense otherwise (a 1000-ball column's dense 2001 x 2001 LU, formed whenever a contact
-// engaged, made its 2 s take over 5 minutes; the sparse one, 11 s). The
+// engaged, made its 2 s take over 5 minutes; the sparse one, 1 s). The
 // LU of I - h J is kept across iterations and steps (a chord method, as CVODE keeps its Newton
 // matrix): forming it costs a Jacobian, n right-hand sides by difference quotients, and an O(n^3)
 // factorization, against one right-hand side per iteration. It is formed again when the modes

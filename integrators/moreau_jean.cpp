@@ -116,6 +116,7 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
     // times the largest: a floor no sweep goes below. (A box spinning at 4 rad/s touching at
     // 8e-5 m/s was asked for 1e-12 of that, 8e-17 m/s, and failed at 1e-16 after 10000 sweeps.)
     const double round_off = 64 * std::numeric_limits<double>::epsilon() * y.cwiseAbs().maxCoeff();
+    const auto closed = static_cast<std::size_t>(std::count(active.begin(), active.end(), true));
     for (int sweep = 1;; ++sweep) {
       double change = 0;
       for (std::size_t i = 0; i < nc; ++i) {
@@ -128,7 +129,6 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
       stats.newton_iters += 1;
       const double tolerance = std::max(kLcpTolerance * scale, round_off);
       if (change <= tolerance || change == 0) break;
-      const auto closed = static_cast<std::size_t>(std::count(active.begin(), active.end(), true));
       if (sweep == kSweepsBeforeExact && closed <= kMaxExact)
         solve_exactly(geo, normal, law, active, u0, tolerance, P, y, stats);
       if (sweep == kMaxSweeps)
