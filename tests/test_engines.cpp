@@ -234,6 +234,34 @@ TEST(Mujoco, ASceneItRefusesIsASolverErrorAtTheStart) {
   EXPECT_NE(r.message.find("MuJoCo could not load the scene"), std::string::npos) << r.message;
 }
 
+// MuJoCo's contact buffer holds 100 contacts unless the model says more. A 150-ball column at its
+// defaults dropped every contact past the hundredth: the top fifty balls fell through the rest
+// as in free fall, g t^2 / 2 = 4.9 m in 1 s, and the run 'succeeded' (MuJoCo only warned, into
+// MUJOCO_LOG.TXT). Given room for the scene's 150 contacts, the top ball is held: its soft
+// contacts at MuJoCo's defaults let the column sink 2.7 m (measured), not 4.9.
+TEST(Mujoco, AColumnTallerThanItsDefaultContactBufferKeepsEveryContact) {
+  REQUIRE_ENGINE("mujoco");
+  const std::size_t n = 150;
+  const RunResult r =
+      solve(BallStack({.n = n}), {.name = "mujoco", .dt = 1e-3}, {.t_end = 1.0, .sample_dt = 1.0});
+  ASSERT_TRUE(r.ok()) << r.message;
+  const double free_fall = 0.5 * 9.81 * 1.0 * 1.0;
+  EXPECT_GT(r.samples.back().y[static_cast<Eigen::Index>(2 * (n - 1))], -0.8 * free_fall);
+}
+
+// A bad number in MuJoCo's state (NaN, or past 1e10, in qacc here: the ball-drop spring at
+// k = 1e14 with a 1 ms step) makes MuJoCo reset the simulation to its initial state and go on, and
+// the run 'succeeded' with a ball back at its drop height. It is a typed failure, with MuJoCo's
+// warning, at the impact (t0 = sqrt(2 h0 / g) = 0.4515 s, the step after it).
+TEST(Mujoco, AStateMujocoResetsForItsBadNumbersIsASolverError) {
+  REQUIRE_ENGINE("mujoco-spring");
+  const RunResult r =
+      solve(BallDrop({.law = Hooke{1e14}}), {.name = "mujoco-spring", .dt = 1e-3}, {.t_end = 1.0});
+  EXPECT_EQ(r.status, Status::SolverError);
+  EXPECT_NEAR(r.t_reached, std::sqrt(2 / 9.81), 2e-3);
+  EXPECT_NE(r.message.find("MuJoCo: Nan, Inf or huge value in QACC"), std::string::npos) << r.message;
+}
+
 // Siconos event-driven: the impacts are events located by LSODAR (rtol 1e-10, atol 1e-12), so
 // the apexes after them, which the sampling loop interpolates exactly in free flight, are the
 // closed form's e^(2n) h0 at the closed form's times to that tolerance (1e-8 on ~1 m and ~1 s),

@@ -10,19 +10,34 @@
 //                  follows the reference almost exactly), frictionless (condim 1). MuJoCo's contact
 //                  force is clamped at >= 0: the no-pull Kelvin-Voigt law.
 // 2.2.2 loads XML from a file or its virtual file system, not a string: the model goes through
-// the latter.
+// the latter. Its contact and constraint buffers are fixed when the model is made (100 contacts
+// and 500 constraint rows unless the XML says otherwise): a scene with more contacts is given
+// room for all of them, as a user building it would (MuJoCo's warning says to), and a buffer that
+// still fills ends the run as a typed failure with MuJoCo's warning. A full buffer drops contacts:
+// a 1000-ball column's top ball fell freely through the rest (sink g t^2 / 2), and MuJoCo's
+// default warning handler wrote MUJOCO_LOG.TXT into the working directory, which is now left
+// to the run's own report.
 #include "engine_world.hpp"
 
 #include <fmt/format.h>
 #include <mujoco/mujoco.h>
 
+#include <algorithm>
 #include <cstring>
 #include <memory>
+#include <mutex>
 #include <stdexcept>
 
 namespace contact {
 
 namespace {
+
+// MuJoCo 2.2.2's buffer sizes when the XML gives none.
+constexpr std::size_t kMujocoContacts = 100, kMujocoRows = 500;
+
+// MuJoCo's warnings are read from mjData after each step (below); its default handler would also
+// print them and append them to MUJOCO_LOG.TXT in the working directory.
+void quiet_warning(const char*) {}
 
 struct ModelDeleter {
   void operator()(mjModel* m) const { mj_deleteModel(m); }
@@ -46,6 +61,10 @@ std::string scene_xml(const EngineScene& s, bool spring) {
   std::string xml =
       fmt::format(R"(<mujoco model="contact-ode"><option timestep="{:.17g}" gravity="0 0 {:.17g}"/>)", s.dt,
                   l.vertical ? -l.g : 0.0);
+  // Every contact the scene can close, each at most 4 rows (condim 3's pyramid; 1 for condim 1),
+  // where MuJoCo's own sizes do not suffice (they do for every scene of the study).
+  if (const std::size_t contacts = s.law.size(); contacts > kMujocoContacts)
+    xml += fmt::format(R"(<size nconmax="{}" njmax="{}"/>)", contacts, std::max(kMujocoRows, 4 * contacts));
   const char* own_collision = spring ? R"( contype="0" conaffinity="0")" : "";
   xml += "<worldbody>";
   if (l.floor) xml += fmt::format(R"(<geom name="floor" type="plane" size="10 10 0.1"{}/>)", own_collision);
@@ -72,6 +91,8 @@ std::string scene_xml(const EngineScene& s, bool spring) {
 class MujocoWorld final : public EngineWorld {
  public:
   MujocoWorld(const EngineScene& s, bool spring) : scene_(s) {
+    static std::once_flag quiet;
+    std::call_once(quiet, [] { mju_user_warning = quiet_warning; });
     const std::string xml = scene_xml(s, spring);
     std::unique_ptr<mjVFS, VfsDeleter> vfs(new mjVFS);
     mj_defaultVFS(vfs.get());
@@ -82,7 +103,9 @@ class MujocoWorld final : public EngineWorld {
     std::memcpy(vfs->filedata[file], xml.data(), xml.size());
     char error[1000] = "";
     model_.reset(mj_loadXML("scene.xml", vfs.get(), error, sizeof error));
-    if (!model_) throw EngineError(fmt::format("MuJoCo could not load the scene: {}", error));
+    if (!model_)  // its constraint matrices are dense: (4 n)^2 numbers for n contacts (n = 1e4: 13 GB)
+      throw EngineError(
+          fmt::format("MuJoCo could not load the scene ({} contacts): {}", s.law.size(), error));
     data_.reset(mj_makeData(model_.get()));
     if (!data_) throw std::runtime_error("MuJoCo: mj_makeData returned NULL");
     for (std::size_t b = 0; b < s.velocity.size(); ++b) data_->qvel[b] = s.velocity[b];
@@ -91,6 +114,12 @@ class MujocoWorld final : public EngineWorld {
   void step(double h) override {
     model_->opt.timestep = h;
     mj_step(model_.get(), data_.get());
+    // A full buffer drops contacts, and a bad number (NaN or past 1e10 in qpos, qvel or qacc) makes
+    // MuJoCo reset the simulation to its initial state and go on: either way the run's answer is
+    // no longer the scene's.
+    for (int w = 0; w < mjNWARNING; ++w)
+      if (data_->warning[w].number > 0)
+        throw EngineError(fmt::format("MuJoCo: {}", mju_warningText(w, data_->warning[w].lastinfo)));
   }
 
   void read(std::vector<double>& centre, std::vector<double>& velocity) const override {
