@@ -82,13 +82,15 @@ void refuse_what_cannot_fit(const Dynamics& scene, const MethodInfo& info, const
   samples = std::min(samples + 1, static_cast<double>(options.limits.max_samples));
   const bool integrates = std::ranges::find(info.settings, "integrator") != info.settings.end();
   const double vectors = integrates ? 16 : 8;
-  const double bytes = 8 * entries * (vectors + samples);
+  const double dense = info.dense_state_matrix ? entries : 0.0;  // a dense n x n matrix: n more vectors
+  const double bytes = 8 * entries * (vectors + dense + samples);
   if (bytes <= options.limits.max_memory_bytes) return;
   throw std::invalid_argument(fmt::format(
       "{} on {} needs at least {:.4g} GB ({:.3g} output samples of its {:.3g} state values, and {:.0f} "
-      "working vectors); a run may hold {:.3g} GB (half this machine's memory): fewer bodies, a shorter "
+      "working vectors{}); a run may hold {:.3g} GB (half this machine's memory): fewer bodies, a shorter "
       "t_end or a wider sample_dt",
       info.name, scene.name(), bytes / 1e9, samples, entries, vectors,
+      dense > 0 ? fmt::format(" and a dense {:.3g} x {:.3g} matrix", entries, entries) : "",
       options.limits.max_memory_bytes / 1e9));
 }
 

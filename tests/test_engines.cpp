@@ -325,6 +325,25 @@ TEST(EngineRuns, EndAtTheSpansEndWhereTheStepDoesNotDivideIt) {
 
 // Siconos keeps event times as integers of 1e-16 s ticks converted from doubles: a step beyond the
 // integer's double range raised SIGFPE inside GMP, killing the program. A typed failure now.
+// Siconos' LSODAR integrates every state with a dense Jacobian, (2 n)^2 numbers for n balls: the
+// run's memory check counts it, so a chain whose matrix cannot fit is refused before Siconos
+// allocates it (3e4 balls: 29 GB, past half of a 24 GB machine). Here the limit is lowered to 1 MB:
+// 300 balls' 600 x 600 matrix (2.9 MB) is refused, while their vectors alone (8 of 600 values,
+// and the two samples) fit, as they do for a method without the matrix.
+TEST(Siconos, AChainWhoseDenseJacobianCannotFitIsRefusedBeforeItStarts) {
+  REQUIRE_ENGINE("siconos");
+  const BallChain chain({.n = 300});
+  SolveOptions span{.t_end = 1e-3, .sample_dt = 1e-3};
+  span.limits.max_memory_bytes = 1e6;
+  try {
+    solve(chain, {.name = "siconos", .dt = 1e-3}, span);
+    ADD_FAILURE() << "a 600 x 600 dense matrix passed a 1 MB limit";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("a dense 600 x 600 matrix"), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(solve(chain, {.name = "sequential-impulses", .dt = 1e-3}, span).ok());
+}
+
 TEST(Siconos, AStepBeyondItsClockIsASolverError) {
   REQUIRE_ENGINE("siconos");
   const BallDrop ball({.m = 1.0, .law = Hooke{1e5}});

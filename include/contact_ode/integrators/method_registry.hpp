@@ -68,6 +68,9 @@ struct MethodInfo {
   // The sub-steps or solver sweeps each of its fixed steps makes (sequential impulses' iterations,
   // soft step's and XPBD's sub-steps); empty: one. The run's work bound counts steps times these.
   std::function<int(const Method&)> passes;
+  // Holds a dense matrix of the state's size whatever the scene (Siconos' LSODAR integrates every
+  // state with a dense Jacobian): 8 n^2 bytes more in the memory a run is checked for.
+  bool dense_state_matrix = false;
 };
 
 // The settings of a method that runs an ODE integrator (IntegratorOptions): a fixed step ("dt")
