@@ -1,6 +1,7 @@
 #include "gsl_integrator.hpp"
 
 #include "contact_ode/integrators/gsl_handles.hpp"
+#include "dense_limit.hpp"
 #include "stepping_integrator.hpp"
 
 #include <fmt/format.h>
@@ -33,6 +34,13 @@ class GslIntegrator final : public SteppingIntegrator {
         analytic_(o.jacobian == JacobianMode::Analytic && static_cast<bool>(sys_.jacobian)),
         n_(static_cast<std::size_t>(y0.size())),
         fd_(y0.size()) {
+    // bsimp and msbdf each hold two dense n x n matrices (the Jacobian and the iteration matrix),
+    // and a one-step method has a second stepper for dense output: 29 GB for a 15000-ball chain,
+    // which overcommit would grant a matrix at a time.
+    if (type_ == gsl_odeiv2_step_bsimp || multistep_)
+      refuse_dense_beyond_limit(
+          static_cast<double>(n_), multistep_ ? 2 : 4,
+          "use a SUNDIALS integrator, whose band, klu or gmres linear solver scales with n");
     gsl_sys_ = {&GslIntegrator::function, &GslIntegrator::jacobian, n_, this};
     const double h0 = o.dt > 0 ? o.dt : 1e-6;
     driver_.reset(gsl_odeiv2_driver_alloc_y_new(&gsl_sys_, type_, h0, o.atol, o.rtol));

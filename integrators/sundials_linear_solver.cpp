@@ -1,5 +1,7 @@
 #include "sundials_linear_solver.hpp"
 
+#include "dense_limit.hpp"
+
 #include <sunlinsol/sunlinsol_band.h>
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunlinsol/sunlinsol_klu.h>
@@ -18,11 +20,6 @@ namespace contact::sundials {
 
 namespace {
 
-// Dense matrices above this size are refused before allocation: 4 GiB is a sixth of this
-// machine's memory, and a larger request either fails (SUNDenseMatrix returns NULL, which used to
-// be dereferenced) or is granted by overcommit and thrashes. Band, KLU and GMRES scale linearly.
-constexpr double kMaxDenseBytes = 4.0 * 1024 * 1024 * 1024;
-
 template <class Handle>
 void require(const Handle& h, const char* what, sunindextype n) {
   if (!h)
@@ -40,13 +37,7 @@ LinearSystem make_linear_system(LinearSolverKind kind, N_Vector y, Bandwidth ban
     case LinearSolverKind::Auto:
       throw std::logic_error("make_linear_system: 'auto' is resolved by the caller (has_narrow_band)");
     case LinearSolverKind::Dense: {
-      const double bytes = 8.0 * static_cast<double>(n) * static_cast<double>(n);
-      if (bytes > kMaxDenseBytes)
-        throw SolverFailure(
-            Status::WorkLimit, 0.0,
-            fmt::format("a dense {0} x {0} Jacobian needs {1:.3g} GiB (at most {2:g}): use the band, "
-                        "klu or gmres linear solver",
-                        n, bytes / (1 << 30), kMaxDenseBytes / (1 << 30)));
+      refuse_dense_beyond_limit(static_cast<double>(n), 1, "use the band, klu or gmres linear solver");
       ls.matrix.reset(SUNDenseMatrix(n, n, ctx));
       require(ls.matrix, "SUNDenseMatrix", n);
       ls.solver.reset(SUNLinSol_Dense(y, ls.matrix.get(), ctx));

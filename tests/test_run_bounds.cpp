@@ -188,6 +188,23 @@ TEST(RunBounds, ADenseJacobianBeyondFourGibIsAWorkLimit) {
   EXPECT_NE(r.message.find("band, klu or gmres"), std::string::npos) << r.message;
 }
 
+// GSL's implicit steppers hold dense n x n matrices too (bsimp and msbdf two each, and a one-step
+// method a second stepper for dense output), which nothing counted: at 15000 balls bsimp's four
+// would be 29 GB, each granted by overcommit on its own. The same 4 GiB bound now holds there:
+// bsimp at 6000 balls (12001 states, 4 matrices: 4.29 GiB) and msbdf at 8200 (16401, 2: 4.01 GiB)
+// are refused at t = 0, naming what scales.
+TEST(RunBounds, GslsDenseMatricesBeyondFourGibAreAWorkLimit) {
+  for (const auto& [integrator, balls] :
+       {std::pair<std::string, std::size_t>{"gsl-bsimp", 6000}, {"gsl-msbdf", 8200}}) {
+    const BallChain chain({.n = balls, .law = Hooke{1e6}});
+    const RunResult r = solve(chain, {.name = "penalty", .integrator = {.method = integrator}},
+                              {.t_end = 1e-9, .sample_dt = 1e-9});
+    EXPECT_EQ(r.status, Status::WorkLimit) << integrator;
+    EXPECT_EQ(r.t_reached, 0.0) << integrator;
+    EXPECT_NE(r.message.find("(at most 4): use a SUNDIALS integrator"), std::string::npos) << r.message;
+  }
+}
+
 // A drop of 1e-9 m with e = 1 at atol = 1e-10: every bounce is below what the flight resolves.
 // It used to come to rest at the first impact having lost 99 % of its energy, with success.
 TEST(RunBounds, EventFlightBelowItsToleranceFailsTyped) {
