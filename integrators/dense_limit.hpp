@@ -22,7 +22,7 @@ inline void refuse_dense_beyond_limit(double n, int count, const std::string& in
     throw SolverFailure(
         Status::WorkLimit, 0.0,
         fmt::format("a dense {0:.0f} x {0:.0f} Jacobian{1} {2:.3g} GiB (at most {3:g}): {4}", n,
-                    count > 1 ? fmt::format(" and its {} working copies need", count - 1) : " needs",
+                    count > 1 ? fmt::format(" and {} more of its size need", count - 1) : " needs",
                     bytes / (1 << 30), kMaxDenseBytes / (1 << 30), instead));
 }
 
