@@ -11,7 +11,6 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
-#include <utility>
 #include <vector>
 
 namespace contact {
@@ -55,21 +54,6 @@ inline std::vector<double> halved_steps(const std::string& option, double dt_max
   std::vector<double> steps;
   for (int j = 0; j <= h; ++j) steps.push_back(std::ldexp(dt_max, -j));
   return steps;
-}
-
-// The run (a Job with a Method `settings` and a SolveOptions `span`) furthest past its work bound
-// (fixed_step_work over RunLimits::max_steps) and how far, or nullptr and 1 if none is. A sweep
-// refuses it before the first run starts: energy_drift's sequential impulses at --bounces 10000
-// were refused as a work limit after 42 s of the other runs.
-template <class Job>
-std::pair<const Job*, double> furthest_past_work_bound(const std::vector<Job>& jobs) {
-  std::pair<const Job*, double> worst{nullptr, 1.0};
-  for (const Job& job : jobs)
-    if (const double over =
-            fixed_step_work(job.settings, job.span) / static_cast<double>(job.span.limits.max_steps);
-        over > worst.second)
-      worst = {&job, over};
-  return worst;
 }
 
 // Tolerances from `loosest` down to `tightest` (within rounding), a decade apart.

@@ -42,8 +42,7 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
   const auto n = static_cast<Eigen::Index>(scene.state_size());
   ContactModes modes, formed_with;  // the iterate's modes; those the LU was formed with
   SparseMatrix J;
-  const Bandwidth band = scene.jacobian_bandwidth();
-  const bool sparse = scene.has_jacobian() && band.lower + band.upper + 1 < n;
+  const bool sparse = scene.has_jacobian() && scene.jacobian_bandwidth().narrower_than(n);
   Eigen::MatrixXd A(sparse ? 0 : n, sparse ? 0 : n);
   Eigen::PartialPivLU<Eigen::MatrixXd> lu(sparse ? 0 : n);  // sized once: iterations allocate nothing
   SparseMatrix S;                                           // I - h J on the Jacobian's pattern

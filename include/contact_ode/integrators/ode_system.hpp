@@ -46,10 +46,9 @@ inline Bandwidth band_or_full(const OdeSystem& sys) {
   return sys.bandwidth.value_or(Bandwidth{.lower = full, .upper = full});
 }
 
-// Band storage pays where the declared band is narrower than the system (bench_chain: 1.5x faster
-// than dense at 10 balls, 12x at 100, 160x at 1000).
+// Whether the system declares a band narrower than itself (Bandwidth::narrower_than).
 inline bool has_narrow_band(const OdeSystem& sys) {
-  return sys.bandwidth && sys.bandwidth->lower + sys.bandwidth->upper + 1 < static_cast<long>(sys.size);
+  return sys.bandwidth && sys.bandwidth->narrower_than(static_cast<long>(sys.size));
 }
 
 }  // namespace contact

