@@ -55,8 +55,9 @@ void RunRecorder::sample(double t, ConstVectorRef y, double dissipated) {
         fmt::format("t_end / sample_dt = {:.3g} output samples; at most {} are kept: raise the "
                     "sample spacing",
                     grid, limits_.max_samples));
-  result_.samples.push_back({t, y, energy(y), dissipated});
-  check_diverged(t, y);  // after the push: the failed run's last sample shows the state
+  const double e = energy(y);
+  result_.samples.push_back({t, y, e, dissipated});
+  check_diverged(t, y, e + dissipated - result_.energy0);  // after the push: the last sample shows it
   // Fixed-step methods sample at step ends: skip every grid time this sample stands for, in one
   // jump (a step may stand for many grid times).
   if (next_sample_ < 0) return;
@@ -77,21 +78,30 @@ void RunRecorder::check_records(double t) const {
                     limits_.max_records));
 }
 
-void RunRecorder::check_diverged(double t, ConstVectorRef y) const {
+void RunRecorder::check_diverged(double t, ConstVectorRef y, double gain) const {
   if (y.size() == 0 || !y.allFinite()) return;  // a non-finite state is the methods' own failure
   Eigen::Index at = 0;
   const double largest = y.cwiseAbs().maxCoeff(&at);
-  const double bound = limits_.max_state_growth * state_scale_;
-  if (largest > bound) {
+  const double energy_scale = std::abs(result_.energy0) > 0 ? std::abs(result_.energy0) : 1.0;
+  std::string what;
+  if (largest > limits_.max_state_growth * state_scale_) {
     const auto i = static_cast<std::size_t>(at);
-    throw SolverFailure(
-        Status::Diverged, t,
-        fmt::format("{} = {:.3g} is more than {:g} times the initial state's largest entry (or 1): the "
-                    "method is unstable at these settings (a fixed step beyond its stability bound: "
-                    "contact_advisor gives a stable one)",
-                    i < result_.state_labels.size() ? result_.state_labels[i] : fmt::format("y[{}]", i),
-                    y[at], limits_.max_state_growth));
+    what = fmt::format("{} = {:.3g} is more than {:g} times the initial state's largest entry (or 1)",
+                       i < result_.state_labels.size() ? result_.state_labels[i] : fmt::format("y[{}]", i),
+                       y[at], limits_.max_state_growth);
+  } else if (gain > limits_.max_energy_gain * energy_scale) {
+    what = fmt::format(
+        "the energy (with what the run booked as lost) rose {:.3g} J above its initial {:.3g} J, "
+        "more than {:g} times |E0| (or 1 J)",
+        gain, result_.energy0, limits_.max_energy_gain);
+  } else {
+    return;
   }
+  throw SolverFailure(
+      Status::Diverged, t,
+      what +
+          ": the method is unstable at these settings (a fixed step beyond its "
+          "stability bound: contact_advisor gives a stable one; or a tolerance that lets the error grow)");
 }
 
 std::optional<std::string> fixed_step_work_refusal(double steps, int passes, const RunLimits& limits) {

@@ -160,10 +160,12 @@ TEST(GameStep, NonFiniteStateIsReportedWithTheTimeReached) {
   const SpringMass spring(1.0, 1e14, 1.0, 0.0);
   const RunResult r = run_game(
       spring, {.dt = 1e-3, .scheme = FixedStepScheme::ExplicitEuler, .resolution = GameResolution::Spring},
-      // The divergence guard (a sampled entry past 1e10 times its start) would stop it first.
+      // The divergence guards (a sampled entry past 1e10 times its start, the energy past 1e6 E0)
+      // would stop it first.
       {.t_end = 1.0,
        .sample_dt = 0.01,
-       .limits = {.max_state_growth = std::numeric_limits<double>::infinity()}});
+       .limits = {.max_state_growth = std::numeric_limits<double>::infinity(),
+                  .max_energy_gain = std::numeric_limits<double>::infinity()}});
   EXPECT_EQ(r.status, Status::NonFiniteState);
   EXPECT_NEAR(r.t_reached, 0.075, 0.002);
   EXPECT_NE(r.message.find("not finite"), std::string::npos);

@@ -75,12 +75,14 @@ TEST(RunBounds, GameStepCountBeyondTheRunLimitFailsTyped) {
 // default chain (k = 1e6 N/m, 0.1 kg balls, omega_max = 2 sqrt(k/m) = 6325/s) at dt = 1 ms
 // (omega dt = 6.3, semi-implicit Euler's bound is 2) ended at 1e43 m/s under the spring game loops
 // and the penalty ODE under Euler alike. It now ends diverged where a speed passes 1e10 times the
-// initial state's largest entry (1 m/s), naming the entry. At dt = 0.1 ms (omega dt = 0.63) every
-// one runs, and so does explicit Euler's energy growth on the ball that energy_drift measures (a
-// speed gain of ~50: far below the line).
+// initial state's largest entry (1 m/s), naming the entry (the energy line, below, drawn off: it
+// comes first). At dt = 0.1 ms (omega dt = 0.63) every one runs, and so does explicit Euler's
+// energy growth on the ball that energy_drift measures (a speed gain of ~50: far below the line).
 TEST(RunBounds, AFixedStepBeyondItsStabilityBoundEndsDivergedNotWithTheExplodedState) {
   const BallChain chain{BallChainParams{}};
-  const SolveOptions span{.t_end = 0.05, .sample_dt = 1e-3};
+  const SolveOptions span{.t_end = 0.05,
+                          .sample_dt = 1e-3,
+                          .limits = {.max_energy_gain = std::numeric_limits<double>::infinity()}};
   Method euler_ode{.name = "penalty", .dt = 0.0};
   euler_ode.integrator.method = "euler";
   for (Method m :
@@ -109,6 +111,31 @@ TEST(RunBounds, AFixedStepBeyondItsStabilityBoundEndsDivergedNotWithTheExplodedS
       solve(ball, {.name = "game-euler-spring", .dt = 1e-3}, {.t_end = t_ball, .sample_dt = t_ball / 200});
   ASSERT_TRUE(grows.ok()) << grows.message;
   EXPECT_GT(grows.samples.back().energy, 1000 * grows.energy0);  // it does gain energy: ~2650 E0
+}
+
+// An unstable run whose state stays below the line above 'succeeded': on a column at dt = 1 ms the
+// fastest spring mode is past semi-implicit Euler's bound (omega dt = 2 sqrt(k/m) dt ~ 2 with two
+// springs a ball; 0.1 kg, k = 1e5 N/m), and the study's 16-ball column under game-symplectic-spring
+// ended at 2 s 'successful' with its top ball 6.6e9 m up (below 1e10) and 3.7e18 times its energy;
+// explicit Euler's 4-ball column 2e5 m up with 2e10 times its energy. The ledger's energy E + D can
+// only fall in a passive scene, and now a gain of 1e6 |E0| (1e3 in the speeds) ends the run as
+// diverged, at the first sample past it. The same column at 0.1 ms runs, to rounding.
+TEST(RunBounds, AnEnergyGainOfAMillionFoldEndsDivergedEvenWhereTheStateStaysBelowItsLine) {
+  const SolveOptions span{.t_end = 2.0, .sample_dt = 0.01};
+  for (const auto& [name, n] :
+       {std::pair{"game-symplectic-spring", 16.0}, std::pair{"game-euler-spring", 4.0}}) {
+    const auto column = make_scene("ball-stack", {{"n", n}, {"m", 0.1}, {"k", 1e5}}, "kelvin-voigt");
+    const RunResult r = solve(*column, {.name = name, .dt = 1e-3}, span);
+    EXPECT_EQ(r.status, Status::Diverged) << name << ": " << to_string(r.status) << " " << r.message;
+    EXPECT_NE(r.message.find("energy"), std::string::npos) << r.message;
+    EXPECT_NE(r.message.find("unstable at these settings"), std::string::npos) << r.message;
+    ASSERT_FALSE(r.samples.empty());
+    const auto& last = r.samples.back();  // shows the gain, and that the state line was not reached
+    EXPECT_GT(last.energy + last.dissipated - r.energy0, 1e6 * std::abs(r.energy0)) << name;
+    EXPECT_LT(last.y.cwiseAbs().maxCoeff(), 1e10) << name;
+    const RunResult stable = solve(*column, {.name = name, .dt = 1e-4}, span);
+    EXPECT_TRUE(stable.ok()) << name << " at 0.1 ms: " << stable.message;
+  }
 }
 
 // A span below a billionth of the step was no step at all: every fixed-step method (game loops,

@@ -12,7 +12,7 @@ enum class Status {
   ConvergenceFailure,  // Newton iteration failed repeatedly (CV_CONV_FAILURE)
   ErrorTestFailure,    // error test failed repeatedly or the step fell below the minimum
   NonFiniteState,      // the state or right-hand side became NaN or infinite
-  Diverged,            // the state grew past RunLimits::max_state_growth (an unstable step)
+  Diverged,            // the state or energy grew past RunLimits::max_state_growth or max_energy_gain
   ZenoLimit,           // event-driven: more impacts than allowed before reaching rest
   Unresolved,          // event-driven: an impact below what the flight's tolerance resolves
   NoProgress,          // the solver kept returning at the same time without advancing
