@@ -32,6 +32,10 @@ std::string Series::plot() const {
 }
 
 void Series::add(const std::string& rows, const std::string& clause) {
+  // A series without a row is left out: gnuplot skips its block with a warning, and a panel of
+  // only such series has nothing to autoscale a log axis on, a gnuplot error that ended the
+  // experiment (convergence_dt at --k 1e300, where every run fails).
+  if (rows.find_first_not_of(" \n") == std::string::npos) return;
   data_ += rows + "\n\n";
   plot_ += fmt::format("{}'data.csv' index {} {}", count_ ? ", " : "", count_, clause);
   ++count_;
@@ -59,6 +63,8 @@ Figure convergence_figure(const std::string& name, const std::string& xlabel, co
   for (const auto& [title, points] : series) {
     std::string rows;
     for (const auto& p : points) {
+      if (!(p.step > 0 && p.error > 0 && std::isfinite(p.step) && std::isfinite(p.error)))
+        continue;  // not on a log-log panel
       rows += fmt::format("{},{}\n", p.step, p.error);
       if (p.step >= x0) {
         y0 = p.step > x0 ? p.error : std::max(y0, p.error);
@@ -69,8 +75,10 @@ Figure convergence_figure(const std::string& name, const std::string& xlabel, co
               fmt::format("using 1:2 with linespoints {} title '{}'", series_style(lines.count()), title));
   }
   std::string plot = loglog(xlabel, ylabel) + "set key outside right font ',9'\nplot " + lines.plot();
-  for (const int p : slopes)
+  for (const int p : slopes) {
+    if (lines.empty()) break;  // a reference line needs a point to pass through
     plot += fmt::format(", {} * (x / {})**{} with lines dt 3 lc rgb 'gray50' title 'slope {}'", y0, x0, p, p);
+  }
   return {name, lines.data(), plot};
 }
 

@@ -7,8 +7,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -44,6 +46,26 @@ TEST(FigureBatch, AFailureNamesTheFigureThatFailed) {
     EXPECT_NE(what.find("gnuplot failed for broken"), std::string::npos) << what;
     EXPECT_NE(what.find("nonsense"), std::string::npos) << what;  // gnuplot's own message
   }
+}
+
+// A convergence panel whose every run failed: its series hold no point, or only errors a log axis
+// cannot show (NaN, inf, 0). gnuplot skipped each block and then refused to autoscale a log axis on
+// nothing ("logscaled axis must have positive range"), which ended convergence_dt at --k 1e300
+// with no output; the panel now says there is nothing to draw, and so does one such series beside
+// a drawn one by being left out.
+TEST(FigureBatch, AConvergencePanelWithoutAPointIsDrawnEmpty) {
+  const double nan = std::nan(""), inf = std::numeric_limits<double>::infinity();
+  const std::vector<contact::NamedPoints> failed = {{"no run", {}},
+                                                    {"failed runs", {{1e-3, nan}, {2e-3, inf}, {4e-3, 0.0}}}};
+  auto mixed = failed;
+  mixed.push_back({"drawn", {{1e-3, 1e-6}, {2e-3, 4e-6}}});
+  OutputSet out;
+  contact::render(contact::convergence_figure("empty", "dt", "error", failed, {1, 2}), out);
+  contact::render(contact::convergence_figure("mixed", "dt", "error", mixed, {1, 2}), out);
+  ASSERT_NO_THROW(contact::draw_figures(out));
+  EXPECT_NE(out.files().at("empty.gp").find("nothing to draw"), std::string::npos);
+  EXPECT_EQ(out.files().at("mixed-data.csv"), "0.001,1e-06\n0.002,4e-06\n\n\n");  // the drawn series alone
+  EXPECT_EQ(out.files().at("empty.png").substr(1, 3), "PNG");
 }
 
 TEST(FigureBatch, AnUndrawnFigureIsNotWrittenSilentlyAway) {
