@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include <cerrno>
+#include <cfloat>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -32,11 +33,19 @@ Check real_in(double lo, double hi, bool lo_open, bool hi_open) {
                  char* end = nullptr;
                  errno = 0;
                  const double v = std::strtod(begin, &end);
-                 const bool number = end != begin && *end == '\0' && errno != ERANGE && std::isfinite(v);
+                 const bool parsed = end != begin && *end == '\0';
+                 // strtod flags a value below the smallest normal double (4.9e-324, 1e-400) with
+                 // ERANGE, as it does one past the largest: refused either way, but it is finite.
+                 const bool underflow = parsed && errno == ERANGE && std::abs(v) < DBL_MIN;
+                 const bool number = parsed && errno != ERANGE && std::isfinite(v);
                  const bool inside = number && (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
                  if (inside) return {};
                  return fmt::format("value '{}' is {}; accepted range {}", s,
-                                    number ? "out of range" : "not a finite number", range);
+                                    underflow
+                                        ? fmt::format("below the smallest normal double ({:g})", DBL_MIN)
+                                    : number ? "out of range"
+                                             : "not a finite number",
+                                    range);
                }};
 }
 
