@@ -46,7 +46,7 @@ RunResult run_game(const Dynamics& model, const GameOptions& opt, const SolveOpt
   // Projection and impulses have no springs: the scene's spring energy at an overlap they leave
   // (a touching row resolved pair by pair in one step) was counted, 820 times the energy of a
   // chain at k = 1e9, whose springs these methods never use.
-  if (!spring) rec.exclude_spring_energy(geo);
+  if (!spring) rec.exclude_spring_energy();
 
   // Detection: the spring acts while its switching function is positive, impulses while the
   // bodies overlap. Both are "positive while in contact".

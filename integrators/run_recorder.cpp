@@ -151,10 +151,8 @@ void RunRecorder::use_energy(std::function<double(ConstVectorRef)> energy) {
   result_.energy0 = energy_(model_.initial_state());
 }
 
-void RunRecorder::exclude_spring_energy(const ContactGeometry& geo) {
-  const std::size_t nc = model_.contact_count();
-  use_energy(
-      [this, &geo, nc](ConstVectorRef y) { return model_.energy(y) - geo.engaged_elastic_energy(nc, y); });
+void RunRecorder::exclude_spring_energy() {
+  use_energy([this](ConstVectorRef y) { return model_.energy_without_springs(y); });
 }
 
 void RunRecorder::apex(std::size_t i, double t, double gap, double energy) {

@@ -90,9 +90,13 @@ void BallChain::jacobian(double, ConstVectorRef y, const ContactModes& modes, Sp
 }
 
 double BallChain::energy(ConstVectorRef y) const {
+  return energy_without_springs(y) + engaged_elastic_energy(y);
+}
+
+double BallChain::energy_without_springs(ConstVectorRef y) const {
   double E = 0;
   for (std::size_t b = 0; b < p_.n; ++b) E += 0.5 * p_.m * v(y, b) * v(y, b);
-  return E + engaged_elastic_energy(y);
+  return E;
 }
 
 void BallChain::project(std::size_t i, VectorRef y) const {

@@ -42,8 +42,12 @@ void BallDrop::jacobian(double, ConstVectorRef y, const ContactModes& modes, Spa
 
 double BallDrop::energy(ConstVectorRef y) const {
   // In flight (x >= 0) no law is engaged: the common case skips the law's dispatch.
-  const double mechanical = 0.5 * p_.m * y[1] * y[1] + p_.m * p_.g * y[0];
+  const double mechanical = energy_without_springs(y);
   return y[0] >= 0 ? mechanical : mechanical + engaged_elastic_energy(y);
+}
+
+double BallDrop::energy_without_springs(ConstVectorRef y) const {
+  return 0.5 * p_.m * y[1] * y[1] + p_.m * p_.g * y[0];
 }
 
 void BallDrop::project(std::size_t, VectorRef y) const {

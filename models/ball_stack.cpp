@@ -80,11 +80,15 @@ void BallStack::jacobian(double, ConstVectorRef y, const ContactModes& modes, Sp
 }
 
 double BallStack::energy(ConstVectorRef y) const {
+  return energy_without_springs(y) + engaged_elastic_energy(y);
+}
+
+double BallStack::energy_without_springs(ConstVectorRef y) const {
   double E = 0;
   for (std::size_t b = 0; b < p_.n; ++b)
     E += 0.5 * p_.m * v(y, b) * v(y, b) +
          p_.m * p_.g * ((2.0 * static_cast<double>(b) + 1) * p_.radius + u(y, b));
-  return E + engaged_elastic_energy(y);
+  return E;
 }
 
 void BallStack::push_apart(std::size_t i, double amount, int offset, VectorRef y) const {

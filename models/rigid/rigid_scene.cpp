@@ -172,13 +172,17 @@ void RigidScene::normalize(VectorRef y) const {
 }
 
 double RigidScene::energy(ConstVectorRef y) const {
+  return energy_without_springs(y) + engaged_elastic_energy(y);
+}
+
+double RigidScene::energy_without_springs(ConstVectorRef y) const {
   const auto bodies = bodies_at(y);
   double E = 0;
   for (const auto& b : bodies) {
     E += b.kinetic_energy();
     if (b.inverse_mass > 0) E -= gravity_.dot(b.position) / b.inverse_mass;
   }
-  return E + engaged_elastic_energy(y);
+  return E;
 }
 
 double RigidScene::elastic_energy(std::size_t i, ConstVectorRef y) const {

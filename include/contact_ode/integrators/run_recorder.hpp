@@ -69,9 +69,10 @@ class RunRecorder {
   // Measures energy with `energy` instead of the model's (from E0 on): a method whose contacts
   // are not the scene's springs must not count their elastic energy at an overlap.
   void use_energy(std::function<double(ConstVectorRef)> energy);
-  // The model's energy without the elastic energy of its penalty springs at an overlap: for the
-  // methods that resolve contact by impulses or constraints, which have no springs.
-  void exclude_spring_energy(const ContactGeometry& geo);
+  // The model's energy without the elastic energy of its penalty springs at an overlap
+  // (Dynamics::energy_without_springs): for the methods that resolve contact by impulses or
+  // constraints, which have no springs.
+  void exclude_spring_energy();
   double energy(ConstVectorRef y) const { return energy_ ? energy_(y) : model_.energy(y); }
 
   // The next output time still to be recorded (t_end included); +inf when all are done.

@@ -51,6 +51,7 @@ class BallChain final : public OneLawSystem,
   // v_{i+1} (2 columns right).
   Bandwidth jacobian_bandwidth() const override { return {3, 2}; }
   double energy(ConstVectorRef y) const override;
+  double energy_without_springs(ConstVectorRef y) const override;
 
   std::size_t contact_count() const override { return p_.n - 1; }
   double gap(std::size_t i, ConstVectorRef y) const override { return p_.spacing + (u(y, i + 1) - u(y, i)); }

@@ -42,6 +42,7 @@ class BallDrop final : public MechanicalSystem,
   void rhs(double t, ConstVectorRef y, const ContactModes& modes, VectorRef ydot) const override;
   void jacobian(double t, ConstVectorRef y, const ContactModes& modes, SparseMatrix& J) const override;
   double energy(ConstVectorRef y) const override;
+  double energy_without_springs(ConstVectorRef y) const override;
 
   std::size_t contact_count() const override { return 1; }
   double gap(std::size_t, ConstVectorRef y) const override { return y[0]; }

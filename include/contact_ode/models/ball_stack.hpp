@@ -38,6 +38,7 @@ class BallStack final : public OneLawSystem, public NormalImpulses, public Spher
   void jacobian(double t, ConstVectorRef y, const ContactModes& modes, SparseMatrix& J) const override;
   Bandwidth jacobian_bandwidth() const override { return {3, 3}; }
   double energy(ConstVectorRef y) const override;
+  double energy_without_springs(ConstVectorRef y) const override;
 
   double gap(std::size_t i, ConstVectorRef y) const override { return u(y, i) - (i ? u(y, i - 1) : 0.0); }
   double gap_rate(std::size_t i, ConstVectorRef y) const override {
