@@ -158,6 +158,11 @@ RunResult run(const std::string& scene, const std::string& method, const std::st
           fmt::format("{}: not an option of scene '{}' or of a method; accepted: {}", name, scene, accepted));
     }
     try {  // a value of the wrong type is named like one out of range
+      // A bool is a Python int, which pybind11 casts to 1.0 or 0: dt=True ran the game at a 1 s
+      // step. Only the on/off settings take one.
+      const bool is_bool = py::isinstance<py::bool_>(value) ||
+                           py::isinstance(value, py::module_::import("numpy").attr("bool_"));
+      if (is_bool && name != "warm_start" && name != "split_impulse") throw py::cast_error();
       if (is_parameter)
         values[name] = value.cast<double>();
       else if (name == "t_end")

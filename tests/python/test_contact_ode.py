@@ -190,6 +190,10 @@ def test_time_stepping_settings_and_types_are_checked():
             co.solve("ball-drop", "sequential-impulses", split_impulse=value)
     for value in [False, True, np.bool_(False)]:
         co.solve("ball-drop", "sequential-impulses", warm_start=value, split_impulse=value, t_end=0.1)
+    # ... and a bool is not a number: dt=True ran the game loop at a 1 s step, k=True a 1 N/m spring.
+    for name, value in [("dt", True), ("iterations", True), ("k", np.bool_(True)), ("t_end", False)]:
+        with pytest.raises(ValueError, match=f"{name}: value '{value}' has the wrong type"):
+            co.solve("ball-drop", "sequential-impulses", **{name: value})
     # Accepted before, though the command line refuses it: the exact flight then ran the Zeno
     # cascade into the record limit.
     with pytest.raises(ValueError, match=r"rest_speed: value '0' is out of range; accepted range \(0, inf\)"):
