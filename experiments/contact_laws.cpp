@@ -17,7 +17,9 @@
 
 #include <fmt/format.h>
 
+#include <cfloat>
 #include <chrono>
+#include <cmath>
 #include <iostream>
 
 using namespace contact;
@@ -43,6 +45,15 @@ int program(int argc, char** argv) {
   return app.run(argc, argv, [&](OutputSet& files) {
     std::vector<LawCase> cases;
     const double k_lin = m * v * v / (depth * depth);  // Hooke: V sqrt(m/k) = depth
+    // Each option is in range, but together they can give a stiffness that rounds to 0 or inf
+    // (--v 1e-300: K = 0), which the law refused in its own terms, naming none of them.
+    for (const double n : {1.0, 1.5})
+      if (const double K = (n + 1) * m * v * v / (2 * std::pow(depth, n + 1));
+          !(K >= DBL_MIN && K <= DBL_MAX))
+        throw std::invalid_argument(fmt::format(
+            "--m, --v, --depth: values '{:g}', '{:g}', '{:g}' give a contact stiffness (n + 1) m v^2 / (2 "
+            "depth^(n + 1)) = {:g} at n = {:g}, outside the doubles' normal range [{:g}, {:g}]",
+            m, v, depth, K, n, DBL_MIN, DBL_MAX));
     cases.push_back({"kelvin-voigt",
                      [&](double e) { return ContactLaw{kelvin_voigt_for_restitution(k_lin, m, e, false)}; }});
     cases.push_back({"kelvin-voigt-clamped",

@@ -65,5 +65,9 @@ TEST_F(ContactLawsCli, BadInputIsRefused) {
                                        {"--points 1", "--points", "'1'", "[2, 1000]"},
                                        // Unbounded, 1e9 points ran for hours.
                                        {"--points 1e9", "--points", "'1e9'", "[2, 1000]"},
+                                       // Each in range, together a stiffness of 0 or inf: the law
+                                       // refused it naming its own K, exit 1.
+                                       {"--v 1e-300", "--v", "'1e-300'", "normal range"},
+                                       {"--depth 1e-300", "--depth", "'1e-300'", "normal range"},
                                    });
 }
