@@ -14,6 +14,7 @@
 #include "contact_ode/analysis/metrics.hpp"
 #include "contact_ode/analysis/rigid_observables.hpp"
 #include "contact_ode/analysis/table.hpp"
+#include "contact_ode/models/scene_registry.hpp"
 #include "experiment.hpp"
 #include "figure.hpp"
 #include "output.hpp"
@@ -22,6 +23,7 @@
 #include "sweep_setting.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <map>
 
@@ -70,6 +72,10 @@ int program(int argc, char** argv) {
                 "wall_time_s"});
     Table observables({"scene", "method", "quantity", "value"});
     const auto scene_list = cli::chosen(scenes, rigid_scene_names());
+    for (const auto& name : scene_list)  // before any run: a ball placed inside the cuboid is bad input
+      require_bodies_apart(rigid_scene(name).make(p),
+                           fmt::format("--radius {:g}, --half-extents {:g}, --quaternion {:g}", p.radius,
+                                       fmt::join(half, " "), fmt::join(quat, " ")));
     const auto method_list = cli::split_list(methods);
     Progress progress("rigid_scenes", scene_list.size() * method_list.size());
     const std::size_t per_scene = method_list.size();

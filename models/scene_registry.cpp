@@ -1,5 +1,6 @@
 #include "contact_ode/models/scene_registry.hpp"
 
+#include "contact_ode/models/mechanical_system.hpp"
 #include "contact_ode/models/registry.hpp"
 
 #include <fmt/format.h>
@@ -30,7 +31,27 @@ std::unique_ptr<Dynamics> make_scene(const std::string& name, const ParameterVal
   const SceneEntry& s = scene_entry(name);
   if (!law.empty() && !s.takes_law)
     throw std::invalid_argument(fmt::format("--law: scene '{}' fixes its own contact law", name));
-  return s.make(resolve(s.parameters, given, name), law);
+  auto scene = s.make(resolve(s.parameters, given, name), law);
+  std::string settings;
+  for (const auto& [parameter, value] : given)
+    settings += fmt::format("{}{} = {:g}", settings.empty() ? "" : ", ", parameter, value);
+  require_bodies_apart(*scene, settings.empty() ? "its defaults" : settings);
+  return scene;
+}
+
+void require_bodies_apart(const Dynamics& scene, const std::string& settings) {
+  const auto* geometry = dynamic_cast<const ContactGeometry*>(&scene);
+  if (geometry == nullptr) return;
+  const Vector y0 = scene.initial_state();
+  // Rounding of a gap between touching bodies: a few ulps of the positions' size (at least 1 m).
+  const double positions = y0.size() > 0 ? scene.position_mask().select(y0.cwiseAbs(), 0.0).maxCoeff() : 0.0;
+  const double touching = 1e-12 * std::max(1.0, positions);
+  for (std::size_t i = 0; i < scene.contact_count(); ++i)
+    if (const double gap = geometry->gap(i, y0); gap < -touching)
+      throw std::invalid_argument(fmt::format(
+          "scene '{}' at {}: contact {} starts with its bodies {:.3g} m inside each other; bodies must start "
+          "apart or touching",
+          scene.name(), settings, i, -gap));
 }
 
 }  // namespace contact

@@ -7,6 +7,7 @@
 #include "contact_ode/integrators/method_registry.hpp"
 #include "contact_ode/integrators/soft_step.hpp"
 #include "contact_ode/models/ball_drop.hpp"
+#include "contact_ode/models/rigid/rigid_scenes.hpp"
 #include "contact_ode/models/scene_registry.hpp"
 
 #include <gtest/gtest.h>
@@ -80,9 +81,14 @@ TEST(MoreauJean, RestingBallNeitherSinksNorJumps) {
 // the 1e-16 that computing it from O(1) velocities allows, and the run failed with 'did not
 // converge in 10000 sweeps (last change 1.1e-16 m/s)'. With e = 1 the energy is kept to round-off.
 TEST(MoreauJean, ASlowContactBesideFastBodiesConverges) {
-  const auto scene = make_scene("spinning-box", {{"m", 6.24}, {"radius", 0.7037672997671879}});
+  // (Found by a randomized run: the ball starts inside the box, which make_scene now refuses; the
+  // scene is built directly, for the LCP's rounding it shows.)
+  rigid::SceneParams p;
+  p.m = 6.24;
+  p.radius = 0.7037672997671879;
+  const rigid::RigidScene scene = rigid::rigid_scene("spinning-box").make(p);
   const RunResult r =
-      solve(*scene, {.name = "moreau-jean", .dt = 8.34e-5}, {.t_end = 0.229, .sample_dt = 0.229});
+      solve(scene, {.name = "moreau-jean", .dt = 8.34e-5}, {.t_end = 0.229, .sample_dt = 0.229});
   ASSERT_TRUE(r.ok()) << r.message;
   EXPECT_GE(r.contacts.size(), 1u);
   EXPECT_NEAR(r.samples.back().energy, r.samples.front().energy, 1e-12 * r.samples.front().energy);

@@ -33,6 +33,12 @@ const SceneEntry& scene_entry(const std::string& name);
 std::unique_ptr<Dynamics> make_scene(const std::string& name, const ParameterValues& given = {},
                                      const std::string& law = "");
 
+// Throws std::invalid_argument, naming `settings` (the parameters that placed the bodies), when
+// two of the scene's bodies start inside each other: every method then answers a different
+// question (a penalty spring launches the ball out at hundreds of m/s; impulses refuse), so the
+// scene is refused, as make_scene does. Touching (a gap of zero to rounding) is apart.
+void require_bodies_apart(const Dynamics& scene, const std::string& settings);
+
 // The entries, each defined beside its model.
 SceneEntry ball_drop_scene();
 SceneEntry ball_chain_scene();
