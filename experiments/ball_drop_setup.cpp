@@ -23,6 +23,14 @@ void check_scales(const BallDropOptions& o) {
         "--h0, --v0: values '{}' and '{}' give a height scale h0 + v0^2 / (2 g) or an impact speed "
         "sqrt(v0^2 + 2 g h0) beyond the doubles; accepted: both finite",
         o.h0, o.v0));
+  // Every run would fail at t = 0 on the samples it may keep (a work limit per method, exit 1):
+  // the two options ask for it, so they are refused as such.
+  const long kept = RunLimits{}.max_samples;
+  if (!(o.t_end / o.sample_dt < static_cast<double>(kept)))
+    throw std::invalid_argument(fmt::format(
+        "--t-end, --sample-dt: values '{}' and '{}' ask for {:.3g} output samples; at most {} are "
+        "kept: accepted --sample-dt >= --t-end / {} = {:.3g}",
+        o.t_end, o.sample_dt, o.t_end / o.sample_dt, kept, kept, o.t_end / static_cast<double>(kept)));
 }
 
 ContactLaw law_for(const BallDropOptions& o, double k) {
