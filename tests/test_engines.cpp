@@ -222,6 +222,39 @@ TEST(Ode, AnAssertionInsideAStepIsASolverErrorNotAnAbort) {
   EXPECT_TRUE(next.ok()) << next.message;
 }
 
+// The same for an assertion in its collision detection, which ran outside that guard: its hash
+// space indexes bounding boxes by integer cells, and a ball dropped from 1e300 m (or falling at
+// 1e300 m/s) is past them; the space was left locked and its destruction asserted in a destructor
+// (std::terminate: the Python interpreter gone). Every ODE method now fails typed, and runs again.
+TEST(Ode, AnAssertionInItsCollisionDetectionIsASolverErrorNotAnAbort) {
+  REQUIRE_ENGINE("ode");
+  for (const char* method : {"ode", "ode-quick", "ode-spring"}) {
+    for (const BallDrop& far :
+         {BallDrop({.h0 = 1e300, .law = Hooke{1e5}}), BallDrop({.v0 = -1e300, .law = Hooke{1e5}})}) {
+      const RunResult r = solve(far, {.name = method, .dt = 1e-3}, {.t_end = 0.01, .sample_dt = 0.01});
+      EXPECT_EQ(r.status, Status::SolverError) << method << ": " << r.message;
+      EXPECT_NE(r.message.find("ODE error"), std::string::npos) << r.message;
+    }
+    const RunResult next =
+        solve(BallDrop({}), {.name = method, .dt = 1e-3}, {.t_end = 0.5, .sample_dt = 0.5});
+    EXPECT_TRUE(next.ok()) << method << ": " << next.message;
+  }
+}
+
+// Bullet's own tree rebuild (btDbvt::optimizeTopDown) freed memory twice on a ball 1e300 m up
+// beside the floor's unbounded plane (the process gone: "double free or corruption"); it is not
+// called (the bodies' insertion order keeps the tree shallow). The ball falls freely in 10 ms.
+TEST(Bullet, ABallFarAboveTheFloorFallsWithoutAnAbort) {
+  REQUIRE_ENGINE("bullet");
+  for (const char* method : {"bullet", "bullet-tuned"}) {
+    const RunResult r = solve(BallDrop({.h0 = 1e300, .law = Hooke{1e5}}), {.name = method, .dt = 1e-3},
+                              {.t_end = 0.01, .sample_dt = 0.01});
+    ASSERT_TRUE(r.ok()) << method << ": " << r.message;
+    EXPECT_EQ(r.samples.back().y[0], 1e300) << method;  // a fall of 0.5 mm: below its rounding
+    EXPECT_NEAR(r.samples.back().y[1], -9.81 * 0.01, 1e-12) << method;
+  }
+}
+
 // A scene an engine refuses to load (MuJoCo: masses below its mjMINVAL) is a run that fails at
 // t = 0 with the engine's message, as its other failures are; it used to be an exception out of
 // solve() (a RuntimeError in Python, not the documented SolverError).

@@ -93,10 +93,11 @@ class BulletWorld final : public EngineWorld {
     // Into the world in bit-reversed order, not along the line: Bullet's broadphase tree (btDbvt)
     // puts a new leaf beside the nearest, so spheres added in order grow a path as deep as the
     // line, and each insertion, and each step's update, walked it: a 64000-ball chain took 67 s
-    // for one step (1.7 s now), 1e5 balls over 5 minutes. The order is the set-up's, not the
-    // solver's settings; it does decide which contacts Bullet's sequential impulses visit first.
+    // for one step (2.9 s now), 1e5 balls over 5 minutes (4.7 s). The order is the set-up's, not
+    // the solver's settings; it does decide which contacts Bullet's sequential impulses visit
+    // first. (Not Bullet's own rebuild, btDbvt::optimizeTopDown: it freed memory twice on a ball
+    // 1e300 m up beside the floor's plane.)
     for (const std::size_t b : bit_reversed_order(bodies_.size())) world_.addRigidBody(bodies_[b].get());
-    broadphase_.optimize();  // balanced, for the steps' updates
   }
   // Bullet's teardown is quadratic in the bodies: removing one (removeRigidBody, or the world's
   // destructor for each of its objects) scans every overlapping pair, and the dynamics world's list

@@ -133,9 +133,9 @@ class OdeWorld final : public EngineWorld {
     dJointGroupEmpty(joints_);
     feedback_.clear();
     made_.clear();
-    dSpaceCollide(space_, this, &OdeWorld::near);
     ode_message.clear();
-    try {
+    try {  // an error in either leaves ODE's space or world half-way (the space locked)
+      dSpaceCollide(space_, this, &OdeWorld::near);
       if (quick_)
         dWorldQuickStep(world_, h);
       else
