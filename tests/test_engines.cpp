@@ -379,6 +379,19 @@ TEST(Siconos, AChainWhoseDenseJacobianCannotFitIsRefusedBeforeItStarts) {
   EXPECT_TRUE(solve(chain, {.name = "sequential-impulses", .dt = 1e-3}, span).ok());
 }
 
+// A column of 1e-30 kg balls chatters under Siconos: an impact every 4e-11 s, 2.4e7 for a 1 ms
+// step, each a few microseconds: the run met the bound of a million events a step after a minute
+// (Python's Ctrl-C unheard meanwhile). The first 1e4 events' progress judges the step now.
+TEST(Siconos, AChatterItDoesNotEndIsJudgedByItsFirstEvents) {
+  REQUIRE_ENGINE("siconos");
+  const BallStack column({.m = 1e-30});
+  const RunResult r = solve(column, {.name = "siconos", .dt = 1e-3}, {.t_end = 2e-3, .sample_dt = 1e-3});
+  EXPECT_EQ(r.status, Status::SolverError) << r.message;
+  EXPECT_NE(r.message.find("took 10000 events to cover"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("more than the 1000000 a step may take"), std::string::npos) << r.message;
+  EXPECT_EQ(r.t_reached, 0.0);
+}
+
 TEST(Siconos, AStepBeyondItsClockIsASolverError) {
   REQUIRE_ENGINE("siconos");
   const BallDrop ball({.m = 1.0, .law = Hooke{1e5}});

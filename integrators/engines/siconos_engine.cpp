@@ -28,7 +28,9 @@ class SiconosWorld final : public EngineWorld {
 
   void step(double h) override {
     try {
-      line_.step(h);
+      line_.step(h, [](double t) { throw_if_stop_requested(t); });
+    } catch (const SolverFailure&) {
+      throw;  // a stop request: the run ends interrupted
     } catch (const std::runtime_error& e) {
       throw EngineError(e.what());
     }

@@ -9,6 +9,7 @@
 // contacts, an LCP at velocity level applies Newton's law at each impact, an LCP at acceleration
 // level holds contacts that rest. Siconos's own treatment of accumulations (Zeno) brings a
 // bouncing ball to rest.
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -33,8 +34,9 @@ class SiconosLine {
 
   // Processes every event up to the next output time, h later (dt, or less for a run's last
   // step); throws std::runtime_error with Siconos's message when it fails, or when more than a
-  // million events fall in one step.
-  void step(double h);
+  // million events fall in one step (judged after 1e4 of them by the time they covered).
+  // `checkpoint` is called with the time reached every 1000 events; what it throws ends the step.
+  void step(double h, const std::function<void(double t)>& checkpoint = {});
   void read(std::vector<double>& centre, std::vector<double>& velocity) const;
   // Per contact over the last step: the impulses of its impacts plus its resting force times the
   // time it held [N s].
