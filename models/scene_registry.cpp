@@ -43,7 +43,8 @@ void require_bodies_apart(const Dynamics& scene, const std::string& settings) {
   const auto* geometry = dynamic_cast<const ContactGeometry*>(&scene);
   if (geometry == nullptr) return;
   const Vector y0 = scene.initial_state();
-  // Rounding of a gap between touching bodies: a few ulps of the positions' size (at least 1 m).
+  // Touching: a gap of 1e-12 of the positions' size (at least 1 m) or less, far above the few ulps
+  // of rounding a touching pair's gap has and far below an overlap any method would notice.
   const double positions = y0.size() > 0 ? scene.position_mask().select(y0.cwiseAbs(), 0.0).maxCoeff() : 0.0;
   const double touching = 1e-12 * std::max(1.0, positions);
   for (std::size_t i = 0; i < scene.contact_count(); ++i)

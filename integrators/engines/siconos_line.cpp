@@ -176,11 +176,10 @@ void SiconosLine::step(double h, const std::function<void(double t)>& checkpoint
         const double covered = sim.startingTime() - start,
                      needed = (target - start) / covered * kEventsJudged;
         if (!(needed <= kMaxEvents))
-          throw std::runtime_error(
-              fmt::format("Siconos took {} events to cover {:.3g} s of a {:.3g} s step at t = {:g} s: about "
-                          "{:.3g} for the "
-                          "step, more than the {} a step may take (impacts it does not bring to rest)",
-                          kEventsJudged, covered, h, start, needed, kMaxEvents));
+          throw std::runtime_error(fmt::format(
+              "Siconos took {} events to cover {:.3g} s of a {:.3g} s step at t = {:g} s: about {:.3g} "
+              "for the step, more than the {} a step may take (impacts it does not bring to rest)",
+              kEventsJudged, covered, h, start, needed, kMaxEvents));
       }
     }
   } catch (const std::runtime_error&) {
