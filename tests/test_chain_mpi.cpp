@@ -54,6 +54,20 @@ TEST_F(ChainMpi, ATolerancePermittingAnyAnswerEndsDiverged) {
   EXPECT_FALSE(std::filesystem::exists(dir_ / "loose" / "stats.csv"));
 }
 
+// Rank 0 alone records the samples: a failure of its recorder (here its first sample, past the
+// run's sample bound) returned on rank 0 while the other ranks went on into the integrator's next
+// reduction and waited there for ever (chain_mpi samples at t = 0 and t_end only, and mpiexec ends
+// a job whose rank 0 exits non-zero, so only a library caller met it). Every rank now returns the
+// same status at the same time.
+TEST_F(ChainMpi, ARecorderFailureOnRankZeroEndsTheRunOnEveryRank) {
+  const Outcome r = run(DISTRIBUTED_PROBE_EXE, "",
+                        "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 timeout 60 " MPIEXEC
+                        " --oversubscribe -np 2");
+  ASSERT_EQ(r.code, 0) << r.err;  // 124: a rank waited until the timeout
+  EXPECT_NE(r.out.find("rank 0: work-limit at t = 0"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("rank 1: work-limit at t = 0"), std::string::npos) << r.out;
+}
+
 // The default span was the pulse through the whole chain, which grows with the chain (three pair
 // contacts per ball), so its cost grew as N^2: the README's `--balls 100000` ran to t = 210 s,
 // days on two cores (0.05 s takes 93 s). It is now the ball-chain scene's span, as every other

@@ -9,6 +9,7 @@
 #include <sunlinsol/sunlinsol_spgmr.h>
 
 #include <chrono>
+#include <optional>
 #include <stdexcept>
 
 namespace contact {
@@ -120,10 +121,26 @@ RunResult run_distributed(const Dynamics& scene, const NeighbourDynamics& parts,
     counts[static_cast<std::size_t>(r)] = static_cast<int>(c * stride);
     offsets[static_cast<std::size_t>(r)] = static_cast<int>(f * stride);
   }
+  // Rank 0's recorder may refuse a sample (the sample bound, a diverged state): its verdict goes to
+  // every rank, which would otherwise go on into the integrator's next reduction and wait there
+  // for rank 0 for ever.
   auto gather_sample = [&](N_Vector state, double t) {
     MPI_Gatherv(N_VGetArrayPointer_Parallel(state), static_cast<int>(local), MPI_DOUBLE, whole.data(),
                 counts.data(), offsets.data(), MPI_DOUBLE, 0, comm);
-    if (rank == 0) rec.sample(t, whole);
+    std::optional<SolverFailure> refused;
+    if (rank == 0) {
+      try {
+        rec.sample(t, whole);
+      } catch (const SolverFailure& f) {
+        refused = f;
+      }
+    }
+    int verdict = refused ? static_cast<int>(refused->status()) : -1;
+    MPI_Bcast(&verdict, 1, MPI_INT, 0, comm);
+    if (refused) throw *refused;
+    if (verdict >= 0)
+      throw SolverFailure(static_cast<Status>(verdict), t,
+                          "rank 0's recorder refused the sample (its message there)");
   };
 
   SolverStats stats;
