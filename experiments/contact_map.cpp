@@ -47,28 +47,15 @@ double restitution_of(double zeta) { return std::exp(-zeta * M_PI / std::sqrt(1 
 int program(int argc, char** argv) {
   long points = 16, phases = 8;
   double wdt_max = 4.0;
-  std::string zetas_text = "0,0.05,0.2,0.5";
+  std::vector<double> zetas{0, 0.05, 0.2, 0.5};
   Experiment app("contact_map",
                  "Restitution and energy error per spring contact over (w dt, zeta), per scheme.",
                  "results/contact_map");
   app.add("--points", points, "w dt values, log-spaced from 0.01", cli::integer_in(2, 200));
   app.add("--wdt-max", wdt_max, "largest w dt", cli::real_in(0.01, 100, false, true));
   app.add("--phases", phases, "entry phases per point (the worst is reported)", cli::integer_in(1, 64));
-  app.add("--zetas", zetas_text, "damping ratios, comma-separated, each in [0, 0.9]");
+  app.add_list("--zetas", zetas, "damping ratios, comma-separated", cli::real_in(0, 0.9, false, false));
   return app.run(argc, argv, [&](OutputSet& files) {
-    std::vector<double> zetas;
-    for (const auto& z : cli::split_list(zetas_text)) {
-      double zeta = NAN;
-      std::size_t used = 0;
-      try {
-        zeta = std::stod(z, &used);
-      } catch (const std::exception&) {
-      }
-      if (used != z.size() || !(zeta >= 0 && zeta <= 0.9))
-        throw std::invalid_argument(
-            fmt::format("--zetas: value '{}' is out of range; accepted range [0, 0.9]", z));
-      zetas.push_back(zeta);
-    }
     const double m = 1, V = 2, k = 1e4, w = std::sqrt(k / m);
     std::vector<double> wdts;
     for (long j = 0; j < points; ++j)
