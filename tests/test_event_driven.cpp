@@ -341,12 +341,12 @@ TEST(EventDriven, APlasticRowOfTouchingBallsMovesOffTogether) {
 // touching balls have to rounding (1e-17 m): newton_cradle's event row showed an energy error of
 // 6e-11 at k = 1e20 and, at k = 1e300, 3e268 J in a 0.05 J cradle (which now ends a run as
 // diverged). The law's k must not matter to an impulse method: the textbook cradle (the last
-// ball leaves at v0, the rest stop) and its energy to rounding, at any k, by both flights.
+// ball leaves at v0, the rest stop) and its energy to rounding, at any k, in either contact order
+// (the exact flight does not run a chain: no closed form for its pairs' flights).
 TEST(EventDriven, TheLawsStiffnessDoesNotEnterTheEnergyOfRigidImpacts) {
   for (const double k : {1e6, 1e20, 1e300}) {
     const auto cradle = make_scene("ball-chain", {{"n", 5.0}, {"e", 1.0}, {"k", k}}, "hooke");
-    for (const char* method : {"event-ode", "event-exact"}) {
-      if (!method_info(method).can_run(*cradle)) continue;
+    for (const char* method : {"event-ode", "event-ode-reversed"}) {
       const RunResult r = solve(*cradle, {.name = method}, {.t_end = 0.05, .sample_dt = 0.01});
       ASSERT_TRUE(r.ok()) << method << " at k = " << k << ": " << r.message;
       const Vector& y = r.samples.back().y;
