@@ -66,14 +66,13 @@ class RunRecorder {
  public:
   RunRecorder(const Dynamics& model, std::string method, const SolveOptions& span);
 
-  // Measures energy with `energy` instead of the model's (from E0 on): a method whose contacts
-  // are not the scene's springs must not count their elastic energy at an overlap.
-  void use_energy(std::function<double(ConstVectorRef)> energy);
-  // The model's energy without the elastic energy of its penalty springs at an overlap
-  // (Dynamics::energy_without_springs): for the methods that resolve contact by impulses or
-  // constraints, which have no springs.
+  // Measures, from E0 on, the model's energy without the elastic energy of its penalty springs at
+  // an overlap (Dynamics::energy_without_springs): for the methods that resolve contact by
+  // impulses or constraints, which have no springs and must not count theirs.
   void exclude_spring_energy();
-  double energy(ConstVectorRef y) const { return energy_ ? energy_(y) : model_.energy(y); }
+  double energy(ConstVectorRef y) const {
+    return springless_ ? model_.energy_without_springs(y) : model_.energy(y);
+  }
 
   // The next output time still to be recorded (t_end included); +inf when all are done.
   double next_sample_time() const;
@@ -110,7 +109,7 @@ class RunRecorder {
   void check_diverged(double t, ConstVectorRef y, double gain) const;
 
   const Dynamics& model_;
-  std::function<double(ConstVectorRef)> energy_;
+  bool springless_ = false;  // exclude_spring_energy()
   RunResult result_;
   RunLimits limits_;
   double sample_dt_, t_end_;  // output grid t_j = j sample_dt, closed by t_end (computed, not stored)
