@@ -33,6 +33,24 @@ bool can_run_engine(const Dynamics& s) {
 // A spring setting gives the engine the scene's linear law: every contact must have one.
 bool can_run_engine_spring(const Dynamics& s) { return can_run_engine(s) && has_linear_laws(s); }
 
+// The contacts that rest from the start: touching (to kContactMargin) in a scene where no contact
+// approaches. Their first push holds the bodies against gravity (a column on the floor) and takes no
+// energy, the bodies staying where they are; booked as an impact's loss at the speed it implies,
+// J w / (1 + e), it made the ledger of a resting column drift (Siconos' 8-ball column, which does
+// not move, by 1.8e-4 of its energy). Counted as pushing already, they book a loss only for a push
+// that begins later. Where a contact approaches (a cradle struck while touching), the pushes of the
+// first step are the impact passing through, and each is booked.
+std::vector<bool> resting_at_start(const Dynamics& scene) {
+  const ContactGeometry& geo = contact_geometry(scene);
+  const Vector y = scene.initial_state();
+  const std::size_t nc = scene.contact_count();
+  std::vector<bool> resting(nc, false);
+  for (std::size_t i = 0; i < nc; ++i)
+    if (geo.gap_rate(i, y) < 0) return resting;
+  for (std::size_t i = 0; i < nc; ++i) resting[i] = geo.gap(i, y) <= kContactMargin;
+  return resting;
+}
+
 EngineScene engine_scene(const Dynamics& scene, double dt) {
   const auto* line = sphere_line_of(scene);
   if (!line) throw std::invalid_argument(fmt::format("scene '{}' is not spheres on a line", scene.name()));
@@ -77,7 +95,7 @@ MethodInfo engine_method(std::string name, std::string description, bool springs
     const ContactGeometry& geo = contact_geometry(scene);
     const std::size_t nc = scene.contact_count();
     std::vector<double> centre, velocity, impulse(nc, 0.0);
-    std::vector<bool> pushed(nc, false);
+    std::vector<bool> pushed = resting_at_start(scene);
     auto step = [&](double t, double h, Vector& y, StepReport& report, SolverStats& stats) {
       if (!world) throw SolverFailure(Status::SolverError, t, refused);
       try {
