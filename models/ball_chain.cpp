@@ -154,16 +154,16 @@ SceneEntry ball_chain_scene() {
            {"spacing", "m", d.spacing, "gap between the resting balls", kNonNegative},
            {"e", "", d.e, "restitution (impulses; the damped laws are tuned to it)", kUnitInterval},
            {"k", "N/m", 1e6, "contact stiffness", kPositive}},
-          true,
+          "hooke",
           {"ball velocities after the impacts", "contact log", "energy"},
           "event-driven, touching balls, e = 1: the striker's velocity passes to the last ball",
           0.05,
           [](const ParameterValues& v, const std::string& law) -> std::unique_ptr<Dynamics> {
             const double n = v.at("n");  // a whole number in its range (kBallCount)
             const LawSpec spec{.k = v.at("k"), .m = v.at("m") / 2, .e = v.at("e"), .v = std::abs(v.at("v0"))};
-            return std::make_unique<BallChain>(
-                BallChainParams{static_cast<std::size_t>(n), v.at("m"), v.at("v0"), v.at("approach"),
-                                v.at("spacing"), v.at("e"), make_law(law.empty() ? "hooke" : law, spec)});
+            return std::make_unique<BallChain>(BallChainParams{static_cast<std::size_t>(n), v.at("m"),
+                                                               v.at("v0"), v.at("approach"), v.at("spacing"),
+                                                               v.at("e"), make_law(law, spec)});
           }};
 }
 

@@ -98,16 +98,15 @@ SceneEntry ball_drop_scene() {
            {"v0", "m/s", d.v0, "initial vertical velocity"},
            {"e", "", d.e, "restitution (impulses; the damped laws are tuned to it)", kUnitInterval},
            {"k", "N/m", 1e5, "contact stiffness", kPositive}},
-          true,
+          "hooke",  // the tutorial's undamped spring: e reaches the impulses and the damped laws only
           {"bounce times", "apex heights", "contact duration", "penetration", "restitution", "energy"},
           "event-driven: apexes e^(2n) h0, Zeno time; penalty: hooke_contact with gravity",
           3.0,
           [](const ParameterValues& v, const std::string& law) -> std::unique_ptr<Dynamics> {
             const double V = std::sqrt(v.at("v0") * v.at("v0") + 2 * v.at("g") * v.at("h0"));
             const LawSpec spec{.k = v.at("k"), .m = v.at("m"), .e = v.at("e"), .v = V > 0 ? V : 1.0};
-            return std::make_unique<BallDrop>(BallDropParams{v.at("m"), v.at("g"), v.at("h0"), v.at("v0"),
-                                                             v.at("e"),
-                                                             make_law(law.empty() ? "hooke" : law, spec)});
+            return std::make_unique<BallDrop>(
+                BallDropParams{v.at("m"), v.at("g"), v.at("h0"), v.at("v0"), v.at("e"), make_law(law, spec)});
           }};
 }
 

@@ -137,7 +137,7 @@ SceneEntry ball_stack_scene() {
            {"drop", "m", d.drop, "height the column is released from", kNonNegative},
            {"e", "", d.e, "restitution (impulses; the damped laws are tuned to it)", kUnitInterval},
            {"k", "N/m", 1e5, "contact stiffness", kPositive}},
-          true,
+          "hooke",
           {"sink of the top ball", "penetration", "jitter", "energy", "cost per simulated second"},
           "penalty at rest: contact b squeezed by (n - b) m g / k, the top sunk by m g n (n + 1) / (2 k)",
           2.0,
@@ -145,14 +145,13 @@ SceneEntry ball_stack_scene() {
             const double n = v.at("n");  // a whole number in its range (kBallCount)
             const double V = std::sqrt(2 * v.at("g") * v.at("drop"));
             const LawSpec spec{.k = v.at("k"), .m = v.at("m"), .e = v.at("e"), .v = V > 0 ? V : 1.0};
-            return std::make_unique<BallStack>(
-                BallStackParams{.n = static_cast<std::size_t>(n),
-                                .m = v.at("m"),
-                                .radius = v.at("radius"),
-                                .g = v.at("g"),
-                                .drop = v.at("drop"),
-                                .e = v.at("e"),
-                                .law = make_law(law.empty() ? "hooke" : law, spec)});
+            return std::make_unique<BallStack>(BallStackParams{.n = static_cast<std::size_t>(n),
+                                                               .m = v.at("m"),
+                                                               .radius = v.at("radius"),
+                                                               .g = v.at("g"),
+                                                               .drop = v.at("drop"),
+                                                               .e = v.at("e"),
+                                                               .law = make_law(law, spec)});
           }};
 }
 

@@ -29,9 +29,9 @@ const SceneEntry& scene_entry(const std::string& name) {
 std::unique_ptr<Dynamics> make_scene(const std::string& name, const ParameterValues& given,
                                      const std::string& law) {
   const SceneEntry& s = scene_entry(name);
-  if (!law.empty() && !s.takes_law)
+  if (!law.empty() && s.default_law.empty())
     throw std::invalid_argument(fmt::format("--law: scene '{}' fixes its own contact law", name));
-  auto scene = s.make(resolve(s.parameters, given, name), law);
+  auto scene = s.make(resolve(s.parameters, given, name), law.empty() ? s.default_law : law);
   std::string settings;
   for (const auto& [parameter, value] : given)
     settings += fmt::format("{}{} = {:g}", settings.empty() ? "" : ", ", parameter, value);

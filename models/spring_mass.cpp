@@ -11,7 +11,7 @@ SceneEntry spring_mass_scene() {
            {"k", "N/m", 1e4, "spring stiffness", kPositive},
            {"x0", "m", 1.0, "initial displacement"},
            {"v0", "m/s", 0.0, "initial velocity"}},
-          false,
+          "",
           {"energy", "phase"},
           "x = x0 cos(w t) + (v0/w) sin(w t), w = sqrt(k/m); each fixed-step scheme's energy map",
           1.0,

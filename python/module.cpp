@@ -311,15 +311,17 @@ PYBIND11_MODULE(contact_ode, mod) {
         }
       },
       py::arg("scene"), py::arg("method"), py::arg("law") = "",
-      "Runs `method` on `scene` (with contact law `law` where the scene takes one). Keywords: the scene's "
-      "parameters, the method's settings, t_end and sample_dt.");
+      "Runs `method` on `scene` (with contact law `law` where the scene takes one; '': the scene's "
+      "default_law, scenes(): hooke, undamped, so that e is the impulse methods' alone). Keywords: the "
+      "scene's parameters, the method's settings, t_end and sample_dt.");
 
   mod.def("scenes", [] {
     py::list out;
     for (const auto& s : scene_registry())
       out.append(py::dict(py::arg("name") = s.name, py::arg("description") = s.description,
                           py::arg("parameters") = parameters(s.parameters),
-                          py::arg("takes_law") = s.takes_law, py::arg("observables") = s.observables,
+                          py::arg("takes_law") = !s.default_law.empty(),
+                          py::arg("default_law") = s.default_law, py::arg("observables") = s.observables,
                           py::arg("exact") = s.exact, py::arg("t_end") = s.t_end));
     return out;
   });

@@ -130,7 +130,7 @@ std::vector<SceneEntry> rigid_scene_entries() {
           {"elasticity", "", d.elasticity, "its elasticity (restitution: the product of the pair's)",
            kUnitInterval},
           {"k", "N/m", d.k, "penalty stiffness (Kelvin-Voigt, damping tuned to each pair's e)", kPositive}},
-         false,
+         "",  // each pair's Kelvin–Voigt law, tuned to its restitution
          {"velocities", "momentum", "angular momentum", "energy", "contact log"},
          "",
          info.t_end,

@@ -35,6 +35,28 @@ def test_registries_list_every_entry_with_units():
     assert "event-ode" not in co.methods_for("spring-mass")
 
 
+def test_a_scene_names_the_law_it_uses_when_none_is_given():
+    """Without a law, the ball drop runs its default_law, Hooke's undamped spring: the penalty
+    contact gives back the impact speed (restitution 1 to the solver's tolerance, rtol 1e-8) and
+    ignores e, which the Kelvin-Voigt law named instead is tuned to (its exit speed the closed
+    form's with gravity, to 1e-6: the default rtol's 1e-8 over a contact's hundred steps)."""
+    scenes = {s["name"]: s for s in co.scenes()}
+    for s in scenes.values():
+        assert s["takes_law"] == bool(s["default_law"]), s["name"]
+        if s["takes_law"]:
+            assert s["default_law"] in {law["name"] for law in co.laws()}
+    assert scenes["ball-drop"]["default_law"] == "hooke"
+    plain = co.solve("ball-drop", "penalty", t_end=1.0)
+    named = co.solve("ball-drop", "penalty", "hooke", t_end=1.0)
+    np.testing.assert_array_equal(plain.y, named.y)
+    restitution = -plain.contacts["v_out"][0] / plain.contacts["v_in"][0]
+    assert restitution == pytest.approx(1.0, abs=1e-6)
+    damped = co.solve("ball-drop", "penalty", "kelvin-voigt", e=0.8, t_end=1.0)
+    zeta = co.references.damping_ratio_for_restitution(0.8)
+    ref = co.references.kelvin_voigt_contact(m=1.0, k=1e5, zeta=zeta, V=math.sqrt(2 * 9.81), g=9.81)
+    assert damped.contacts["v_out"][0] == pytest.approx(ref["exit_speed"], rel=1e-6)
+
+
 @pytest.mark.parametrize("method", ["penalty", "game-symplectic", "event-ode", "moreau-jean"])
 def test_ball_drop_reproduces_the_cpp_executable(tmp_path, method):
     """One paradigm each: the module's samples are the ball_drop executable's, to the CSV's

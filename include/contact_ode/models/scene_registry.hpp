@@ -16,7 +16,9 @@ struct SceneEntry {
   std::string name;
   std::string description;
   std::vector<ParameterInfo> parameters;
-  bool takes_law;                        // its contacts use the law the caller names (law_registry.hpp)
+  // The law its contacts use unless the caller names another (law_registry.hpp); "": the scene
+  // fixes its own and takes none.
+  std::string default_law;
   std::vector<std::string> observables;  // what the study reads off it
   std::string exact;                     // the exact solutions known for it, in words ("" none)
   double t_end;                          // a span that shows its behaviour [s]
@@ -28,7 +30,7 @@ std::vector<std::string> scene_names();
 // Throws std::invalid_argument naming the accepted scenes.
 const SceneEntry& scene_entry(const std::string& name);
 // The scene with the given parameters (the others at their defaults) and, for a scene that takes
-// one, the named law (empty: the scene's default). Throws std::invalid_argument for an unknown
+// one, the named law (empty: its default_law). Throws std::invalid_argument for an unknown
 // scene, parameter or law.
 std::unique_ptr<Dynamics> make_scene(const std::string& name, const ParameterValues& given = {},
                                      const std::string& law = "");
