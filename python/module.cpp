@@ -312,8 +312,9 @@ PYBIND11_MODULE(contact_ode, mod) {
       },
       py::arg("scene"), py::arg("method"), py::arg("law") = "",
       "Runs `method` on `scene` (with contact law `law` where the scene takes one; '': the scene's "
-      "default_law, scenes(): hooke, undamped, so that e is the impulse methods' alone). Keywords: the "
-      "scene's parameters, the method's settings, t_end and sample_dt.");
+      "default_law in scenes(): hooke, undamped, which a penalty run takes without e; name "
+      "'kelvin-voigt' for a spring damped to e). Keywords: the scene's parameters, the method's "
+      "settings, t_end and sample_dt.");
 
   mod.def("scenes", [] {
     py::list out;
