@@ -26,14 +26,21 @@
 
 using namespace contact;
 
+namespace {
+constexpr double kSampleDt = 1e-3;  // the samples' spacing [s]
+}  // namespace
+
 int program(int argc, char** argv) {
   double e = 0.8, k = 1e5, t_end = 6.0, dt = 1e-3, rest_speed = 1e-3;
   Experiment app("zeno", "The ball drop near the accumulation of bounces, by every method.", "results/zeno");
   app.add("--e", e, "coefficient of restitution", cli::real_in(0, 1, true, true));
   app.add("--k", k, "penalty stiffness [N/m]", cli::positive());
-  // Sampled every 1 ms, a run keeps at most 1e7 samples: from 1e4 s on every run failed at t = 0.
-  app.add("--t-end", t_end, "final time [s] (its 1 ms samples: below 1e4 s)",
-          cli::real_in(0, 1e4, true, true));
+  // A run keeps at most RunLimits::max_samples samples: past that many of its sample_dt every run
+  // failed at t = 0.
+  const double longest = kSampleDt * static_cast<double>(RunLimits{}.max_samples);
+  app.add("--t-end", t_end,
+          fmt::format("final time [s] (its {:g} s samples: below {:g} s)", kSampleDt, longest),
+          cli::real_in(0, longest, true, true));
   app.add("--dt", dt, "game step [s]", cli::positive());
   app.add("--rest-speed", rest_speed, "speed below which the motion counts as stopped [m/s]",
           cli::positive());
@@ -55,7 +62,8 @@ int program(int argc, char** argv) {
     for (std::size_t mi = 0; mi < methods.size(); ++mi) {
       progress.step(methods[mi]);
       method.name = methods[mi];
-      const RunResult r = require(solve(model, method, {.t_end = t_end, .sample_dt = 1e-3}), methods[mi]);
+      const RunResult r =
+          require(solve(model, method, {.t_end = t_end, .sample_dt = kSampleDt}), methods[mi]);
       double rest = std::nan(""), lowest = INFINITY;
       for (std::size_t i = r.samples.size(); i-- > 0;) {
         if (std::abs(r.samples[i].y[1]) >= rest_speed) break;

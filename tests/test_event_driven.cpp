@@ -372,7 +372,7 @@ TEST(EventDriven, BodiesThatGoOnPressingTogetherAfterAnImpactEndTheRun) {
   EXPECT_NE(r.message.find("contact 0 overlaps by"), std::string::npos) << r.message;
   EXPECT_LT(r.t_reached, 0.01);
   // A scene that starts with its bodies inside each other says so (it ran on silently), built
-  // directly (make_scene refuses it: SceneRegistry.AScenesBodiesMustStartApart).
+  // directly (make_scene refuses it: Registries.AScenesBodiesMustStartApart).
   rigid::SceneParams big;
   big.radius = 0.194;
   const rigid::RigidScene inside = rigid::rigid_scene("spinning-box").make(big);
