@@ -4,6 +4,7 @@
 
 #include "contact_ode/integrators/capabilities.hpp"
 #include "contact_ode/integrators/run_recorder.hpp"
+#include "time_stepping.hpp"
 
 #include <fmt/format.h>
 
@@ -113,13 +114,13 @@ RunResult run_game(const Dynamics& model, const GameOptions& opt, const SolveOpt
                             fmt::format("state is not finite after step {} (dt = {:g} s)", n, h));
       for (std::size_t i = 0; i < nc; ++i) {
         // Apex: gap rate falls through zero during free flight (not in a step that detects the
-        // contact: a resting ball's contact closes and reopens every frame).
+        // contact: a resting ball's contact closes and reopens every frame), above kContactMargin
+        // (the time-stepping methods' too): below it a top is a tall column's rounding, not a flight.
         const double r0 = geo.gap_rate(i, y_prev), r1 = geo.gap_rate(i, y);
         const double d = detect(i, y);
         if (r0 > 0 && r1 <= 0 && !rec.contact_open(i) && !(d > 0)) {
-          const double s = crossing(r0, r1);
-          const Vector ya = y_prev + s * (y - y_prev);
-          rec.apex(i, t0 + s * h, geo.gap(i, y_prev) + 0.5 * r0 * s * h, rec.energy(ya));
+          const double s = crossing(r0, r1), top = geo.gap(i, y_prev) + 0.5 * r0 * s * h;
+          if (top > kContactMargin) rec.apex(i, t0 + s * h, top, rec.energy(y_prev + s * (y - y_prev)));
         }
         // 2. detect, 3. resolve
         if (d > 0) {
