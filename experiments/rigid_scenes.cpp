@@ -45,9 +45,11 @@ int program(int argc, char** argv) {
   app.add("--scene", scenes, "scenes, comma-separated or 'all'", cli::some_of(rigid_scene_names()));
   app.add("--method", methods, "methods, comma-separated",
           cli::one_of(methods_for(rigid_scene("snooker").make(p)), true));
-  app.add("--m", p.m, "mass of the moving ball [kg]", cli::positive());
-  app.add("--radius", p.radius, "its radius [m]", cli::positive());
-  app.add("--elasticity", p.elasticity, "its elasticity (restitution = product of the pair's)",
+  app.add("--m", p.m, "mass of each ball [kg] (planet: the cue ball's)", cli::positive());
+  app.add("--radius", p.radius, "radius of each ball [m] (planet: the cue ball's)", cli::positive());
+  app.add("--elasticity", p.elasticity,
+          "elasticity of the cue ball, striker or lone sphere (cradle: every ball's; rubber-steel: the "
+          "floor's; the other bodies' 1); restitution = product of the pair's",
           cli::real_in(0, 1, false, false));
   app.add("--half-extents", half, 3, "the cuboid's half extents [m]", cli::positive());
   app.add("--quaternion", quat, 4, "the cuboid's orientation w x y z (normalised; must be non-zero)",

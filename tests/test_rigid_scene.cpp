@@ -10,6 +10,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 using namespace contact;
 using namespace contact::rigid;
 
@@ -219,6 +221,19 @@ TEST(RigidScene, SettlingLeavesNoNormalVelocityWhetherTheBodiesApproachOrLeave) 
   }
 }
 
+namespace {
+
+// Event-driven impulses whose flights (parabolas) RK8 integrates exactly.
+Method impulses_with_exact_flights() {
+  Method m{.name = "event-ode"};
+  m.integrator.method = "gsl-rk8pd";
+  m.integrator.rtol = 1e-10;
+  m.integrator.atol = 1e-13;
+  return m;
+}
+
+}  // namespace
+
 // The steel ball of rubber-steel (e = 0.4) bounces to rest by 1.04 s. Its last bounce, slower than
 // the rest speed, rested it with that speed kept: held against gravity it climbed at 1.2e-5 m/s to
 // the end, and the energy ledger drifted linearly (2.7e-6 of E0 at rtol 1e-10, 2.6e-4 at 1e-6,
@@ -227,11 +242,7 @@ TEST(RigidScene, SettlingLeavesNoNormalVelocityWhetherTheBodiesApproachOrLeave) 
 TEST(RigidScene, ABallBouncedToRestStaysOnTheFloorAndTheLedgerCloses) {
   const auto scene = make_scene("rubber-steel");
   const auto& s = dynamic_cast<const RigidScene&>(*scene);
-  Method m{.name = "event-ode"};
-  m.integrator.method = "gsl-rk8pd";
-  m.integrator.rtol = 1e-10;
-  m.integrator.atol = 1e-13;
-  const RunResult r = solve(s, m, {.t_end = 1.5, .sample_dt = 0.01});
+  const RunResult r = solve(s, impulses_with_exact_flights(), {.t_end = 1.5, .sample_dt = 0.01});
   ASSERT_TRUE(r.ok()) << r.message;
   double worst = 0;
   for (const Sample& x : r.samples) worst = std::max(worst, std::abs(x.energy + x.dissipated - r.energy0));
@@ -239,4 +250,25 @@ TEST(RigidScene, ABallBouncedToRestStaysOnTheFloorAndTheLedgerCloses) {
   const RigidBody steel = s.bodies_at(r.samples.back().y)[1];
   EXPECT_LE(std::abs(steel.velocity.z()), 1e-15);
   EXPECT_NEAR(steel.position.z(), 0.026, 1e-15);
+}
+
+// rubber-steel's balls carry 0.9 and 0.4; its elasticity parameter (every scene takes one) was
+// ignored, so a caller asking for 0.5 silently got the default scene. It is the floor's: the
+// restitutions are 0.45 and 0.2, and event-driven impulses with an exact (RK8) flight put each
+// ball's first apex at e^2 of its release height, to ten times the flight's tolerance (1e-10).
+TEST(RigidScene, RubberSteelsElasticityIsTheFloors) {
+  const auto scene = make_scene("rubber-steel", {{"elasticity", 0.5}});
+  const auto& s = dynamic_cast<const RigidScene&>(*scene);
+  const RunResult r = solve(s, impulses_with_exact_flights(), {.t_end = 1.0, .sample_dt = 0.1});
+  ASSERT_TRUE(r.ok()) << r.message;
+  const Vector y0 = s.initial_state();
+  for (std::size_t i = 0; i < s.contact_count(); ++i) {
+    const auto [ball, floor] = s.pair(i);
+    if (floor != 2) continue;  // the floor is the scene's third body
+    const double e = (ball == 0 ? 0.9 : 0.4) * 0.5;
+    const auto first =
+        std::find_if(r.apexes.begin(), r.apexes.end(), [&](const auto& a) { return a.contact == i; });
+    ASSERT_NE(first, r.apexes.end()) << "ball " << ball;
+    EXPECT_NEAR(first->gap / s.gap(i, y0), e * e, 1e-9) << "ball " << ball;
+  }
 }

@@ -57,12 +57,15 @@ RigidScene off_centre(const SceneParams& p) {
   return RigidScene("off-centre", {ball, box}, Vec3::Zero(), law_for(p));
 }
 
+// The balls' elasticities are the scene (0.9 and 0.4); the parameter is the floor's, which
+// scales both restitutions (it was ignored, a silent no-op).
 RigidScene rubber_steel(const SceneParams& p) {
   RigidBody rubber = RigidBody::sphere("rubber", p.m, p.radius, 0.9),
             steel = RigidBody::sphere("steel", p.m, p.radius, 0.4);
   rubber.position = Vec3(0, 0, 1.0);
   steel.position = Vec3(1.0, 0, 1.0);
-  return RigidScene("rubber-steel", {rubber, steel, RigidBody::plane("floor", Vec3::UnitZ(), 0.0, 1.0)},
+  return RigidScene("rubber-steel",
+                    {rubber, steel, RigidBody::plane("floor", Vec3::UnitZ(), 0.0, p.elasticity)},
                     Vec3(0, 0, -9.81), law_for(p));
 }
 
@@ -125,9 +128,14 @@ std::vector<SceneEntry> rigid_scene_entries() {
     entries.push_back(
         {info.name,
          info.description,
-         {{"m", "kg", d.m, "mass of the moving ball", kPositive},
-          {"radius", "m", d.radius, "its radius", kPositive},
-          {"elasticity", "", d.elasticity, "its elasticity (restitution: the product of the pair's)",
+         {{"m", "kg", d.m, "mass of each ball (planet: the cue ball's, the planet's 1e6 times it)",
+           kPositive},
+          {"radius", "m", d.radius, "radius of each ball (planet: the cue ball's, the planet's 100 times it)",
+           kPositive},
+          {"elasticity", "", d.elasticity,
+           "elasticity of the cue ball, striker or lone sphere (cradle: every ball's; rubber-steel: the "
+           "floor's, the balls' being 0.9 and 0.4; the other bodies' 1); restitution: the product of the "
+           "pair's",
            kUnitInterval},
           {"k", "N/m", d.k, "penalty stiffness (Kelvin-Voigt, damping tuned to each pair's e)", kPositive}},
          "",  // each pair's Kelvin–Voigt law, tuned to its restitution
