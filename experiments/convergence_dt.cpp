@@ -50,9 +50,7 @@ int program(int argc, char** argv) {
   app.add("--t-final", t_final, "time at which the error is measured [s]", cli::positive());
   app.add("--dt-max", dt_max, "largest fixed step [s]", cli::positive());
   app.add("--halvings", halvings, "fixed steps: dt-max halved this many times", cli::integer_at_least(1));
-  app.add("--tol-min", tol_min,
-          "tightest tolerance (adaptive runs go from 1e-3 down a decade at a time, to the last decade at "
-          "or above it: 7e-6 stops at 1e-5)",
+  app.add("--tol-min", tol_min, "tightest tolerance (decades from 1e-3 down: 7e-6 stops at 1e-5)",
           cli::real_in(1e-14, 1e-4, false, false));
   app.add("--heights", heights, "drop heights per row (the kinks' phases in the step)",
           cli::integer_in(1, 100));
