@@ -158,6 +158,9 @@ Options::~Options() = default;
 void Options::add(const std::string& flag, double& value, const std::string& help, const Check& check) {
   impl_->checked(impl_->app.add_option(flag, value, help), check);
 }
+void Options::add_unset(const std::string& flag, double& value, const std::string& help, const Check& check) {
+  impl_->checked(impl_->app.add_option(flag, value, help), check)->default_str("");
+}
 void Options::add(const std::string& flag, long& value, const std::string& help, const Check& check) {
   impl_->checked(impl_->app.add_option(flag, value, help), check);
 }

@@ -53,6 +53,9 @@ class Options {
   Options& operator=(const Options&) = delete;
 
   void add(const std::string& flag, double& value, const std::string& help, const Check& check = {});
+  // An option read only when given (Options::given), whose variable's initial value means nothing:
+  // its help shows no default ("in (0, inf)=0" read as a default outside its own range).
+  void add_unset(const std::string& flag, double& value, const std::string& help, const Check& check);
   void add(const std::string& flag, long& value, const std::string& help, const Check& check = {});
   void add(const std::string& flag, std::string& value, const std::string& help, const Check& check = {});
   // Exactly `count` values after the flag, each checked (e.g. --half-extents 0.3 0.2 0.1).

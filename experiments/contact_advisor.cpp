@@ -32,16 +32,19 @@ int program(int argc, char** argv) {
   app.add("--m", r.m, "effective mass of the contact [kg]", cli::positive());
   app.add("--v", r.v, "impact speed [m/s]", cli::positive());
   app.add("--e", r.e, "target coefficient of restitution", cli::real_in(0, 1, false, false));
-  app.add("--max-penetration", max_penetration, "required maximum penetration [m]", cli::positive());
-  app.add("--duration", duration, "required contact duration [s]", cli::positive());
+  app.add_unset("--max-penetration", max_penetration, "required maximum penetration [m] (or --duration)",
+                cli::positive());
+  app.add_unset("--duration", duration, "required contact duration [s] (or --max-penetration)",
+                cli::positive());
   app.add("--law", r.law, "contact law", cli::one_of(law_names()));
   std::vector<std::string> rules;
   for (const DampingRule k : kDampingRules) rules.emplace_back(to_string(k));
   app.add("--rule", rule, "damping rule of the Hunt-Crossley laws (hertz, hunt-crossley-linear)",
           cli::one_of(rules));
-  app.add("--radius", radius, "hertz from a material: sphere radius [m]", cli::positive());
-  app.add("--young", young, "hertz from a material: Young's modulus [Pa]", cli::positive());
-  app.add("--poisson", poisson, "hertz from a material: Poisson ratio", cli::real_in(-1, 0.5, true, true));
+  app.add_unset("--radius", radius, "hertz from a material: sphere radius [m]", cli::positive());
+  app.add_unset("--young", young, "hertz from a material: Young's modulus [Pa]", cli::positive());
+  app.add_unset("--poisson", poisson, "hertz from a material: Poisson ratio",
+                cli::real_in(-1, 0.5, true, true));
   app.add("--energy-error", r.energy_error, "energy error per contact the game step may cost",
           cli::real_in(0, 1, true, true));
   app.add("--engine-step", r.engine_step, "engine time step for ERP and CFM [s]", cli::positive());

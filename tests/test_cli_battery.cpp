@@ -98,3 +98,31 @@ TEST_F(CliBattery, OutRefusesPathsNoRunMayWriteTo) {
     EXPECT_EQ(entries, 1u) << exe << " wrote into the test folder";
   }
 }
+
+// A default the help shows is a value its option accepts: the advisor's requirements showed
+// "--max-penetration FLOAT:in (0, inf)=0" (0 there means "not given"), a default outside the
+// range printed beside it. Every number option with a range and a shown default, in every program.
+TEST_F(CliBattery, EveryDefaultShownIsAValueItsOptionAccepts) {
+  const std::regex line(
+      R"(^\s+(--[a-z0-9-]+) (?:FLOAT|INT):(?:integer )?in ([\[(])([^,]+), ([^\])]+)([\])])=(\S+).*$)");
+  std::size_t checked = 0;
+  for (const auto& exe : executables()) {
+    std::istringstream help(run(path(exe), "--help").out);
+    for (std::string l; std::getline(help, l);) {
+      std::smatch m;
+      if (!std::regex_match(l, m, line)) continue;
+      const double lo = std::stod(m[3]), hi = std::stod(m[4]);
+      std::string shown = m[6];  // one value, or a vector's "[0.3,0.2,0.1]"
+      if (shown.front() == '[') shown = shown.substr(1, shown.find(']') - 1);
+      std::istringstream values(shown);
+      for (std::string v; std::getline(values, v, ',');) {
+        const double value = std::stod(v);
+        const bool above = m[2] == "[" ? value >= lo : value > lo,
+                   below = m[5] == "]" ? value <= hi : value < hi;
+        EXPECT_TRUE(above && below) << exe << ": " << l;
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GE(checked, 80u);  // the programs' tolerances, steps, stiffnesses, counts: 87 when written
+}
