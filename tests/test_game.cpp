@@ -123,6 +123,35 @@ TEST(GameFreeFall, FirstImpactErrorIsBoundedByFirstOrderTerms) {
   }
 }
 
+// Explicit Euler's ball never rests (the README's limit cycle). From the floor at speed u it is at
+// x_n = n h u - g h^2 n (n - 1) / 2, v_n = u - n g h after n steps; projected at the first x_N < 0
+// and struck to e (N g h - u), it repeats when u = e N g h / (1 + e), which needs
+// (N - 2) / 2 <= u / (g h) < (N - 1) / 2: at e = 0.8, every N from 10 to 18 is such a cycle. The
+// run from 1 m ends in one (N = 14 at h = 1 ms: 14 ms, as the README says), and each apex the
+// recorder books, x_n + v_n^2 / (2 g) at the last n with v_n > 0, is the cycle's to 16 ulps.
+TEST(GameFreeFall, ExplicitEulerBouncesForeverInACycleOfItsOwn) {
+  const double g = 9.81, e = 0.8, h = 1e-3;
+  const BallDrop model({1.0, g, 1.0, 0.0, e, Hooke{1e5}});
+  const RunResult r = run_game(
+      model,
+      {.dt = h, .scheme = FixedStepScheme::ExplicitEuler, .resolution = GameResolution::ProjectionImpulse},
+      {.t_end = 10.0, .sample_dt = 1.0});
+  ASSERT_TRUE(r.ok()) << r.message;
+  ASSERT_GE(r.apexes.size(), 10u);
+  const double period = r.apexes.back().t - r.apexes[r.apexes.size() - 2].t;
+  const auto N = static_cast<int>(std::lround(period / h));
+  EXPECT_EQ(N, 14);
+  const double u = e * N * g * h / (1 + e);
+  EXPECT_LE((N - 2) / 2.0, u / (g * h));
+  EXPECT_LT(u / (g * h), (N - 1) / 2.0);
+  const int n = static_cast<int>(std::floor(u / (g * h)));  // the last step with v_n > 0
+  const double v = u - n * g * h, top = n * h * u - g * h * h * n * (n - 1) / 2 + v * v / (2 * g);
+  for (std::size_t i = r.apexes.size() - 5; i < r.apexes.size(); ++i) {
+    EXPECT_NEAR(r.apexes[i].gap, top, 16 * kEps * top) << i;
+    EXPECT_NEAR(r.apexes[i].t - r.apexes[i - 1].t, N * h, 1e-9) << i;
+  }
+}
+
 // Projection alone does not change velocity: the ball is held at the floor while gravity keeps
 // adding g dt of downward speed every step, so its "contact" never ends (the seed's warning).
 TEST(GameProjection, ProjectionAloneNeverLetsGo) {
