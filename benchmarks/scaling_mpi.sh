@@ -31,7 +31,8 @@ median() {
   printf '%s\n' "${times[@]}" | sort -g | awk '{a[NR]=$1} END {printf "%.9g\n", (NR % 2) ? a[(NR+1)/2] : (a[NR/2] + a[NR/2+1]) / 2}'
 }
 # A median in the table: four significant digits (fixed decimals gave a 200-ball chain's 0.26 ms
-# as 0.0003, one digit); the efficiencies are computed from the unrounded medians.
+# as 0.0003, one digit); the efficiencies, computed from the unrounded medians, three (two
+# decimals printed a loaded machine's 0.0025 as 0.00).
 shown() { awk -v t="$1" 'BEGIN {printf "%#.4g", t}'; }
 
 {
@@ -45,12 +46,12 @@ shown() { awk -v t="$1" 'BEGIN {printf "%#.4g", t}'; }
   base=""
   for p in $ranks; do
     t=$(median "$n" "$p"); base=${base:-$t}
-    echo "| strong | $p | $n | $(shown "$t") | $(awk -v a="$base" -v b="$t" -v p="$p" 'BEGIN {printf "%.2f", a / (p * b)}') |"
+    echo "| strong | $p | $n | $(shown "$t") | $(awk -v a="$base" -v b="$t" -v p="$p" 'BEGIN {printf "%#.3g", a / (p * b)}') |"
   done
   base=""
   for p in $ranks; do
     t=$(median $((per_rank * p)) "$p"); base=${base:-$t}
-    echo "| weak | $p | $((per_rank * p)) | $(shown "$t") | $(awk -v a="$base" -v b="$t" 'BEGIN {printf "%.2f", a / b}') |"
+    echo "| weak | $p | $((per_rank * p)) | $(shown "$t") | $(awk -v a="$base" -v b="$t" 'BEGIN {printf "%#.3g", a / b}') |"
   done
 } > "$out"
 cat "$out"

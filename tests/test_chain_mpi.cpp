@@ -178,9 +178,11 @@ TEST_F(ChainMpi, AChainBeyondTheMachinesMemoryIsRefusedFirst) {
 // energy_error_rel followed it, SCALING.md's table held -0.0000 s and -nan efficiencies. A small
 // chain, once per case: every median a positive time, every efficiency a positive number. The
 // medians were printed to 4 decimals, a 0.26 ms solve as 0.0003 (one digit, the efficiencies
-// computed from those): each carries 4 significant digits, and each efficiency is the one its
-// row's and the one-rank row's medians give, to the 0.005 of its rounding and 1.1e-3 of theirs
-// (each median to half a unit of its fourth digit, 5e-4 of it; a ratio of two to 1.0005e-3).
+// computed from those), and the efficiencies to 2, a two-rank solve slowed by a loaded machine
+// to 0.0025 as 0.00 (the test's old flake): the medians carry 4 significant digits, the
+// efficiencies 3, and each efficiency is the one its row's and the one-rank row's medians give,
+// to 5e-3 of it for its rounding and 1.1e-3 for theirs (each median to half a unit of its
+// fourth digit, 5e-4 of it; a ratio of two to 1.0005e-3).
 TEST_F(ChainMpi, TheScalingScriptTabulatesTheSolvesWallTime) {
   const std::string build = std::filesystem::path(CHAIN_MPI_EXE).parent_path().parent_path().string();
   const Outcome r = run("bash", "'" + std::string(SCALING_SCRIPT) + "' '" + build + "' scaling.md",
@@ -207,7 +209,7 @@ TEST_F(ChainMpi, TheScalingScriptTabulatesTheSolvesWallTime) {
     const int ranks = std::stoi(cells[2]);
     if (ranks == 1) one_rank = median;
     const double expected = cells[1] == " strong " ? one_rank / (ranks * median) : one_rank / median;
-    EXPECT_NEAR(efficiency, expected, 0.005 + 1.1e-3 * expected) << line;
+    EXPECT_NEAR(efficiency, expected, 6.1e-3 * expected) << line;
   }
   EXPECT_EQ(rows, 4);  // strong and weak, on one rank and two
 }
