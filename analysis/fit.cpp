@@ -81,9 +81,15 @@ std::vector<double> log_grid(double lo, double hi, long per_decade) {
   // At least one interval: a range narrower than a point's share of a decade (1e5 ... 1.0001e5)
   // used to round to zero intervals and divide by zero (k = NaN).
   const long n = std::max(1L, std::lround(std::log10(hi / lo) * static_cast<double>(per_decade)));
+  // A whole number of decades above lo is lo times an exact power of ten: (hi/lo)^(j/n) put the
+  // sweeps' k = 1e3 at 999.99999999999977 in their CSV files, which a reader's k == 1000 missed.
+  const double decades = std::log10(hi / lo);
   std::vector<double> grid;
-  for (long j = 0; j < n; ++j)
-    grid.push_back(lo * std::pow(hi / lo, static_cast<double>(j) / static_cast<double>(n)));
+  for (long j = 0; j < n; ++j) {
+    const double d = decades * static_cast<double>(j) / static_cast<double>(n);
+    const double whole = std::round(d);
+    grid.push_back(lo * std::pow(10.0, std::abs(d - whole) < 1e-9 ? whole : d));
+  }
   grid.push_back(hi);
   return grid;
 }

@@ -38,7 +38,8 @@ double fitted_order(const std::vector<ConvergencePoint>& points, double floor, s
                     double ceiling = std::numeric_limits<double>::infinity());
 
 // Points from lo to hi (0 < lo <= hi), evenly spaced in log, per_decade >= 1 of them per decade
-// (rounded; at least the two ends), the ends exact: lo * (hi/lo)^(j/n). lo == hi gives one point.
+// (rounded; at least the two ends), the ends exact: lo * (hi/lo)^(j/n), a whole number of decades
+// above lo exactly lo * 10^m. lo == hi gives one point.
 std::vector<double> log_grid(double lo, double hi, long per_decade);
 
 // Ordinary least squares y ~ intercept + slope x (GSL), e.g. an energy drift rate.
