@@ -19,7 +19,9 @@ std::string render(const Table::Cell& c, int digits) {
     std::string operator()(double v) const {
       if (std::isnan(v)) return digits > 0 ? "—" : "nan";
       v += 0.0;  // a zero's sign is an artefact of a negation (a sink of -y at y = 0): print 0
-      return digits > 0 ? fmt::format("{:.{}g}", v, digits) : fmt::format("{:.17g}", v);
+      // Full precision (digits 0, the CSV files) is the shortest text that reads back as the same
+      // double: 0.2, not 0.20000000000000001.
+      return digits > 0 ? fmt::format("{:.{}g}", v, digits) : fmt::format("{}", v);
     }
   };
   return std::visit(Render{digits}, c);

@@ -60,6 +60,21 @@ TEST(PaperInputs, CsvReadsBackWhatTablesWrite) {
   EXPECT_THROW(contact::read_csv(file), std::runtime_error);
 }
 
+// A CSV cell holds the shortest text that reads back as its double: exact, and what a reader types
+// to find it (0.2, not 0.20000000000000001; 1e-05, not 1.0000000000000001e-05).
+TEST(PaperInputs, CsvNumbersAreTheShortestTextThatReadsBackExactly) {
+  contact::Table t({"value"});
+  for (double v : {0.2, 1e-5, 1000.0, 1.0 / 3, 9.810000000000374e-05, 1e300}) t.add_row({v});
+  EXPECT_EQ(t.to_csv(), "value\n0.2\n1e-05\n1000\n0.3333333333333333\n9.810000000000374e-05\n1e+300\n");
+  std::istringstream csv(t.to_csv());
+  std::string cell;
+  std::getline(csv, cell);
+  for (const auto& row : t.rows()) {
+    std::getline(csv, cell);
+    EXPECT_EQ(std::stod(cell), std::get<double>(row[0])) << cell;
+  }
+}
+
 // A negated zero (the stack's top sink -y at y = 0) prints as 0 in every format, not "-0".
 TEST(PaperInputs, ZeroPrintsWithoutASign) {
   contact::Table t({"sink_m"});
