@@ -88,6 +88,8 @@ std::vector<double> log_grid(double lo, double hi, long per_decade) {
   for (long j = 0; j < n; ++j) {
     const double d = decades * static_cast<double>(j) / static_cast<double>(n);
     const double whole = std::round(d);
+    // 1e-9 of a decade: the log's rounding is ~1e-15, the grid's spacing at least 1e-2 (the programs' cap of
+    // 100 a decade).
     grid.push_back(lo * std::pow(10.0, std::abs(d - whole) < 1e-9 ? whole : d));
   }
   grid.push_back(hi);

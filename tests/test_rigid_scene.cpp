@@ -262,13 +262,16 @@ TEST(RigidScene, RubberSteelsElasticityIsTheFloors) {
   const RunResult r = solve(s, impulses_with_exact_flights(), {.t_end = 1.0, .sample_dt = 0.1});
   ASSERT_TRUE(r.ok()) << r.message;
   const Vector y0 = s.initial_state();
+  std::size_t checked = 0;
   for (std::size_t i = 0; i < s.contact_count(); ++i) {
     const auto [ball, floor] = s.pair(i);
     if (floor != 2) continue;  // the floor is the scene's third body
+    ++checked;
     const double e = (ball == 0 ? 0.9 : 0.4) * 0.5;
     const auto first =
         std::find_if(r.apexes.begin(), r.apexes.end(), [&](const auto& a) { return a.contact == i; });
     ASSERT_NE(first, r.apexes.end()) << "ball " << ball;
     EXPECT_NEAR(first->gap / s.gap(i, y0), e * e, 1e-9) << "ball " << ball;
   }
+  EXPECT_EQ(checked, 2u);  // both balls' contacts with the floor
 }
