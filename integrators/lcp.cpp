@@ -1,5 +1,7 @@
 #include "lcp.hpp"
 
+#include <Eigen/SparseCholesky>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -14,23 +16,44 @@ constexpr int kBlockTrials = 3;
 constexpr double kResidual = 1e-10;
 
 // p_F of W_FF p_F = -b_F. W is semidefinite, and a principal block can be singular (redundant
-// contacts): LDLT first, the minimum-norm least-squares solution where LDLT's is not a solution.
-// A backward-stable solve leaves a residual of about eps cond(A) of r; a row of n contacts has
-// cond ~ 0.4 n^2 (4e5 at 1000), so kResidual passes every regular block and fails a singular one.
-Eigen::VectorXd solve_block(const Eigen::MatrixXd& A, const Eigen::VectorXd& r) {
-  const Eigen::LDLT<Eigen::MatrixXd> ldlt(A);
-  Eigen::VectorXd x = ldlt.solve(r);
+// contacts): a sparse LDLT first (no pivoting: it stops at a zero pivot), the minimum-norm
+// least-squares solution of the dense block where LDLT's is not a solution. A backward-stable
+// solve leaves a residual of about eps cond(A) of r; a row of n contacts has cond ~ 0.4 n^2 (4e5 at
+// 1000), so kResidual passes every regular block and fails a singular one.
+Eigen::VectorXd solve_block(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& r) {
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(A);
   const double scale = std::max(r.cwiseAbs().maxCoeff(), 1e-300);
-  if (ldlt.info() == Eigen::Success && x.allFinite() &&
-      (A * x - r).cwiseAbs().maxCoeff() <= kResidual * scale)
-    return x;
-  return Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(A).solve(r);
+  if (ldlt.info() == Eigen::Success) {
+    Eigen::VectorXd x = ldlt.solve(r);
+    if (ldlt.info() == Eigen::Success && x.allFinite() &&
+        (A * x - r).cwiseAbs().maxCoeff() <= kResidual * scale)
+      return x;
+  }
+  return Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(Eigen::MatrixXd(A)).solve(r);
+}
+
+// W's principal block on the indices `free` (ascending), from the nonzeros of their columns.
+Eigen::SparseMatrix<double> principal_block(const Eigen::SparseMatrix<double>& W,
+                                            const std::vector<Eigen::Index>& free,
+                                            std::vector<Eigen::Index>& position) {
+  const auto m = static_cast<Eigen::Index>(free.size());
+  position.assign(static_cast<std::size_t>(W.rows()), -1);
+  for (Eigen::Index a = 0; a < m; ++a)
+    position[static_cast<std::size_t>(free[static_cast<std::size_t>(a)])] = a;
+  std::vector<Eigen::Triplet<double>> entries;
+  for (Eigen::Index a = 0; a < m; ++a)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(W, free[static_cast<std::size_t>(a)]); it; ++it)
+      if (const Eigen::Index row = position[static_cast<std::size_t>(it.row())]; row >= 0)
+        entries.emplace_back(row, a, it.value());
+  Eigen::SparseMatrix<double> A(m, m);
+  A.setFromTriplets(entries.begin(), entries.end());
+  return A;
 }
 
 }  // namespace
 
-LcpSolution solve_lcp(const Eigen::MatrixXd& W, const Eigen::VectorXd& b, std::vector<bool> positive,
-                      double w_tol, int max_solves) {
+LcpSolution solve_lcp(const Eigen::SparseMatrix<double>& W, const Eigen::VectorXd& b,
+                      std::vector<bool> positive, double w_tol, int max_solves) {
   const Eigen::Index n = b.size();
   if (W.rows() != n || W.cols() != n || positive.size() != static_cast<std::size_t>(n))
     throw std::invalid_argument("solve_lcp: W must be n x n and the guess of length n, n = b's length");
@@ -40,7 +63,8 @@ LcpSolution solve_lcp(const Eigen::MatrixXd& W, const Eigen::VectorXd& b, std::v
   // below it (1e-15 m/s on a falling 1500-ball column, the residual 2e-15) flipped a solved index
   // out and back for ever. Moreau–Jean's sweeps take the answer on to w_tol.
   const double w_floor = std::max(w_tol, kResidual * (n > 0 ? b.cwiseAbs().maxCoeff() : 0.0));
-  std::vector<Eigen::Index> free, infeasible;
+  const Eigen::VectorXd diagonal = W.diagonal();
+  std::vector<Eigen::Index> free, infeasible, position;
   std::size_t fewest = static_cast<std::size_t>(n) + 1;
   int trials = kBlockTrials;
   while (s.solves < max_solves) {
@@ -50,13 +74,9 @@ LcpSolution solve_lcp(const Eigen::MatrixXd& W, const Eigen::VectorXd& b, std::v
     s.p.setZero();
     if (!free.empty()) {
       const auto m = static_cast<Eigen::Index>(free.size());
-      Eigen::MatrixXd A(m, m);
       Eigen::VectorXd r(m);
-      for (Eigen::Index a = 0; a < m; ++a) {
-        r(a) = -b(free[static_cast<std::size_t>(a)]);
-        for (Eigen::Index c = 0; c < m; ++c)
-          A(a, c) = W(free[static_cast<std::size_t>(a)], free[static_cast<std::size_t>(c)]);
-      }
+      for (Eigen::Index a = 0; a < m; ++a) r(a) = -b(free[static_cast<std::size_t>(a)]);
+      const Eigen::SparseMatrix<double> A = principal_block(W, free, position);
       const Eigen::VectorXd x = solve_block(A, r);
       for (Eigen::Index a = 0; a < m; ++a) s.p(free[static_cast<std::size_t>(a)]) = x(a);
     }
@@ -67,7 +87,7 @@ LcpSolution solve_lcp(const Eigen::MatrixXd& W, const Eigen::VectorXd& b, std::v
       // A free index whose w is not zero: its block had no solution (a singular W), only the
       // least-squares one.
       const bool out = positive[static_cast<std::size_t>(i)]
-                           ? !(s.p(i) >= -w_tol / std::max(W(i, i), 1e-300) && std::abs(w(i)) <= w_floor)
+                           ? !(s.p(i) >= -w_tol / std::max(diagonal(i), 1e-300) && std::abs(w(i)) <= w_floor)
                            : !(w(i) >= -w_floor);
       if (out) infeasible.push_back(i);
     }

@@ -7,10 +7,13 @@
 // are positive, solves W_FF p_F = -b_F on that set, and moves every index whose p or w comes out
 // negative (or, on a singular block, whose w does not vanish) to the other set; it falls back to one index at
 // a time (Murty's rule, finite on a positive definite W) when the number of infeasible indices stops falling.
-// Started from PGS's guess it takes a few solves.
+// Started from PGS's guess it takes a few solves. W is sparse (a contact couples only to the
+// contacts that share a body with it: a column or a row of n contacts is tridiagonal), and each
+// block is factorised sparse: O(n) for such a row instead of the n^3 / 3 of a dense factorisation.
 #pragma once
 
 #include <Eigen/Dense>
+#include <Eigen/SparseCore>
 
 #include <vector>
 
@@ -26,7 +29,7 @@ struct LcpSolution {
 // `positive`: the initial guess of the indices with p > 0. w_tol bounds the negative w allowed
 // (the velocities' tolerance), raised to the rounding of w itself (w_floor: 1e-10 of the largest
 // |b|); p's is w_tol / W_ii. At most max_solves pivot steps.
-LcpSolution solve_lcp(const Eigen::MatrixXd& W, const Eigen::VectorXd& b, std::vector<bool> positive,
-                      double w_tol, int max_solves);
+LcpSolution solve_lcp(const Eigen::SparseMatrix<double>& W, const Eigen::VectorXd& b,
+                      std::vector<bool> positive, double w_tol, int max_solves);
 
 }  // namespace contact

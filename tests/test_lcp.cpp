@@ -50,7 +50,7 @@ TEST(Lcp, ARowOfApproachingAndSeparatingContactsIsSolvedFromAWrongGuess) {
   const Eigen::MatrixXd W = row_of_contacts(n);
   Eigen::VectorXd b(n);
   for (Eigen::Index i = 0; i < n; ++i) b(i) = std::sin(0.1 * static_cast<double>(i));
-  const LcpSolution s = solve_lcp(W, b, std::vector<bool>(n, true), 1e-12, 100);
+  const LcpSolution s = solve_lcp(W.sparseView(), b, std::vector<bool>(n, true), 1e-12, 100);
   expect_complementary(W, b, s, 1e-12);
   EXPECT_LE(s.solves, n / 4);
   // Both kinds of contact are in the answer: a pushing impulse and an open one.
@@ -72,7 +72,8 @@ TEST(Lcp, ASolvedBlockIsNotFlippedOutForItsRounding) {
   W(0, 0) = 1;
   Eigen::VectorXd b = Eigen::VectorXd::Zero(n);
   b(0) = -1e-3;
-  const LcpSolution s = solve_lcp(W, b, std::vector<bool>(static_cast<std::size_t>(n), true), 1e-15, 20);
+  const LcpSolution s =
+      solve_lcp(W.sparseView(), b, std::vector<bool>(static_cast<std::size_t>(n), true), 1e-15, 20);
   ASSERT_TRUE(s.solved) << s.solves << " solves";
   EXPECT_EQ(s.solves, 1);
   const double cond = 4.0 * static_cast<double>(n * n) / (std::numbers::pi * std::numbers::pi),
@@ -83,13 +84,31 @@ TEST(Lcp, ASolvedBlockIsNotFlippedOutForItsRounding) {
         << k;
 }
 
+// Contacts that all share bodies (a dense W: B B^T + I/10, B's entries spread in [-1, 1]): the
+// sparse factorisation fills in completely and must still give the LCP's answer, from a wrong
+// guess, with both kinds of contact in it.
+TEST(Lcp, AFullyCoupledProblemIsSolvedToo) {
+  const Eigen::Index n = 40;
+  Eigen::MatrixXd B(n, n);
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (Eigen::Index j = 0; j < n; ++j) B(i, j) = std::sin(static_cast<double>(7 * i + 3 * j + 1));
+  const Eigen::MatrixXd W = B * B.transpose() + 0.1 * Eigen::MatrixXd::Identity(n, n);
+  Eigen::VectorXd b(n);
+  for (Eigen::Index i = 0; i < n; ++i) b(i) = 10 * std::cos(static_cast<double>(5 * i));
+  const LcpSolution s = solve_lcp(W.sparseView(), b, std::vector<bool>(n, true), 1e-12, 4 * n + 16);
+  // To the solver's own floor for w, 1e-10 of the largest |b| (lcp.hpp): 1e-9.
+  expect_complementary(W, b, s, 1e-9);
+  EXPECT_GT(s.p.maxCoeff(), 0.0);
+  EXPECT_EQ(s.p.minCoeff(), 0.0);
+}
+
 // Two contacts on the same normal between the same bodies (a redundant pair): W is singular, the
 // impulses are not unique, but their sum is, and the rates come out exactly zero.
 TEST(Lcp, ARedundantPairGetsItsSumRight) {
   Eigen::MatrixXd W(2, 2);
   W << 1, 1, 1, 1;
   const Eigen::Vector2d b(-1, -1);
-  const LcpSolution s = solve_lcp(W, b, {true, true}, 1e-12, 20);
+  const LcpSolution s = solve_lcp(W.sparseView(), b, {true, true}, 1e-12, 20);
   expect_complementary(W, b, s, 1e-12);
   EXPECT_NEAR(s.p.sum(), 1.0, 1e-12);
 }
@@ -99,7 +118,7 @@ TEST(Lcp, ARedundantPairGetsItsSumRight) {
 TEST(Lcp, AnUnsolvableProblemEndsUnsolvedWithinTheBound) {
   const Eigen::MatrixXd W = Eigen::MatrixXd::Zero(3, 3);
   const Eigen::Vector3d b(-1, 0.5, -2);
-  const LcpSolution s = solve_lcp(W, b, {false, false, false}, 1e-12, 25);
+  const LcpSolution s = solve_lcp(W.sparseView(), b, {false, false, false}, 1e-12, 25);
   EXPECT_FALSE(s.solved);
   EXPECT_LE(s.solves, 25);
 }
@@ -138,8 +157,8 @@ TEST(MoreauJean, AFallingColumnsLcpIsSolvedInAFewBlockSolves) {
   for (Eigen::Index b = 0; b < 300; ++b) EXPECT_NEAR(y[2 * b + 1], 0.0, 1e-10) << "ball " << b;
 }
 
-// Beyond the 3000 closed contacts solved exactly (a dense W: a 1e5-ball column would have asked
-// for 80 GB) a falling column's first step is Gauss–Seidel's alone, which needs ~3 n^2 sweeps: the
+// Beyond the 3000 closed contacts solved exactly (forming W asks n^2 gap rates: 1e10 for a 1e5-ball
+// column) a falling column's first step is Gauss–Seidel's alone, which needs ~3 n^2 sweeps: the
 // run ends at t = 0 as a convergence failure that names the bound, within 10^4 sweeps.
 TEST(MoreauJean, ATooLargeImpactLcpEndsAFailureThatNamesTheExactSolvesBound) {
   const auto column = make_scene("ball-stack", {{"n", 3001}}, "kelvin-voigt");
