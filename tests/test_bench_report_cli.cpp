@@ -107,6 +107,27 @@ TEST_F(BenchReportCli, TheColumnLineFitsEachMethodsGrowthAndLeavesOutAFailedSize
   EXPECT_EQ(r.out.find("soft_step N^"), std::string::npos) << r.out;
 }
 
+// The study and the paper are timed three times (wall time on a shared machine varies by a fifth):
+// the line gives the median run's times and the totals' range, and the verdict is the median's.
+TEST_F(BenchReportCli, TheStudysTimeIsTheMedianRunsWithTheRange) {
+  write_inputs({"BDF", "Radau", "LSODA", "RK45"});
+  std::ofstream(dir_ / "timing.json") << R"({"study_s": 8.5, "paper_s": 0.9, "totals_s": [11.2, 9.4, 9.1]})";
+  Outcome r = run(BENCH_REPORT_EXE, "--build-type Release --load 0 --timing timing.json bench.json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(
+      r.out.find("- the study (8.5 s) and the paper (0.9 s) together 9.4 s of wall time on 2 cores, the "
+                 "median of 3 runs (9.1 to 11.2 s) (target <= 10 s): **met**\n"),
+      std::string::npos)
+      << r.out;
+  // One run (an older timing file): no range is claimed.
+  std::ofstream(dir_ / "timing.json") << R"({"study_s": 10.5, "paper_s": 0.9})";
+  r = run(BENCH_REPORT_EXE, "--build-type Release --load 0 --timing timing.json bench.json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("together 11.4 s of wall time on 2 cores (target <= 10 s): **not met**\n"),
+            std::string::npos)
+      << r.out;
+}
+
 TEST_F(BenchReportCli, UnknownOptionsAreRefused) {
   const Outcome r = run(BENCH_REPORT_EXE, "--bogus bench.json");
   EXPECT_EQ(r.code, 2);
