@@ -320,8 +320,7 @@ int main(int argc, char** argv) try {
     }
     fmt::print(
         "- the study ({:.1f} s) and the paper ({:.1f} s) together {:.1f} s of wall time on {} cores{} "
-        "(target "
-        "<= 10 s): {}\n",
+        "(target <= 10 s): {}\n",
         t.value("study_s", NAN), t.value("paper_s", NAN), total, context.value("num_cpus", 0), runs,
         verdict(total <= 10));
     if (t.contains("fresh_build_s"))
