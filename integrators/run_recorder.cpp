@@ -10,10 +10,6 @@
 
 namespace contact {
 
-namespace {
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-}
-
 double half_the_machines_memory() {
   static const double half =
       0.5 * static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGE_SIZE));
@@ -33,14 +29,6 @@ RunRecorder::RunRecorder(const Dynamics& model, std::string method, const SolveO
   const Vector y0 = model.initial_state();
   result_.energy0 = model.energy(y0);
   if (y0.size() > 0 && y0.allFinite()) state_scale_ = std::max(1.0, y0.cwiseAbs().maxCoeff());
-}
-
-double RunRecorder::next_sample_time() const {
-  // Grid t_j = j * sample_dt by multiplication (no accumulated round-off), closed by t_end;
-  // -1 marks the grid as done.
-  if (next_sample_ < 0) return std::numeric_limits<double>::infinity();
-  const double t = static_cast<double>(next_sample_) * sample_dt_;
-  return t < t_end_ * (1 - 1e-12) ? t : t_end_;
 }
 
 void RunRecorder::sample(double t, ConstVectorRef y) { sample(t, y, dissipated_); }
@@ -69,13 +57,11 @@ void RunRecorder::sample(double t, ConstVectorRef y, double dissipated) {
   next_sample_ = std::max(next_sample_, static_cast<long>(j) + 1);
 }
 
-void RunRecorder::check_records(double t) const {
-  const auto kept = result_.contacts.size() + result_.apexes.size() + result_.notifications.size();
-  if (static_cast<long>(kept) >= limits_.max_records)
-    throw SolverFailure(
-        Status::WorkLimit, t,
-        fmt::format("more than {} contact records, apexes and notifications: the run's record limit",
-                    limits_.max_records));
+void RunRecorder::records_exceeded(double t) const {
+  throw SolverFailure(
+      Status::WorkLimit, t,
+      fmt::format("more than {} contact records, apexes and notifications: the run's record limit",
+                  limits_.max_records));
 }
 
 void RunRecorder::check_diverged(double t, ConstVectorRef y, double gain) const {
@@ -117,20 +103,6 @@ void RunRecorder::check_steps(long steps, double t) const {
                         fmt::format("more than {} steps in the run", limits_.max_steps));
 }
 
-void RunRecorder::contact_begin(std::size_t i, double t, double v_in) {
-  check_records(t);
-  open_[i] = last_[i] = static_cast<long>(result_.contacts.size());
-  result_.contacts.push_back({i, t, kNaN, 0.0, v_in, kNaN});
-}
-
-void RunRecorder::contact_end(std::size_t i, double t, double v_out) {
-  if (open_[i] < 0) return;
-  auto& c = result_.contacts[static_cast<std::size_t>(open_[i])];
-  c.t_end = t;
-  c.v_out = v_out;
-  open_[i] = -1;
-}
-
 bool RunRecorder::reopen_contact(std::size_t i, double t) {
   if (open_[i] >= 0 || last_[i] < 0) return false;
   auto& c = result_.contacts[static_cast<std::size_t>(last_[i])];
@@ -140,24 +112,9 @@ bool RunRecorder::reopen_contact(std::size_t i, double t) {
   return true;
 }
 
-void RunRecorder::observe_penetration(std::size_t i, double penetration) {
-  if (open_[i] < 0) return;
-  auto& c = result_.contacts[static_cast<std::size_t>(open_[i])];
-  c.max_penetration = std::max(c.max_penetration, penetration);
-}
-
 void RunRecorder::exclude_spring_energy() {
   springless_ = true;
   result_.energy0 = energy(model_.initial_state());
-}
-
-void RunRecorder::apex(std::size_t i, double t, double gap, double energy) {
-  apex(i, t, gap, energy, dissipated_);
-}
-
-void RunRecorder::apex(std::size_t i, double t, double gap, double energy, double dissipated) {
-  check_records(t);
-  result_.apexes.push_back({i, t, gap, energy, dissipated});
 }
 
 RunResult RunRecorder::finish(SolverStats stats, double t_reached) {
