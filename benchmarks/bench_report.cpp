@@ -2,7 +2,12 @@
 // bench_chain and bench_column, the SciPy peer's JSON lines, the study's timing) into Markdown: the machine,
 // its load and the project's build type, one table per benchmark family (CPU time: median and range of the
 // repetitions), and every target of the study with its verdict computed from the numbers. Usage: bench_report
-// --build-type T --load L [--scipy P1.jsonl] [--timing TIMING.json] RESULT.json...
+// --build-type T --load L [--scipy P1.jsonl]... [--timing TIMING.json] RESULT.json...
+// A case in several RESULT files (run_benchmarks.sh times P1 and the exact bounces in rounds, each
+// round's P1 beside SciPy's, --scipy once a round in the same order) is pooled: the median of the
+// runs' medians, the range of all their repetitions; and each P1 ratio to SciPy is the median of
+// the rounds' ratios, each taken from measurements a few seconds apart. A machine whose speed drifts
+// (this VM's by a third within minutes) then moves both sides of a ratio alike.
 #include "contact_ode/analysis/fit.hpp"
 
 #include <fmt/format.h>
@@ -21,11 +26,13 @@ using nlohmann::json;
 
 namespace {
 
-// One benchmark case: its median row (or its only row) and the min and max rows when repeated.
+// One benchmark case: its median row (or its only row) and the min and max rows when repeated,
+// pooled over the runs that timed it (runs: each run's rows, in the order of the files).
 struct Case {
   std::string family, variant;
   long arg = 0;
   json median, min, max;
+  std::vector<json> runs, mins, maxes;
 };
 
 std::string cpu_model() {
@@ -37,6 +44,22 @@ std::string cpu_model() {
 
 double num(const json& j, const char* key) {
   return j.is_object() && j.contains(key) && j[key].is_number() ? j[key].get<double>() : std::nan("");
+}
+
+// The pooled rows: the run whose median is the median of the runs' (the lower middle of an even
+// count), the fastest minimum and the slowest maximum.
+void pool(Case& c) {
+  auto by_cpu = [](const json& a, const json& b) { return num(a, "cpu_time") < num(b, "cpu_time"); };
+  std::vector<json> sorted = c.runs;
+  std::stable_sort(sorted.begin(), sorted.end(), by_cpu);
+  if (!sorted.empty()) c.median = sorted[(sorted.size() - 1) / 2];
+  if (!c.mins.empty()) c.min = *std::min_element(c.mins.begin(), c.mins.end(), by_cpu);
+  if (!c.maxes.empty()) c.max = *std::max_element(c.maxes.begin(), c.maxes.end(), by_cpu);
+}
+
+double median_of(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? std::nan("") : v[(v.size() - 1) / 2];
 }
 
 std::string verdict(bool ok) { return ok ? "**met**" : "**not met**"; }
@@ -68,13 +91,13 @@ std::string read_text(const std::string& path) {
 }
 
 constexpr const char* kUsage =
-    "usage: bench_report --build-type T --load L [--scipy P1.jsonl] [--timing TIMING.json] RESULT.json...";
+    "usage: bench_report --build-type T --load L [--scipy P1.jsonl]... [--timing TIMING.json] RESULT.json...";
 
 }  // namespace
 
 int main(int argc, char** argv) try {
-  std::string build_type = "?", load = "?", scipy_path, timing_path;
-  std::vector<std::string> inputs;
+  std::string build_type = "?", load = "?", timing_path;
+  std::vector<std::string> inputs, scipy_paths;  // --scipy: once a round of P1 (above)
   for (int a = 1; a < argc; ++a) {
     const std::string arg = argv[a];
     auto value = [&]() -> std::string {
@@ -86,7 +109,7 @@ int main(int argc, char** argv) try {
     else if (arg == "--load")
       load = value();
     else if (arg == "--scipy")
-      scipy_path = value();
+      scipy_paths.push_back(value());
     else if (arg == "--timing")
       timing_path = value();
     else if (arg == "-h" || arg == "--help")
@@ -117,9 +140,10 @@ int main(int argc, char** argv) try {
         return x.family == c.family && x.variant == c.variant && x.arg == c.arg;
       });
       if (it == cases.end()) it = cases.insert(cases.end(), c);
-      (stat == "min" ? it->min : stat == "max" ? it->max : it->median) = b;
+      (stat == "min" ? it->mins : stat == "max" ? it->maxes : it->runs).push_back(b);
     }
   }
+  for (auto& c : cases) pool(c);
   auto find = [&](const std::string& family, const std::string& variant, long arg) -> const Case* {
     for (const auto& c : cases)
       if (c.family == family && c.variant == variant && c.arg == arg) return &c;
@@ -129,7 +153,9 @@ int main(int argc, char** argv) try {
   fmt::print(
       "# Benchmarks\n\nMachine: {}, {} CPUs at {} MHz; load average before the run: {}; the project built as "
       "{} (Google Benchmark's own library: {}); run {}. Times are CPU time per iteration: the median of "
-      "the repetitions, with their range.\n\n",
+      "the repetitions, with their range; a case timed in several runs (P1 and the exact bounces, in "
+      "rounds that alternate with SciPy's P1) shows the median of the runs' medians and the range of "
+      "all their repetitions.\n\n",
       cpu_model(), context.value("num_cpus", 0), context.value("mhz_per_cpu", 0), load, build_type,
       context.value("library_build_type", "?"), context.value("date", "?"));
 
@@ -183,41 +209,56 @@ int main(int argc, char** argv) try {
       worst = std::max(worst, std::abs(apex(n) - num(ref->median, fmt::format("apex_{}", n).c_str())));
     return worst;
   };
-  if (ref && !scipy_path.empty()) {
-    std::vector<json> peers;
-    std::istringstream lines(read_text(scipy_path));
-    for (std::string line; std::getline(lines, line);)
-      if (!line.empty() && line[0] == '{') peers.push_back(json::parse(line));
-    // The target names four peers: a method missing from the SciPy run (not installed, failed) is a
+  if (ref && !scipy_paths.empty()) {
+    // rounds[r][method]: SciPy's P1 in round r (one --scipy file each).
+    std::vector<std::map<std::string, json>> rounds;
+    for (const auto& path : scipy_paths) {
+      auto& round = rounds.emplace_back();
+      std::istringstream lines(read_text(path));
+      for (std::string line; std::getline(lines, line);)
+        if (!line.empty() && line[0] == '{') {
+          const json p = json::parse(line);
+          round[p.value("method", "")] = p;
+        }
+    }
+    // The target names four peers: a method missing from a SciPy round (not installed, failed) is a
     // comparison not made, never one won.
-    std::vector<std::string> unmeasured;
+    std::vector<std::string> methods, unmeasured;
     for (const char* method : {"BDF", "Radau", "LSODA", "RK45"})
-      if (std::none_of(peers.begin(), peers.end(),
-                       [&](const json& p) { return p.value("method", "") == method; }))
-        unmeasured.push_back(method);
+      (std::all_of(rounds.begin(), rounds.end(), [&](const auto& round) { return round.contains(method); })
+           ? methods
+           : unmeasured)
+          .push_back(method);
     const std::string absent =
         unmeasured.empty() ? "" : fmt::format("; SciPy's {} not measured", fmt::join(unmeasured, ", "));
+    const std::string pooled =
+        rounds.size() > 1 ? fmt::format(" (medians of {} rounds, each beside SciPy's)", rounds.size()) : "";
     std::vector<std::string> who_meets, per_integrator;
     for (const auto& c : cases) {
       if (c.family != "P1") continue;
+      if (c.runs.size() != rounds.size())
+        throw std::invalid_argument(
+            fmt::format("P1/{} was timed in {} runs and SciPy in {}: give --scipy once for each P1 run, in "
+                        "the same order",
+                        c.variant, c.runs.size(), rounds.size()));
       const double ours = num(c.median, "cpu_time") * 1e-3;  // [s]; the benchmark reports ms
       const double err = apex_error([&](int n) { return num(c.median, fmt::format("apex_{}", n).c_str()); });
       bool all = unmeasured.empty();
       std::vector<std::string> parts, met, missed;
-      for (const auto& p : peers) {
-        const double theirs = p["cpu_s"].get<double>();
-        const auto apexes = p["apexes"].get<std::vector<double>>();
+      for (const auto& method : methods) {
+        std::vector<double> ratios;
+        for (std::size_t r = 0; r < rounds.size(); ++r)
+          ratios.push_back(rounds[r][method]["cpu_s"].get<double>() / (num(c.runs[r], "cpu_time") * 1e-3));
+        const double ratio = median_of(ratios);
+        const auto apexes = rounds.front()[method]["apexes"].get<std::vector<double>>();
         const double their_err =
             apexes.size() < 5 ? std::nan("") : apex_error([&](int n) { return apexes[n - 1]; });
-        const bool ok = theirs / ours >= 50 && err <= their_err;
+        const bool ok = ratio >= 50 && err <= their_err;
         all = all && ok;
         const std::string against =
-            fmt::format("{} {:.0f}x (apex error {:.1e} m against {:.1e} m)", p["method"].get<std::string>(),
-                        theirs / ours, err, their_err);
+            fmt::format("{} {:.0f}x (apex error {:.1e} m against {:.1e} m)", method, ratio, err, their_err);
         parts.push_back(against);
-        (ok ? met : missed)
-            .push_back(ok ? fmt::format("{} {:.0f}x", p["method"].get<std::string>(), theirs / ours)
-                          : against);
+        (ok ? met : missed).push_back(ok ? fmt::format("{} {:.0f}x", method, ratio) : against);
       }
       per_integrator.push_back(fmt::format(
           "  - {} ({:.3g} ms, apex error {:.1e} m): meets it against {}{}{}", c.variant, ours * 1e3, err,
@@ -225,9 +266,9 @@ int main(int argc, char** argv) try {
           missed.empty() ? "" : fmt::format("; not {}", fmt::join(missed, ", ")), absent));
       if (c.variant == "cvode-bdf")
         fmt::print(
-            "- P1 (rtol 1e-6), CVODE BDF at {:.3g} ms per solve: {}{}; target >= 50x less CPU than each, "
+            "- P1 (rtol 1e-6), CVODE BDF at {:.3g} ms per solve{}: {}{}; target >= 50x less CPU than each, "
             "apex error no worse: {}\n",
-            ours * 1e3, fmt::join(parts, "; "), absent, verdict(all));
+            ours * 1e3, pooled, fmt::join(parts, "; "), absent, verdict(all));
       if (all) who_meets.push_back(fmt::format("{} ({:.3g} ms)", c.variant, ours * 1e3));
     }
     fmt::print("- P1: integrators that meet it against all four SciPy methods: {}\n",
@@ -262,8 +303,9 @@ int main(int argc, char** argv) try {
       verdict(bdf_rhs <= 500));
   if (const Case* e = find("ExactBounces", "", 0)) {
     const double rate = num(e->median, "impacts_per_s");
-    fmt::print("- event-driven closed form: {:.3g} impacts per second (median; target >= 1e7): {}\n", rate,
-               verdict(rate >= 1e7));
+    const std::string runs = e->runs.size() > 1 ? fmt::format(" of {} runs' medians", e->runs.size()) : "";
+    fmt::print("- event-driven closed form: {:.3g} impacts per second (median{}; target >= 1e7): {}\n", rate,
+               runs, verdict(rate >= 1e7));
   }
   // The chain: every N ran, band and KLU linear in N to 1e5, and >= 100x dense at N = 1e3.
   long failed = 0, ran = 0;

@@ -128,6 +128,70 @@ TEST_F(BenchReportCli, TheStudysTimeIsTheMedianRunsWithTheRange) {
       << r.out;
 }
 
+// P1 timed in rounds, each beside SciPy's (run_benchmarks.sh: the machine's speed drifts within a
+// run). Here the machine slows threefold after the first round and both sides slow alike: every
+// round's ratio is LSODA 60x. The pooled medians pair the slow rounds' 0.3 ms with their 18 ms
+// (60x as well), where the first round's SciPy beside the pooled 0.3 ms (the single-file reading)
+// said 20x. A P1 case timed in a different number of runs than SciPy is refused.
+TEST_F(BenchReportCli, P1TimedInRoundsIsJudgedByTheMedianOfTheRoundsRatios) {
+  write_inputs({"BDF", "Radau", "LSODA", "RK45"});
+  const double ref[5] = {0.6, 0.4, 0.25, 0.16, 0.1};
+  std::string apexes;
+  for (int n = 0; n < 5; ++n) apexes += fmt::format(", \"apex_{}\": {}", n + 1, ref[n] + 1e-8);
+  const double ours_ms[3] = {0.1, 0.3, 0.3}, impacts[3] = {1.2e7, 0.9e7, 1.1e7};
+  std::string args = "--build-type Release --load 0";
+  for (int r = 0; r < 3; ++r) {
+    std::ofstream(dir_ / fmt::format("p1_{}.json", r))
+        << "{\"context\": {\"num_cpus\": 2}, \"benchmarks\": [\n"
+        << fmt::format(
+               "{{\"name\": \"P1/cvode-bdf/repeats:9_median\", \"cpu_time\": {}, \"time_unit\": "
+               "\"ms\"{}}},\n",
+               ours_ms[r], apexes)
+        << fmt::format(
+               "{{\"name\": \"P1/cvode-bdf/repeats:9_min\", \"cpu_time\": {}, \"time_unit\": \"ms\"}},\n",
+               0.9 * ours_ms[r])
+        << fmt::format(
+               "{{\"name\": \"P1/cvode-bdf/repeats:9_max\", \"cpu_time\": {}, \"time_unit\": \"ms\"}},\n",
+               1.1 * ours_ms[r])
+        << fmt::format(
+               "{{\"name\": \"ExactBounces/repeats:9_median\", \"cpu_time\": {}, \"time_unit\": "
+               "\"us\", \"impacts_per_s\": {}}}\n",
+               277e6 / impacts[r], impacts[r])
+        << "]}\n";
+    std::ofstream scipy(dir_ / fmt::format("scipy_{}.jsonl", r));
+    for (const char* method : {"BDF", "Radau", "LSODA", "RK45"}) {
+      scipy << "{\"method\": \"" << method << "\", \"cpu_s\": " << 60e-3 * ours_ms[r] << ", \"apexes\": [";
+      for (int n = 0; n < 5; ++n) scipy << (n ? ", " : "") << ref[n] + 1e-6;
+      scipy << "]}\n";
+    }
+    args += fmt::format(" --scipy scipy_{}.jsonl", r);
+  }
+  // bench.json first: its P1Reference and chain, and no P1 of its own (as run_benchmarks.sh's).
+  std::string bench = slurp(dir_ / "bench.json");
+  const auto p1 = bench.find("{\"name\": \"P1/cvode-bdf");
+  bench.erase(p1, bench.find('\n', p1) + 1 - p1);
+  std::ofstream(dir_ / "bench.json") << bench;
+  Outcome r = run(BENCH_REPORT_EXE, args + " bench.json p1_0.json p1_1.json p1_2.json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("- P1 (rtol 1e-6), CVODE BDF at 0.3 ms per solve (medians of 3 rounds, each beside "
+                       "SciPy's): BDF 60x"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("LSODA 60x (apex error 1.0e-08 m against 1.0e-06 m)"), std::string::npos) << r.out;
+  // The table: the median run's time and the range of every run's repetitions.
+  EXPECT_NE(r.out.find("| cvode-bdf | 0 | 0.3 ms [0.09, 0.33] |"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("- event-driven closed form: 1.1e+07 impacts per second (median of 3 runs' medians; "
+                       "target >= 1e7): **met**"),
+            std::string::npos)
+      << r.out;
+
+  r = run(BENCH_REPORT_EXE, args + " bench.json p1_0.json p1_1.json");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("P1/cvode-bdf was timed in 2 runs and SciPy in 3: give --scipy once for each P1 run"),
+            std::string::npos)
+      << r.err;
+}
+
 TEST_F(BenchReportCli, UnknownOptionsAreRefused) {
   const Outcome r = run(BENCH_REPORT_EXE, "--bogus bench.json");
   EXPECT_EQ(r.code, 2);
