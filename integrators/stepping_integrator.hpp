@@ -17,7 +17,7 @@ class SteppingIntegrator : public Integrator {
   void reinit(double t, ConstVectorRef y) override;
   void set_root_directions(const std::vector<int>& directions) override { directions_ = directions; }
   double t() const override { return t_; }
-  ConstVectorRef y() const override { return y_; }
+  Eigen::Ref<const Vector> y() const override { return y_; }
   SolverStats stats() const override { return counts_; }
 
  protected:

@@ -64,7 +64,7 @@ class IntegratorBase : public Integrator {
     check(root_directions(directions_.data()), "setting root directions");
   }
   double t() const override { return t_; }
-  ConstVectorRef y() const override { return data_.map(y_.get()); }
+  Eigen::Ref<const Vector> y() const override { return data_.map(y_.get()); }
   SolverStats stats() const override {
     SolverStats s = closed_;
     if (!counters_stale_) s += segment_stats();

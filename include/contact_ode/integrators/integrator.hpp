@@ -59,9 +59,10 @@ class Integrator {
   virtual void reinit(double t, ConstVectorRef y) = 0;
   // Per root function: -1 only falling zeros, +1 only rising, 0 both (the default).
   virtual void set_root_directions(const std::vector<int>& directions) = 0;
-  // Time and state of the last return (advance) or restart (reinit).
+  // Time and state of the last return (advance) or restart (reinit): a view by value (a
+  // ConstVectorRef, a reference, would dangle).
   virtual double t() const = 0;
-  virtual ConstVectorRef y() const = 0;
+  virtual Eigen::Ref<const Vector> y() const = 0;
   // Summed over restarts.
   virtual SolverStats stats() const = 0;
 };
