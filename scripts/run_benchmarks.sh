@@ -41,7 +41,7 @@ scipy() {  # round $1: SciPy's four methods on P1
   /usr/bin/python3 python/scipy_peer.py --k 1e5 --c "$c" --h0 1 --t-end 3 --rtols 1e-6 --atol 1e-9 \
     --repeats 9 >"$out/scipy_p1_round$1.jsonl"
 }
-rounds=()
+scipy_args=() p1_runs=()
 for round in 1 2 3 4 5; do
   if ((round % 2)); then
     ours $round
@@ -50,7 +50,8 @@ for round in 1 2 3 4 5; do
     scipy $round
     ours $round
   fi
-  rounds+=(--scipy "$out/scipy_p1_round$round.jsonl")
+  scipy_args+=(--scipy "$out/scipy_p1_round$round.jsonl")
+  p1_runs+=("$out/p1_round$round.json")
 done
 
 # Wall time varies by a fifth between runs on a shared 2-core machine: three runs, each into a
@@ -80,8 +81,8 @@ if [ "${1:-}" = "--fresh-build" ]; then
 fi
 echo "$timing}" > "$out/timing.json"
 
-build/benchmarks/bench_report --build-type "$build_type" --load "$load" "${rounds[@]}" \
-  --timing "$out/timing.json" "$out/integrators.json" "$out"/p1_round{1..5}.json "$out/chain.json" \
+build/benchmarks/bench_report --build-type "$build_type" --load "$load" "${scipy_args[@]}" \
+  --timing "$out/timing.json" "$out/integrators.json" "${p1_runs[@]}" "$out/chain.json" \
   "$out/column.json" >benchmarks/RESULTS.md.tmp
 mv benchmarks/RESULTS.md.tmp benchmarks/RESULTS.md
 echo "wrote benchmarks/RESULTS.md"
