@@ -8,6 +8,7 @@
 #include "contact_ode/models/ball_stack.hpp"
 #include "contact_ode/models/rigid/rigid_scenes.hpp"
 #include "contact_ode/models/scene_registry.hpp"
+#include "unit_roundoff.hpp"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -17,8 +18,6 @@
 using namespace contact;
 
 namespace {
-
-constexpr double kEps = 2.220446049250313e-16;
 
 BallDrop ball(double e, double h0 = 1.0) { return BallDrop({1.0, 9.81, h0, 0.0, e, Hooke{1e5}}); }
 

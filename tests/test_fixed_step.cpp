@@ -14,6 +14,7 @@
 // energy grows asymptotically by l^2 per step.
 #include "contact_ode/integrators/fixed_step.hpp"
 #include "contact_ode/models/spring_mass.hpp"
+#include "unit_roundoff.hpp"
 
 #include <gtest/gtest.h>
 
@@ -23,7 +24,6 @@ using namespace contact;
 
 namespace {
 
-constexpr double kEps = 2.220446049250313e-16;
 const Mask kPositions = Mask{{true, false}};
 
 OdeSystem::Rhs rhs_of(const SpringMass& s) {

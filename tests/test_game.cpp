@@ -6,6 +6,7 @@
 #include "contact_ode/models/ball_drop.hpp"
 #include "contact_ode/models/scene_registry.hpp"
 #include "contact_ode/models/spring_mass.hpp"
+#include "unit_roundoff.hpp"
 
 #include <gtest/gtest.h>
 
@@ -14,10 +15,6 @@
 #include <random>
 
 using namespace contact;
-
-namespace {
-constexpr double kEps = 2.220446049250313e-16;
-}
 
 // One impulse: J = -(1+e) v / m^-1, v+ = v + J/m = -e v. Rounding: (1+e) v, times m, over m:
 // a few ulps of v.

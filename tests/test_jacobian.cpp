@@ -8,6 +8,7 @@
 #include "contact_ode/models/ball_drop.hpp"
 #include "contact_ode/models/ball_stack.hpp"
 #include "contact_ode/models/spring_mass.hpp"
+#include "unit_roundoff.hpp"
 
 #include <gtest/gtest.h>
 
@@ -18,8 +19,6 @@
 using namespace contact;
 
 namespace {
-
-constexpr double kEps = 2.220446049250313e-16;
 
 double step(ConstVectorRef y, Eigen::Index j) { return 1e-6 * std::max(1.0, std::abs(y[j])); }
 

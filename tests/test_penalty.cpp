@@ -27,7 +27,7 @@ namespace {
 
 constexpr double kRel = 1e-6;
 
-SolveOptions span(double t_end) { return {.t_end = t_end, .sample_dt = 0.01}; }
+SolveOptions until(double t_end) { return {.t_end = t_end, .sample_dt = 0.01}; }
 
 PenaltyOptions tight() {
   PenaltyOptions o;
@@ -37,7 +37,7 @@ PenaltyOptions tight() {
 }
 
 RunResult drop(ContactLaw law, double g, double h0, double v0, double t_end, double e = 1.0) {
-  return run_penalty(BallDrop({1.0, g, h0, v0, e, law}), tight(), span(t_end));
+  return run_penalty(BallDrop({1.0, g, h0, v0, e, law}), tight(), until(t_end));
 }
 
 }  // namespace
@@ -169,8 +169,8 @@ TEST(PenaltyKelvinVoigt, FirstContactMatchesTheExactClosedFormWithAndWithoutGrav
       const double t_end = (c.g > 0 ? V / c.g : c.h0 / V) +
                            3 * (std::isfinite(ref.duration) ? ref.duration : 2 * std::numbers::pi / w);
       const auto contact_law = kelvin_voigt_for_restitution(c.k, c.m, c.e, clamp);
-      const RunResult r =
-          run_penalty(BallDrop({c.m, c.g, c.h0, c.g > 0 ? 0.0 : -V, c.e, contact_law}), tight(), span(t_end));
+      const RunResult r = run_penalty(BallDrop({c.m, c.g, c.h0, c.g > 0 ? 0.0 : -V, c.e, contact_law}),
+                                      tight(), until(t_end));
       const std::string what = fmt::format("{} k = {} g / (w V) = {:.2f}", law, c.k, c.g / (w * V));
       ASSERT_TRUE(r.ok()) << what << ": " << r.message;
       ASSERT_GE(r.contacts.size(), 1u) << what;
@@ -204,7 +204,7 @@ TEST(PenaltyKelvinVoigt, FirstContactMatchesTheExactClosedFormWithAndWithoutGrav
 TEST(PenaltyKelvinVoigt, ClampedContactUnderGravityAgreesWithApexImpactAndLedger) {
   const double m = 4.0, g = 9.81, h0 = 0.05;
   const auto law = kelvin_voigt_for_restitution(300.0, m, 0.9, true);
-  const RunResult r = run_penalty(BallDrop({m, g, h0, 0.0, 0.9, law}), tight(), span(1.0));
+  const RunResult r = run_penalty(BallDrop({m, g, h0, 0.0, 0.9, law}), tight(), until(1.0));
   ASSERT_TRUE(r.ok()) << r.message;
   ASSERT_GE(r.contacts.size(), 2u);
   ASSERT_GE(r.apexes.size(), 1u);
@@ -261,7 +261,7 @@ TEST(PenaltyConvergence, DampedRestitutionApproachesTheTargetWithGravity) {
 TEST(PenaltyLocating, SwitchesLocatedOrNotGiveTheSameContactAtTightTolerance) {
   const BallDrop model({1.0, 9.81, 1.0, 0.0, 0.8, kelvin_voigt_for_restitution(1e5, 1.0, 0.8, false)});
   PenaltyOptions located = tight(), stepped = tight();
-  const SolveOptions span_located = span(0.6);
+  const SolveOptions span_located = until(0.6);
   stepped.locate_switches = false;
   const RunResult a = run_penalty(model, located, span_located),
                   b = run_penalty(model, stepped, span_located);
@@ -281,7 +281,7 @@ TEST(EnergyLedger, PenaltyDriftShrinksWithTheToleranceWhileTheLossIsPhysical) {
   double previous = 1.0;
   for (double rtol : {1e-6, 1e-8, 1e-10}) {
     PenaltyOptions o = tight();
-    const SolveOptions o_span = span(3.0);
+    const SolveOptions o_span = until(3.0);
     o.integrator.rtol = rtol;
     o.integrator.atol = rtol * 1e-2;
     const RunResult r = run_penalty(model, o, o_span);
@@ -325,7 +325,7 @@ TEST(PenaltyHertz, AnOverflowingTrialStepIsRetriedShorter) {
     PenaltyOptions o = tight();
     o.integrator.method = method;
     o.integrator.max_steps = 10000000;
-    return run_penalty(model, o, span(0.1));
+    return run_penalty(model, o, until(0.1));
   };
   const RunResult reference = run("cvode-bdf");
   ASSERT_TRUE(reference.ok()) << reference.message;

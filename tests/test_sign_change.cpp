@@ -3,6 +3,7 @@
 // on smooth functions (the point of replacing Brent's method), and stay bounded on functions where
 // secant steps are useless.
 #include "sign_change.hpp"
+#include "unit_roundoff.hpp"
 
 #include <gtest/gtest.h>
 
@@ -14,8 +15,6 @@ using contact::narrow_sign_change;
 using contact::SignChange;
 
 namespace {
-
-constexpr double kEps = std::numeric_limits<double>::epsilon();
 
 SignChange bracket(const std::function<double(double)>& g, double lo, double hi) {
   return {lo, g(lo), hi, g(hi)};

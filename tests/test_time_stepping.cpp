@@ -19,7 +19,7 @@ using namespace contact;
 
 namespace {
 
-constexpr double kG = 9.81, kDt = 1e-3;
+constexpr double kGravity = 9.81, kDt = 1e-3;
 
 // The first step after which the ball moves up, having moved down: (v before, v after).
 std::pair<double, double> first_bounce(const RunResult& r) {
@@ -30,7 +30,7 @@ std::pair<double, double> first_bounce(const RunResult& r) {
 }
 
 RunResult drop(const Method& m, double e = 0.8, double t_end = 0.6) {
-  const BallDrop ball({.m = 2.0, .g = kG, .h0 = 1.0, .v0 = 0.0, .e = e, .law = Hooke{1e4}});
+  const BallDrop ball({.m = 2.0, .g = kGravity, .h0 = 1.0, .v0 = 0.0, .e = e, .law = Hooke{1e4}});
   RunResult r = solve(ball, m, {.t_end = t_end, .sample_dt = m.dt});
   EXPECT_TRUE(r.ok()) << r.message;
   return r;
@@ -43,7 +43,7 @@ RunResult drop(const Method& m, double e = 0.8, double t_end = 0.6) {
 TEST(SequentialImpulses, OneContactIsNewtonsImpulse) {
   const auto [before, after] = first_bounce(
       drop({.name = "sequential-impulses", .dt = kDt, .iterations = 1, .warm_start = false, .erp = 0}));
-  EXPECT_NEAR(after, -0.8 * (before - kG * kDt), 1e-12);
+  EXPECT_NEAR(after, -0.8 * (before - kGravity * kDt), 1e-12);
 }
 
 // Baumgarte's bias feeds the bounce (the overlap of one step, V dt, pushed out at erp / dt);
@@ -51,9 +51,9 @@ TEST(SequentialImpulses, OneContactIsNewtonsImpulse) {
 TEST(SequentialImpulses, SplitImpulsesKeepThePushOutOutOfTheBounce) {
   const auto [b1, a1] =
       first_bounce(drop({.name = "sequential-impulses", .dt = kDt, .split_impulse = false}));
-  EXPECT_GT(a1, -0.8 * (b1 - kG * kDt) + 0.1);
+  EXPECT_GT(a1, -0.8 * (b1 - kGravity * kDt) + 0.1);
   const auto [b2, a2] = first_bounce(drop({.name = "sequential-impulses", .dt = kDt, .split_impulse = true}));
-  EXPECT_NEAR(a2, -0.8 * (b2 - kG * kDt), 1e-12);
+  EXPECT_NEAR(a2, -0.8 * (b2 - kGravity * kDt), 1e-12);
 }
 
 // Newton's law is imposed on the step's velocities: u+ = -e u, with u the gap rate before the
@@ -67,7 +67,7 @@ TEST(MoreauJean, ImpactLawHoldsExactlyAtTheStep) {
 
 // A ball resting on the floor stays there: the LCP's impulse is m g dt at every step.
 TEST(MoreauJean, RestingBallNeitherSinksNorJumps) {
-  const BallDrop ball({.m = 2.0, .g = kG, .h0 = 0.0, .v0 = 0.0, .e = 0.8, .law = Hooke{1e4}});
+  const BallDrop ball({.m = 2.0, .g = kGravity, .h0 = 0.0, .v0 = 0.0, .e = 0.8, .law = Hooke{1e4}});
   const RunResult r = solve(ball, {.name = "moreau-jean", .dt = kDt}, {.t_end = 1.0, .sample_dt = 0.1});
   ASSERT_TRUE(r.ok()) << r.message;
   for (const auto& s : r.samples) {
@@ -122,7 +122,7 @@ TEST(SoftStep, BouncesAtTheRestitutionAboveTheThresholdOnly) {
 TEST(Xpbd, SubstepsAreTheImplicitEulerSpringAtTheSubstep) {
   const RunResult x = drop({.name = "xpbd", .dt = kDt, .substeps = 4}, 0.8, 1.6);
   const RunResult ie =
-      solve(BallDrop({.m = 2.0, .g = kG, .h0 = 1.0, .v0 = 0.0, .e = 0.8, .law = Hooke{1e4}}),
+      solve(BallDrop({.m = 2.0, .g = kGravity, .h0 = 1.0, .v0 = 0.0, .e = 0.8, .law = Hooke{1e4}}),
             {.name = "game-implicit-spring", .dt = kDt / 4}, {.t_end = 1.6, .sample_dt = kDt});
   ASSERT_TRUE(ie.ok()) << ie.message;
   ASSERT_EQ(x.samples.size(), ie.samples.size());
