@@ -27,6 +27,20 @@ double max_abs(const V& v) {
   return v.size() == 0 ? 0.0 : v.cwiseAbs().maxCoeff();
 }
 
+// Eigen's indexed view (v(p) with a std::vector p) copies its index vector, a heap allocation, each
+// time it is formed: at every step and root check that was a third of a P1 solve's time, so the
+// per-step code gathers, scatters and measures the entries p by hand.
+void gather(const Vector& from, const std::vector<Index>& at, Vector& to) {
+  to.resize(static_cast<Index>(at.size()));
+  for (std::size_t i = 0; i < at.size(); ++i) to[static_cast<Index>(i)] = from[at[i]];
+}
+
+double max_abs_at(const Vector& v, const std::vector<Index>& at) {
+  double largest = 0;
+  for (const Index i : at) largest = std::max(largest, std::abs(v[i]));
+  return largest;
+}
+
 // |value - predicted| within `rel` of the size of the terms that formed them.
 bool agrees(double value, double predicted, double size, double rel) {
   return std::abs(value - predicted) <= rel * size + 1e-300;
@@ -87,19 +101,30 @@ class ExactLinearIntegrator final : public SteppingIntegrator {
   // by ~1e-15 of the terms that form it, another mode or a nonlinear law by a share of order one,
   // so 1e-9 (1e-8 for the quadratic forms, formed by polarisation) tells them apart with margin.
   Index mismatch(const Segment& s, const Vector& y, const Vector& fy) {
-    u_ = (y - s.y0)(p_);
+    const Index m = static_cast<Index>(p_.size());
+    u_.resize(m);
+    w_.resize(m);  // |u| + |y0|: the size of the state the terms are formed from
+    for (Index i = 0; i < m; ++i) {
+      u_[i] = y[p_[i]] - s.y0[p_[i]];
+      w_[i] = std::abs(u_[i]) + std::abs(s.y0[p_[i]]);
+    }
     tmp_.noalias() = s.A * u_;
-    for (Index i = 0; i < static_cast<Index>(p_.size()); ++i) {
-      const double size =
-          std::abs(s.f0[p_[i]]) + (s.A.row(i).cwiseAbs() * (u_.cwiseAbs() + s.y0(p_).cwiseAbs())).value();
+    for (Index i = 0; i < m; ++i) {
+      const double size = std::abs(s.f0[p_[i]]) + s.A.row(i).cwiseAbs().dot(w_);
       if (!agrees(fy[p_[i]], s.f0[p_[i]] + tmp_[i], size, 1e-9)) return p_[i];
     }
     for (std::size_t r = 0; r < q_.size(); ++r) {
       const auto row = static_cast<Index>(r);
       const Matrix& H = s.H[r];
-      const double predicted = s.f0[q_[r]] + s.G.row(row).dot(u_) + u_.dot(H * u_);
-      const double size = std::abs(s.f0[q_[r]]) + s.G.row(row).cwiseAbs().dot(u_.cwiseAbs()) +
-                          u_.cwiseAbs().dot(H.cwiseAbs() * u_.cwiseAbs());
+      hu_.noalias() = H * u_;
+      double quadratic_size = 0;  // |u|' |H| |u|
+      for (Index l = 0; l < m; ++l) {
+        double column = 0;
+        for (Index k = 0; k < m; ++k) column += std::abs(H(k, l)) * std::abs(u_[k]);
+        quadratic_size += column * std::abs(u_[l]);
+      }
+      const double predicted = s.f0[q_[r]] + s.G.row(row).dot(u_) + u_.dot(hu_);
+      const double size = std::abs(s.f0[q_[r]]) + s.G.row(row).cwiseAbs().dot(u_.cwiseAbs()) + quadratic_size;
       if (!agrees(fy[q_[r]], predicted, size, 1e-8)) return q_[r];
     }
     return -1;
@@ -241,11 +266,11 @@ class ExactLinearIntegrator final : public SteppingIntegrator {
           fmt::format("the right-hand side changed between restarts at t = {:.17g} (entry {}); it needs a "
                       "restart at every switch (located switches)",
                       ta_, i));
-    fp_ = fa_(p_);
+    gather(fa_, p_, fp_);
     double h = t_limit - ta_;
     if (max_step_ > 0) h = std::min(h, max_step_);
     if (seg_->rho > 0) h = std::min(h, 1.0 / seg_->rho);
-    const double size = std::max(max_abs(ya_(p_)), 1e-300);
+    const double size = std::max(max_abs_at(ya_, p_), 1e-300);
     // Terms b_j = (h A)^(j-1) h f / j!, in the step's fraction s = (t - ta) / h: y(t) = y_a + sum b_j s^j.
     for (int tries = 0;; ++tries) {
       B_.resize(static_cast<Index>(p_.size()), kMaxTerms);
@@ -290,10 +315,12 @@ class ExactLinearIntegrator final : public SteppingIntegrator {
     Index degree = terms_;
     if (r > 0) {
       Aq_.setZero(r, 2 * terms_ + 1);
-      u_ = (ya_ - seg_->y0)(p_);
+      u_.resize(m);
+      for (Index k = 0; k < m; ++k) u_[k] = ya_[p_[k]] - seg_->y0[p_[k]];
       for (Index s = 0; s < r; ++s) {
         const Matrix& H = seg_->H[static_cast<std::size_t>(s)];
-        g_ = seg_->G.row(s).transpose() + 2 * (H * u_);
+        hu_.noalias() = H * u_;
+        g_ = seg_->G.row(s).transpose() + 2 * hu_;
         HB_.noalias() = H * B_.leftCols(terms_);
         Aq_(s, 0) = fa_[q_[static_cast<std::size_t>(s)]];
         // Plain loops: the vectors are a few entries long, below what Eigen's kernels pay off for.
@@ -313,13 +340,14 @@ class ExactLinearIntegrator final : public SteppingIntegrator {
       }
       // The last power whose term is not below rounding of the quadrature's value.
       Index used = 2 * terms_ + 1;
-      const double scale = std::max(max_abs(ya_(q_)), Aq_.cwiseAbs().maxCoeff());
+      const double scale = std::max(max_abs_at(ya_, q_), Aq_.cwiseAbs().maxCoeff());
       while (used > 1 && Aq_.col(used - 1).cwiseAbs().maxCoeff() <= 0.25 * kEps * scale) --used;
       degree = std::max(degree, used);
     }
     C_.setZero(n, degree + 1);
     C_.col(0) = ya_;
-    for (Index j = 0; j < terms_; ++j) C_.col(j + 1)(p_) = B_.col(j);
+    for (Index j = 0; j < terms_; ++j)
+      for (Index k = 0; k < m; ++k) C_(p_[static_cast<std::size_t>(k)], j + 1) = B_(k, j);
     for (Index s = 0; s < r; ++s)
       for (Index k = 0; k + 1 <= degree && k < Aq_.cols(); ++k)
         C_(q_[static_cast<std::size_t>(s)], k + 1) = Aq_(s, k);
@@ -360,7 +388,7 @@ class ExactLinearIntegrator final : public SteppingIntegrator {
   SparseMatrix J_;
   Matrix Jd_;
   Matrix B_, Aq_, HB_, C_;  // the step's Taylor terms, quadrature integrals, the whole polynomial
-  Vector fa_, fp_, b_, tmp_, u_, g_;
+  Vector fa_, fp_, b_, tmp_, u_, w_, g_, hu_;
   Index terms_ = 0;
   double h_ = 0;
   long jac_evals_ = 0;
