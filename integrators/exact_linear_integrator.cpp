@@ -28,7 +28,7 @@ double max_abs(const V& v) {
 }
 
 // Eigen's indexed view (v(p) with a std::vector p) copies its index vector, a heap allocation, each
-// time it is formed: at every step and root check that was a third of a P1 solve's time, so the
+// time it is formed: at every step and root check, malloc and free were 28 % of a P1 solve, so the
 // per-step code gathers, scatters and measures the entries p by hand.
 void gather(const Vector& from, const std::vector<Index>& at, Vector& to) {
   to.resize(static_cast<Index>(at.size()));
