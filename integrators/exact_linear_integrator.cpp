@@ -21,7 +21,7 @@ constexpr Index kMaxQuadratureStates = 64;
 constexpr std::size_t kKeptSegments = 4;  // a ball's flight and contact; a short chain's few modes
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 
-// The largest magnitude of a vector expression (an indexed view included), without a temporary.
+// The largest magnitude of a vector expression, without a temporary.
 template <typename V>
 double max_abs(const V& v) {
   return v.size() == 0 ? 0.0 : v.cwiseAbs().maxCoeff();
@@ -102,12 +102,9 @@ class ExactLinearIntegrator final : public SteppingIntegrator {
   // so 1e-9 (1e-8 for the quadratic forms, formed by polarisation) tells them apart with margin.
   Index mismatch(const Segment& s, const Vector& y, const Vector& fy) {
     const Index m = static_cast<Index>(p_.size());
-    u_.resize(m);
+    offset_from(s, y);
     w_.resize(m);  // |u| + |y0|: the size of the state the terms are formed from
-    for (Index i = 0; i < m; ++i) {
-      u_[i] = y[p_[i]] - s.y0[p_[i]];
-      w_[i] = std::abs(u_[i]) + std::abs(s.y0[p_[i]]);
-    }
+    for (Index i = 0; i < m; ++i) w_[i] = std::abs(u_[i]) + std::abs(s.y0[p_[i]]);
     tmp_.noalias() = s.A * u_;
     for (Index i = 0; i < m; ++i) {
       const double size = std::abs(s.f0[p_[i]]) + s.A.row(i).cwiseAbs().dot(w_);
@@ -128,6 +125,12 @@ class ExactLinearIntegrator final : public SteppingIntegrator {
       if (!agrees(fy[q_[r]], predicted, size, 1e-8)) return q_[r];
     }
     return -1;
+  }
+
+  // u_ = y_p - y0_p: the affine entries' offset from the segment's start.
+  void offset_from(const Segment& s, const Vector& y) {
+    u_.resize(static_cast<Index>(p_.size()));
+    for (Index i = 0; i < u_.size(); ++i) u_[i] = y[p_[i]] - s.y0[p_[i]];
   }
 
   // The segment that starts at (ta_, ya_): one kept from an earlier restart if it has the same A
@@ -315,8 +318,7 @@ class ExactLinearIntegrator final : public SteppingIntegrator {
     Index degree = terms_;
     if (r > 0) {
       Aq_.setZero(r, 2 * terms_ + 1);
-      u_.resize(m);
-      for (Index k = 0; k < m; ++k) u_[k] = ya_[p_[k]] - seg_->y0[p_[k]];
+      offset_from(*seg_, ya_);
       for (Index s = 0; s < r; ++s) {
         const Matrix& H = seg_->H[static_cast<std::size_t>(s)];
         hu_.noalias() = H * u_;
