@@ -1,6 +1,7 @@
 #include "sundials_linear_solver.hpp"
 
 #include "dense_limit.hpp"
+#include "sundials_matrix_ops.hpp"
 
 #include <sunlinsol/sunlinsol_band.h>
 #include <sunlinsol/sunlinsol_dense.h>
@@ -42,6 +43,7 @@ LinearSystem make_linear_system(LinearSolverKind kind, N_Vector y, Bandwidth ban
       require(ls.matrix, "SUNDenseMatrix", n);
       ls.solver.reset(SUNLinSol_Dense(y, ls.matrix.get(), ctx));
       require(ls.solver, "SUNLinSol_Dense", n);
+      use_compiled_matrix_ops(ls.matrix.get(), ls.solver.get());
       break;
     }
     case LinearSolverKind::Band:
@@ -49,6 +51,7 @@ LinearSystem make_linear_system(LinearSolverKind kind, N_Vector y, Bandwidth ban
       require(ls.matrix, "SUNBandMatrix", n);
       ls.solver.reset(SUNLinSol_Band(y, ls.matrix.get(), ctx));
       require(ls.solver, "SUNLinSol_Band", n);
+      use_compiled_matrix_ops(ls.matrix.get(), ls.solver.get());
       break;
     case LinearSolverKind::Klu:
       ls.matrix.reset(SUNSparseMatrix(n, n, std::max(nonzeros, 1L), CSC_MAT, ctx));

@@ -1,8 +1,8 @@
 #pragma once
 // The matrix and linear solver an implicit SUNDIALS integrator (CVODE, ARKODE) uses, built from
 // the options, and the copy of a sparse Jacobian into that matrix.
-//   dense   SUNDenseMatrix + SUNLinSol_Dense
-//   band    SUNBandMatrix (the Jacobian's band) + SUNLinSol_Band
+//   dense   SUNDenseMatrix + SUNLinSol_Dense  } their operations compiled by the project
+//   band    SUNBandMatrix (the Jacobian's band) + SUNLinSol_Band  } (sundials_matrix_ops.hpp)
 //   klu     SUNSparseMatrix (CSC) + SUNLinSol_KLU (SuiteSparse)
 //   gmres   matrix-free SUNLinSol_SPGMR; J v from the analytic Jacobian or difference quotients;
 //           optionally left-preconditioned by SUNDIALS' banded difference-quotient preconditioner
