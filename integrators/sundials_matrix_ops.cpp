@@ -14,13 +14,14 @@ namespace contact::sundials {
 
 namespace {
 
-// The dense and band solvers' contents have the same layout (N, pivots, last_flag).
+// The pivots and the last flag of a dense or band solver (Content: its content's pointer type).
 struct Pivots {
   sunindextype* p;
   sunindextype& last_flag;
 };
+template <class Content>
 Pivots pivots(SUNLinearSolver S) {
-  auto* c = static_cast<SUNLinearSolverContent_Dense>(S->content);
+  auto* c = static_cast<Content>(S->content);
   return {c->pivots, c->last_flag};
 }
 // Records a setup's or solve's flag: 0, a SUNLS_ error (< 0), or a factorisation's zero pivot (k + 1 > 0).
@@ -107,13 +108,13 @@ void substitute_dense(sunrealtype* const* a, sunindextype n, const sunindextype*
 }
 
 int setup_dense(SUNLinearSolver S, SUNMatrix A) {
-  auto [p, last_flag] = pivots(S);
+  auto [p, last_flag] = pivots<SUNLinearSolverContent_Dense>(S);
   if (!is_dense(A)) return finish(last_flag, SUNLS_ILL_INPUT);
   return finish(last_flag, factor_dense(SM_COLS_D(A), SM_ROWS_D(A), SM_COLUMNS_D(A), p));
 }
 
 int solve_dense(SUNLinearSolver S, SUNMatrix A, N_Vector x, N_Vector b, sunrealtype /*tol*/) {
-  auto [p, last_flag] = pivots(S);
+  auto [p, last_flag] = pivots<SUNLinearSolverContent_Dense>(S);
   if (!is_dense(A) || !x || !b) return finish(last_flag, SUNLS_MEM_NULL);
   N_VScale(1.0, b, x);
   substitute_dense(SM_COLS_D(A), SM_ROWS_D(A), p, N_VGetArrayPointer(x));
@@ -226,7 +227,7 @@ void substitute_band(sunrealtype* const* a, sunindextype n, sunindextype smu, su
 }
 
 int setup_band(SUNLinearSolver S, SUNMatrix A) {
-  auto [p, last_flag] = pivots(S);
+  auto [p, last_flag] = pivots<SUNLinearSolverContent_Band>(S);
   if (!is_band(A)) return finish(last_flag, SUNLS_ILL_INPUT);
   const sunindextype n = SM_COLUMNS_B(A), mu = SM_UBAND_B(A), ml = SM_LBAND_B(A), smu = SM_SUBAND_B(A);
   if (smu < std::min(n - 1, mu + ml)) return finish(last_flag, SUNLS_MEM_FAIL);  // no room for fill-in
@@ -234,7 +235,7 @@ int setup_band(SUNLinearSolver S, SUNMatrix A) {
 }
 
 int solve_band(SUNLinearSolver S, SUNMatrix A, N_Vector x, N_Vector b, sunrealtype /*tol*/) {
-  auto [p, last_flag] = pivots(S);
+  auto [p, last_flag] = pivots<SUNLinearSolverContent_Band>(S);
   if (!is_band(A) || !x || !b) return finish(last_flag, SUNLS_MEM_NULL);
   N_VScale(1.0, b, x);
   substitute_band(SM_COLS_B(A), SM_COLUMNS_B(A), SM_SUBAND_B(A), SM_LBAND_B(A), p, N_VGetArrayPointer(x));

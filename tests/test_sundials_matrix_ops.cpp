@@ -73,7 +73,9 @@ class MatrixOps : public ::testing::Test {
     return SUNMatGetID(p.A.get()) == SUNMATRIX_DENSE ? SM_LDATA_D(p.A.get()) : SM_LDATA_B(p.A.get());
   }
   static const sunindextype* pivots(const Pair& p) {
-    return static_cast<SUNLinearSolverContent_Dense>(p.solver->content)->pivots;
+    if (SUNLinSolGetID(p.solver.get()) == SUNLINEARSOLVER_DENSE)
+      return static_cast<SUNLinearSolverContent_Dense>(p.solver->content)->pivots;
+    return static_cast<SUNLinearSolverContent_Band>(p.solver->content)->pivots;
   }
   // Factors and solves with both pairs; everything must agree bitwise.
   void expect_same_solve(Pair& library, Pair& compiled, const char* what) const {
