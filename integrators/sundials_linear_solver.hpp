@@ -1,11 +1,12 @@
 #pragma once
 // The matrix and linear solver an implicit SUNDIALS integrator (CVODE, ARKODE) uses, built from
 // the options, and the copy of a sparse Jacobian into that matrix.
-//   dense   SUNDenseMatrix + SUNLinSol_Dense  } their operations compiled by the project
-//   band    SUNBandMatrix (the Jacobian's band) + SUNLinSol_Band  } (sundials_matrix_ops.hpp)
+//   dense   SUNDenseMatrix + SUNLinSol_Dense
+//   band    SUNBandMatrix (the Jacobian's band) + SUNLinSol_Band
 //   klu     SUNSparseMatrix (CSC) + SUNLinSol_KLU (SuiteSparse)
 //   gmres   matrix-free SUNLinSol_SPGMR; J v from the analytic Jacobian or difference quotients;
 //           optionally left-preconditioned by SUNDIALS' banded difference-quotient preconditioner
+// Dense and band run with the project's compiled operations (sundials_matrix_ops.hpp).
 #include "contact_ode/integrators/integrator.hpp"
 #include "sundials_handles.hpp"
 
