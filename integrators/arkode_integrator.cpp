@@ -113,7 +113,9 @@ class ArkIntegrator final : public sundials::IntegratorBase {
         check(ARKStepSetJacFn(m, imex_ ? sundials::implicit_jacobian : sundials::jacobian),
               "ARKStepSetJacFn");
       else
-        check(ARKStepSetJacTimes(m, sundials::jtimes_setup, sundials::jtimes), "ARKStepSetJacTimes");
+        check(ARKStepSetJacTimes(m, imex_ ? sundials::implicit_jtimes_setup : sundials::jtimes_setup,
+                                 sundials::jtimes),
+              "ARKStepSetJacTimes");
     }
     if (o.linear_solver == LinearSolverKind::GmresBandPreconditioned) {
       const auto n = static_cast<sunindextype>(data_.sys.size);

@@ -36,8 +36,19 @@ int guarded(CallbackData& d, double t, Eigen::Map<Vector> out, F&& f) {
   return 0;
 }
 
+// d.J = jac(t, y); an exception is a refusal the solver reports, as a right-hand side's is.
+int evaluate_jacobian(CallbackData& d, const OdeSystem::Jacobian& jac, double t, N_Vector y) {
+  try {
+    jac(t, d.map(y), d.J);
+  } catch (const std::exception& e) {
+    d.callback_error = e.what();
+    return -1;
+  }
+  return 0;
+}
+
 int fill_jacobian(CallbackData& d, const OdeSystem::Jacobian& jac, double t, N_Vector y, SUNMatrix A) {
-  jac(t, d.map(y), d.J);
+  if (const int flag = evaluate_jacobian(d, jac, t, y); flag != 0) return flag;
   if (!copy_jacobian(d.J, A)) {
     d.callback_error = "the analytic Jacobian does not fit the linear solver's matrix (band or pattern)";
     return -1;
@@ -104,8 +115,12 @@ int implicit_jacobian(sunrealtype t, N_Vector y, N_Vector, SUNMatrix J, void* us
 
 int jtimes_setup(sunrealtype t, N_Vector y, N_Vector, void* user) {
   auto& d = data(user);
-  (d.sys.implicit_jacobian ? d.sys.implicit_jacobian : d.sys.jacobian)(t, d.map(y), d.J);
-  return 0;
+  return evaluate_jacobian(d, d.sys.jacobian, t, y);
+}
+
+int implicit_jtimes_setup(sunrealtype t, N_Vector y, N_Vector, void* user) {
+  auto& d = data(user);
+  return evaluate_jacobian(d, d.sys.implicit_jacobian, t, y);
 }
 
 int jtimes(N_Vector v, N_Vector Jv, sunrealtype, N_Vector, N_Vector, void* user, N_Vector) {

@@ -42,7 +42,10 @@ int implicit_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user);
 int jacobian(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J, void* user, N_Vector, N_Vector, N_Vector);
 int implicit_jacobian(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J, void* user, N_Vector, N_Vector,
                       N_Vector);
+// J v products (GMRES): the setup evaluates the Jacobian at the Newton iterate, jtimes multiplies.
+// implicit_jtimes_setup evaluates the IMEX implicit part's, as implicit_jacobian does.
 int jtimes_setup(sunrealtype t, N_Vector y, N_Vector fy, void* user);
+int implicit_jtimes_setup(sunrealtype t, N_Vector y, N_Vector fy, void* user);
 int jtimes(N_Vector v, N_Vector Jv, sunrealtype t, N_Vector y, N_Vector fy, void* user, N_Vector);
 int roots(sunrealtype t, N_Vector y, sunrealtype* gout, void* user);
 void error_handler(int code, const char* module, const char* function, char* msg, void* user);
