@@ -114,6 +114,15 @@ sunrealtype weighted_square_sum(N_Vector x, N_Vector w) {
   return sum;
 }
 
+// GMRES's inner products (its Gram-Schmidt steps and norms).
+sunrealtype dot_product(N_Vector x, N_Vector y) {
+  const auto [n, xd] = view(x);
+  const sunrealtype* yd = NV_DATA_S(y);
+  sunrealtype sum = 0.0;
+  for (sunindextype i = 0; i < n; ++i) sum += xd[i] * yd[i];
+  return sum;
+}
+
 sunrealtype wrms_norm(N_Vector x, N_Vector w) {
   return std::sqrt(weighted_square_sum(x, w) / static_cast<sunrealtype>(NV_LENGTH_S(x)));
 }
@@ -163,6 +172,8 @@ void use_compiled_vector_ops(N_Vector v) {
   ops->nvabs = abs;
   ops->nvinv = inv;
   ops->nvaddconst = add_const;
+  ops->nvdotprod = dot_product;
+  ops->nvdotprodlocal = dot_product;
   ops->nvwrmsnorm = wrms_norm;
   ops->nvwsqrsumlocal = weighted_square_sum;
   ops->nvmaxnorm = max_norm;

@@ -99,6 +99,8 @@ TEST_F(VectorOps, ElementwiseOperationsAndNormsMatchTheLibrary) {
   EXPECT_EQ(N_VWrmsNorm_Serial(lx.get(), ly.get()), N_VWrmsNorm(cx.get(), cy.get()));
   EXPECT_EQ(N_VWSqrSumLocal_Serial(lx.get(), ly.get()), N_VWSqrSumLocal(cx.get(), cy.get()));
   EXPECT_EQ(N_VMaxNorm_Serial(lx.get()), N_VMaxNorm(cx.get()));
+  EXPECT_EQ(N_VDotProd_Serial(lx.get(), ly.get()), N_VDotProd(cx.get(), cy.get()));
+  EXPECT_EQ(N_VDotProd_Serial(lx.get(), ly.get()), N_VDotProdLocal(cx.get(), cy.get()));
 }
 
 // The library's serial vectors leave the fused operations out (it then loops over scale and
@@ -133,6 +135,7 @@ TEST_F(VectorOps, ClonesInheritTheCompiledOperations) {
   EXPECT_EQ(clone->ops->nvlinearsum, v->ops->nvlinearsum);
   EXPECT_NE(clone->ops->nvlinearsum, N_VLinearSum_Serial);
   EXPECT_NE(clone->ops->nvwrmsnorm, N_VWrmsNorm_Serial);
+  EXPECT_NE(clone->ops->nvdotprod, N_VDotProd_Serial);  // GMRES's inner products
 }
 
 }  // namespace
