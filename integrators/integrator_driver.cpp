@@ -135,9 +135,15 @@ OdeSystem with_ledger(OdeSystem base, std::function<double(ConstVectorRef y)> po
     if (!jac) return {};
     return [jac, n](double t, ConstVectorRef y, SparseMatrix& J) {
       jac(t, y.head(n), J);
-      J.conservativeResize(n + 1, n + 1);
-      J.insert(n, n) = 0.0;
+      // Appended to the compressed columns: insert() uncompressed and recompressed the whole
+      // matrix at every call (a third of a GMRES run, which evaluates it every Newton iteration).
       J.makeCompressed();
+      const auto nnz = static_cast<Eigen::Index>(J.nonZeros());
+      J.conservativeResize(n + 1, n + 1);
+      J.resizeNonZeros(nnz + 1);
+      J.innerIndexPtr()[nnz] = static_cast<int>(n);
+      J.valuePtr()[nnz] = 0.0;
+      J.outerIndexPtr()[n + 1] = static_cast<int>(nnz + 1);
     };
   };
   sys.jacobian = extend(base.jacobian);

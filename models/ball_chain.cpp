@@ -65,28 +65,44 @@ void BallChain::jacobian(double, ConstVectorRef y, const ContactModes& modes, Sp
   // delta = u_i - u_{i+1} - spacing and delta_dot = v_i - v_{i+1}:
   //   d v_i'/d u_i = -F_d/m, d v_i'/d u_{i+1} = +F_d/m, d v_i'/d v_i = -F_r/m, d v_i'/d v_{i+1} = +F_r/m,
   // and the opposite signs for v_{i+1}'. Every entry of the pattern is stored, zero when free.
-  std::vector<Triplet> t;
-  t.reserve(9 * p_.n);
-  for (std::size_t b = 0; b < p_.n; ++b) {
-    t.emplace_back(static_cast<int>(2 * b), static_cast<int>(2 * b), 0.0);  // diagonal, for I - gamma J
-    t.emplace_back(static_cast<int>(2 * b), static_cast<int>(2 * b + 1), 1.0);
-  }
-  for (std::size_t i = 0; i + 1 < p_.n; ++i) {
-    double Fd = 0, Fr = 0;
-    if (modes[i] == ContactMode::Penalty) {
-      Fd = dforce_ddelta(p_.law, -gap(i, y), -gap_rate(i, y)) / p_.m;
-      Fr = dforce_drate(p_.law, -gap(i, y), -gap_rate(i, y)) / p_.m;
+  // Written straight into compressed columns, as a GMRES run evaluates it at every Newton iteration
+  // (triplets took half of such a run): ball b's columns u_b and v_b hold rows 2b - 1 (v_{b-1}'),
+  // 2b (u_b': 0 and 1), 2b + 1 (v_b', from contacts b - 1 and b) and 2b + 3 (v_{b+1}'); the
+  // first ball has no row 2b - 1, the last no row 2b + 3.
+  const std::size_t n = p_.n;
+  const auto size = static_cast<Eigen::Index>(2 * n);
+  J.resize(size, size);
+  J.resizeNonZeros(static_cast<Eigen::Index>(8 * n - 4));
+  int* outer = J.outerIndexPtr();
+  int* rows = J.innerIndexPtr();
+  double* values = J.valuePtr();
+  int k = 0;
+  const auto put = [&](std::size_t row, double value) {
+    rows[k] = static_cast<int>(row);
+    values[k++] = value;
+  };
+  double Fd_before = 0, Fr_before = 0;  // contact b - 1's derivatives per unit mass
+  for (std::size_t b = 0; b < n; ++b) {
+    double Fd = 0, Fr = 0;  // contact b's
+    if (b + 1 < n && modes[b] == ContactMode::Penalty) {
+      Fd = dforce_ddelta(p_.law, -gap(b, y), -gap_rate(b, y)) / p_.m;
+      Fr = dforce_drate(p_.law, -gap(b, y), -gap_rate(b, y)) / p_.m;
     }
-    const int xi = static_cast<int>(2 * i), vi = xi + 1, xj = xi + 2, vj = xi + 3;
-    for (const auto& [row, sign] : {std::pair{vi, -1.0}, std::pair{vj, 1.0}}) {
-      t.emplace_back(row, xi, sign * Fd);
-      t.emplace_back(row, xj, -sign * Fd);
-      t.emplace_back(row, vi, sign * Fr);
-      t.emplace_back(row, vj, -sign * Fr);
-    }
+    // Column u_b (u_b' does not depend on u_b: a stored zero), then column v_b (u_b' = v_b). Row
+    // 2b + 1 is v_b' = (F_{b-1} - F_b) / m: both contacts' derivatives, added.
+    const auto column = [&](std::size_t j, double kinematic, double before, double after) {
+      outer[j] = k;
+      if (b > 0) put(2 * b - 1, before);
+      put(2 * b, kinematic);
+      put(2 * b + 1, b == 0 ? -after : b + 1 == n ? -before : -before + -after);
+      if (b + 1 < n) put(2 * b + 3, after);
+    };
+    column(2 * b, 0.0, Fd_before, Fd);
+    column(2 * b + 1, 1.0, Fr_before, Fr);
+    Fd_before = Fd;
+    Fr_before = Fr;
   }
-  J.resize(static_cast<Eigen::Index>(2 * p_.n), static_cast<Eigen::Index>(2 * p_.n));
-  J.setFromTriplets(t.begin(), t.end());  // duplicates (a ball in two contacts) are summed
+  outer[size] = k;
 }
 
 double BallChain::energy(ConstVectorRef y) const {
