@@ -121,6 +121,7 @@ class ArkIntegrator final : public sundials::IntegratorBase {
       const auto n = static_cast<sunindextype>(data_.sys.size);
       const Bandwidth band = band_or_full(data_.sys);
       check(ARKBandPrecInit(m, n, band.upper, band.lower), "ARKBandPrecInit");
+      band_preconditioned_ = true;
     }
     if (data_.sys.root_count > 0) {
       check(ARKStepRootInit(m, static_cast<int>(data_.sys.root_count), sundials::roots), "ARKStepRootInit");
@@ -157,10 +158,10 @@ class ArkIntegrator final : public sundials::IntegratorBase {
     ARKStepGetNumJacEvals(m, &s.jac_evals);
     ARKStepGetNumLinSolvSetups(m, &s.linear_setups);
     ARKStepGetNumLinIters(m, &s.linear_iters);
-    if (!linear_.matrix) {
-      long njtv = 0;
-      ARKStepGetNumJtimesEvals(m, &njtv);
-      s.jac_evals += njtv;
+    if (!linear_.matrix) {  // matrix-free: each J v setup evaluates the analytic Jacobian
+      long njtsetup = 0;
+      ARKStepGetNumJTSetupEvals(m, &njtsetup);
+      s.jac_evals += njtsetup;
     }
     if (data_.sys.root_count > 0) ARKStepGetNumGEvals(m, &s.root_evals);
     s.rhs_evals = nfe + nfi + nfe_ls;
@@ -168,7 +169,14 @@ class ArkIntegrator final : public sundials::IntegratorBase {
     return s;
   }
 
+  long preconditioner_rhs_evals() const override {
+    long n = 0;
+    if (band_preconditioned_) ARKBandPrecGetNumRhsEvals(mem_.get(), &n);
+    return n;
+  }
+
   bool imex_;
+  bool band_preconditioned_ = false;
   sundials::ArkStepMemory mem_;
 };
 

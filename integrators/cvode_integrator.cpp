@@ -37,6 +37,7 @@ class CvodeIntegrator final : public sundials::IntegratorBase {
       const auto n = static_cast<sunindextype>(data_.sys.size);
       const Bandwidth band = band_or_full(data_.sys);
       check(CVBandPrecInit(m, n, band.upper, band.lower), "CVBandPrecInit");
+      band_preconditioned_ = true;
     }
     if (data_.sys.root_count > 0) {
       check(CVodeRootInit(m, static_cast<int>(data_.sys.root_count), sundials::roots), "CVodeRootInit");
@@ -72,17 +73,24 @@ class CvodeIntegrator final : public sundials::IntegratorBase {
     CVodeGetNumLinSolvSetups(m, &s.linear_setups);
     CVodeGetNumLinIters(m, &s.linear_iters);
     if (data_.sys.root_count > 0) CVodeGetNumGEvals(m, &s.root_evals);
-    if (!linear_.matrix) {
-      long njtv = 0;
-      CVodeGetNumJtimesEvals(m, &njtv);
-      s.jac_evals += njtv;  // matrix-free: Jacobian-vector products stand in for Jacobians
+    if (!linear_.matrix) {  // matrix-free: each J v setup evaluates the analytic Jacobian
+      long njtsetup = 0;
+      CVodeGetNumJTSetupEvals(m, &njtsetup);
+      s.jac_evals += njtsetup;
     }
     s.rhs_evals += nfe_ls;  // difference-quotient Jacobian columns (or J v) are rhs calls too
     s.failed_steps = netf + ncfn;
     return s;
   }
 
+  long preconditioner_rhs_evals() const override {
+    long n = 0;
+    if (band_preconditioned_) CVBandPrecGetNumRhsEvals(mem_.get(), &n);
+    return n;
+  }
+
   sundials::CvodeMemory mem_;
+  bool band_preconditioned_ = false;
 };
 
 }  // namespace

@@ -68,6 +68,7 @@ class IntegratorBase : public Integrator {
   SolverStats stats() const override {
     SolverStats s = closed_;
     if (!counters_stale_) s += segment_stats();
+    s.rhs_evals += preconditioner_rhs_evals();  // counted over the whole run (see below)
     return s;
   }
 
@@ -106,6 +107,9 @@ class IntegratorBase : public Integrator {
   virtual double current_time() const = 0;
   virtual char* flag_name(int flag) const = 0;  // malloc'd by SUNDIALS; freed here
   virtual SolverStats segment_stats() const = 0;
+  // The right-hand sides of SUNDIALS' band preconditioner (its difference-quotient Jacobians). Its
+  // counter runs over the whole run: a re-initialisation does not zero it as it does the solver's.
+  virtual long preconditioner_rhs_evals() const { return 0; }
 
   CallbackData data_;  // first member: the solver's callbacks point into it
   Context ctx_ = make_context();

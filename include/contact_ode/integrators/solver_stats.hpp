@@ -10,8 +10,9 @@ struct SolverStats {
   long steps = 0;            // accepted steps (fixed-step: steps taken; closed form: flight legs)
   long failed_steps = 0;     // rejected steps: error-test plus nonlinear-convergence failures
   long rhs_evals = 0;        // right-hand-side evaluations, including those of a
-                             // difference-quotient Jacobian
-  long jac_evals = 0;        // Jacobian evaluations (analytic or difference quotient)
+                             // difference-quotient Jacobian, J v or band preconditioner
+  long jac_evals = 0;        // Jacobian evaluations (analytic or difference quotient; GMRES:
+                             // the analytic ones its J v products use, one a Newton iteration)
   long newton_iters = 0;     // nonlinear (Newton) iterations
   long linear_setups = 0;    // linear-solver setups (factorisations)
   long linear_iters = 0;     // iterations of an iterative linear solver (GMRES)
