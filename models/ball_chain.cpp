@@ -88,8 +88,8 @@ void BallChain::jacobian(double, ConstVectorRef y, const ContactModes& modes, Sp
       Fd = dforce_ddelta(p_.law, -gap(b, y), -gap_rate(b, y)) / p_.m;
       Fr = dforce_drate(p_.law, -gap(b, y), -gap_rate(b, y)) / p_.m;
     }
-    // Column u_b (u_b' does not depend on u_b: a stored zero), then column v_b (u_b' = v_b). Row
-    // 2b + 1 is v_b' = (F_{b-1} - F_b) / m: both contacts' derivatives, added.
+    // Column u_b (u_b' does not depend on u_b: a zero stored as I - gamma J's diagonal), then
+    // column v_b (u_b' = v_b). Row 2b + 1 is v_b' = (F_{b-1} - F_b) / m: both contacts' terms.
     const auto column = [&](std::size_t j, double kinematic, double before, double after) {
       outer[j] = k;
       if (b > 0) put(2 * b - 1, before);
