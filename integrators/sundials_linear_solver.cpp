@@ -58,6 +58,7 @@ LinearSystem make_linear_system(LinearSolverKind kind, N_Vector y, Bandwidth ban
       require(ls.matrix, "SUNSparseMatrix", n);
       ls.solver.reset(SUNLinSol_KLU(y, ls.matrix.get(), ctx));
       require(ls.solver, "SUNLinSol_KLU", n);
+      use_compiled_matrix_ops(ls.matrix.get(), ls.solver.get());
       break;
     case LinearSolverKind::Gmres:
       ls.solver.reset(SUNLinSol_SPGMR(y, SUN_PREC_NONE, 0, ctx));

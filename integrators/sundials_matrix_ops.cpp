@@ -4,6 +4,7 @@
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_band.h>
 #include <sunmatrix/sunmatrix_dense.h>
+#include <sunmatrix/sunmatrix_sparse.h>
 
 #include <algorithm>
 #include <cmath>
@@ -249,6 +250,61 @@ void install_band(SUNMatrix A) {
   A->ops->scaleaddi = scale_add_identity_band;
 }
 
+// ---- sparse (KLU's): values and indices over the storage's capacity NNZ, NP + 1 pointers ----
+
+bool is_sparse(SUNMatrix A) { return A && SUNMatGetID(A) == SUNMATRIX_SPARSE; }
+
+void install_sparse(SUNMatrix A);
+
+SUNMatrix clone_sparse(SUNMatrix A) {
+  SUNMatrix B = SUNSparseMatrix(SM_ROWS_S(A), SM_COLUMNS_S(A), SM_NNZ_S(A), SM_SPARSETYPE_S(A), A->sunctx);
+  if (B) install_sparse(B);
+  return B;
+}
+
+int zero_sparse(SUNMatrix A) {  // every stored value and index, and the pointers
+  std::fill_n(SM_DATA_S(A), SM_NNZ_S(A), 0.0);
+  std::fill_n(SM_INDEXVALS_S(A), SM_NNZ_S(A), sunindextype{0});
+  std::fill_n(SM_INDEXPTRS_S(A), SM_NP_S(A) + 1, sunindextype{0});
+  return SUNMAT_SUCCESS;
+}
+
+// B = A, zeros over the rest of B's storage (the library zeroes B, then copies).
+int copy_sparse(SUNMatrix A, SUNMatrix B) {
+  if (!is_sparse(B) || SM_ROWS_S(A) != SM_ROWS_S(B) || SM_COLUMNS_S(A) != SM_COLUMNS_S(B) ||
+      SM_SPARSETYPE_S(A) != SM_SPARSETYPE_S(B))
+    return SUNMAT_ILL_INPUT;
+  const sunindextype np = SM_NP_S(A), nz = SM_INDEXPTRS_S(A)[np], capacity = SM_NNZ_S(B);
+  if (capacity < nz) return SUNMatCopy_Sparse(A, B);  // B's storage grows: the library's reallocation
+  std::copy_n(SM_DATA_S(A), nz, SM_DATA_S(B));
+  std::fill(SM_DATA_S(B) + nz, SM_DATA_S(B) + capacity, 0.0);
+  std::copy_n(SM_INDEXVALS_S(A), nz, SM_INDEXVALS_S(B));
+  std::fill(SM_INDEXVALS_S(B) + nz, SM_INDEXVALS_S(B) + capacity, sunindextype{0});
+  std::copy_n(SM_INDEXPTRS_S(A), np + 1, SM_INDEXPTRS_S(B));
+  return SUNMAT_SUCCESS;
+}
+
+// A = c A + I, in place where every diagonal entry is stored (the project's Jacobians store theirs),
+// as the library does then: 1 + c a on the diagonal, c a elsewhere. Entries to insert: the library's.
+int scale_add_identity_sparse(sunrealtype c, SUNMatrix A) {
+  const sunindextype n = std::min(SM_ROWS_S(A), SM_COLUMNS_S(A));
+  const sunindextype* p = SM_INDEXPTRS_S(A);
+  const sunindextype* index = SM_INDEXVALS_S(A);
+  sunrealtype* a = SM_DATA_S(A);
+  for (sunindextype j = 0; j < n; ++j)
+    if (std::find(index + p[j], index + p[j + 1], j) == index + p[j + 1]) return SUNMatScaleAddI_Sparse(c, A);
+  for (sunindextype j = 0; j < n; ++j)
+    for (sunindextype k = p[j]; k < p[j + 1]; ++k) a[k] = index[k] == j ? 1.0 + c * a[k] : c * a[k];
+  return SUNMAT_SUCCESS;
+}
+
+void install_sparse(SUNMatrix A) {
+  A->ops->clone = clone_sparse;
+  A->ops->zero = zero_sparse;
+  A->ops->copy = copy_sparse;
+  A->ops->scaleaddi = scale_add_identity_sparse;
+}
+
 }  // namespace
 
 void use_compiled_matrix_ops(SUNMatrix A, SUNLinearSolver solver) {
@@ -261,8 +317,11 @@ void use_compiled_matrix_ops(SUNMatrix A, SUNLinearSolver solver) {
     install_band(A);
     solver->ops->setup = setup_band;
     solver->ops->solve = solve_band;
+  } else if (is_sparse(A) && id == SUNLINEARSOLVER_KLU) {
+    install_sparse(A);  // KLU itself is SuiteSparse's optimised build
   } else {
-    throw std::invalid_argument("use_compiled_matrix_ops: a dense or band matrix with its own solver");
+    throw std::invalid_argument(
+        "use_compiled_matrix_ops: a dense, band or sparse matrix with its own solver");
   }
 }
 

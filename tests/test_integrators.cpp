@@ -470,7 +470,7 @@ TEST(ImexSplit, TheExplicitPartIsTheRhsLessTheImplicitPart) {
 // counts are checked against the calls: GMRES reported its J v products as Jacobians (where it
 // evaluates one per Newton iteration), and the band preconditioner's right-hand sides went
 // uncounted.
-TEST(NewtonJacobian, IsTheWholeSystemsExceptForImex) {
+TEST(NewtonJacobian, IsTheRightOneAndCountedAsCalled) {
   for (const char* method : {"cvode-bdf", "cvode-adams", "arkode-dirk", "arkode-imex"})
     for (auto ls : {LinearSolverKind::Dense, LinearSolverKind::Band, LinearSolverKind::Klu,
                     LinearSolverKind::Gmres, LinearSolverKind::GmresBandPreconditioned}) {

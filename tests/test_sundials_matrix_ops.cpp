@@ -1,4 +1,5 @@
-// The compiled dense and band matrix operations and LU solvers (integrators/sundials_matrix_ops.hpp)
+// The compiled dense, band and sparse matrix operations and the dense and band LU solvers
+// (integrators/sundials_matrix_ops.hpp)
 // stand in for the library's -O0 ones inside CVODE and ARKODE; they must give the library's
 // results bit for bit, pivots, zero pivots and fill-in included, or the study's numbers would
 // change with the speed-up. Each case runs the library's pair and the compiled pair on the same
@@ -9,8 +10,10 @@
 #include <nvector/nvector_serial.h>
 #include <sunlinsol/sunlinsol_band.h>
 #include <sunlinsol/sunlinsol_dense.h>
+#include <sunlinsol/sunlinsol_klu.h>
 #include <sunmatrix/sunmatrix_band.h>
 #include <sunmatrix/sunmatrix_dense.h>
+#include <sunmatrix/sunmatrix_sparse.h>
 
 #include <gtest/gtest.h>
 
@@ -185,6 +188,70 @@ TEST_F(MatrixOps, BandMatrixOperationsMatchTheLibrary) {
   ASSERT_EQ(SM_LDATA_B(lnarrow.get()), SM_LDATA_B(cnarrow.get()));
   EXPECT_TRUE(same(SM_DATA_B(lnarrow.get()), SM_DATA_B(cnarrow.get()), SM_LDATA_B(lnarrow.get())))
       << "copy into a narrower band";
+}
+
+// A sparse (CSC) matrix with KLU: columns j hold rows j - 2, j and j + 1 (random values), every
+// diagonal entry stored unless `without` names the column that lacks it.
+Pair sparse(const Context& ctx, N_Vector y, bool compiled, sunindextype without = -1) {
+  Pair p{SunMatrix(SUNSparseMatrix(kSize, kSize, 4 * kSize, CSC_MAT, ctx.get())), {}};
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> u(-3.0, 3.0);
+  sunindextype* ptr = SM_INDEXPTRS_S(p.A.get());
+  sunindextype nz = 0;
+  for (sunindextype j = 0; j < kSize; ++j) {
+    ptr[j] = nz;
+    for (sunindextype i : {j - 2, j, j + 1})
+      if (i >= 0 && i < kSize && !(i == j && j == without)) {
+        SM_INDEXVALS_S(p.A.get())[nz] = i;
+        SM_DATA_S(p.A.get())[nz++] = u(rng);
+      }
+  }
+  ptr[kSize] = nz;
+  p.solver.reset(SUNLinSol_KLU(y, p.A.get(), ctx.get()));
+  if (compiled) use_compiled_matrix_ops(p.A.get(), p.solver.get());
+  return p;
+}
+
+// Storage, pointers, indices and values (over the whole capacity), bitwise.
+bool same_sparse(SUNMatrix a, SUNMatrix b) {
+  const sunindextype capacity = SM_NNZ_S(a), np = SM_NP_S(a);
+  return capacity == SM_NNZ_S(b) && np == SM_NP_S(b) &&
+         std::equal(SM_INDEXPTRS_S(a), SM_INDEXPTRS_S(a) + np + 1, SM_INDEXPTRS_S(b)) &&
+         std::equal(SM_INDEXVALS_S(a), SM_INDEXVALS_S(a) + capacity, SM_INDEXVALS_S(b)) &&
+         same(SM_DATA_S(a), SM_DATA_S(b), capacity);
+}
+
+// KLU factors and solves with SuiteSparse's own (optimised) build, so only the sparse matrix's
+// operations are compiled: clone, zero, copy and c A + I, the last with every diagonal entry stored
+// (a missing one, to be inserted, is left to the library).
+TEST_F(MatrixOps, SparseMatrixOperationsMatchTheLibrary) {
+  for (sunindextype without : {-1, 4}) {
+    Pair l = sparse(ctx_, y_.get(), false, without), c = sparse(ctx_, y_.get(), true, without);
+    ASSERT_EQ(SUNMatScaleAddI(0.61, l.A.get()), 0);
+    ASSERT_EQ(SUNMatScaleAddI(0.61, c.A.get()), 0);
+    EXPECT_TRUE(same_sparse(l.A.get(), c.A.get())) << "c A + I, without diagonal entry " << without;
+  }
+  Pair l = sparse(ctx_, y_.get(), false), c = sparse(ctx_, y_.get(), true);
+  SunMatrix lcopy(SUNMatClone(l.A.get())), ccopy(SUNMatClone(c.A.get()));
+  ASSERT_TRUE(lcopy && ccopy);
+  EXPECT_EQ(ccopy->ops->copy, c.A->ops->copy);
+  EXPECT_NE(ccopy->ops->copy, SUNMatCopy_Sparse);
+  for (SUNMatrix m : {lcopy.get(), ccopy.get()}) {  // copy clears what it does not set
+    std::fill_n(SM_DATA_S(m), SM_NNZ_S(m), 7.0);
+    std::fill_n(SM_INDEXVALS_S(m), SM_NNZ_S(m), sunindextype{3});
+  }
+  ASSERT_EQ(SUNMatCopy(l.A.get(), lcopy.get()), 0);
+  ASSERT_EQ(SUNMatCopy(c.A.get(), ccopy.get()), 0);
+  EXPECT_TRUE(same_sparse(lcopy.get(), ccopy.get())) << "copy";
+  // Into less storage than the entries: the target grows, as the library's does.
+  SunMatrix lsmall(SUNSparseMatrix(kSize, kSize, 2, CSC_MAT, ctx_.get())),
+      csmall(SUNSparseMatrix(kSize, kSize, 2, CSC_MAT, ctx_.get()));
+  ASSERT_EQ(SUNMatCopy(l.A.get(), lsmall.get()), 0);
+  ASSERT_EQ(SUNMatCopy(c.A.get(), csmall.get()), 0);
+  EXPECT_TRUE(same_sparse(lsmall.get(), csmall.get())) << "copy into less storage";
+  ASSERT_EQ(SUNMatZero(l.A.get()), 0);
+  ASSERT_EQ(SUNMatZero(c.A.get()), 0);
+  EXPECT_TRUE(same_sparse(l.A.get(), c.A.get())) << "zero";
 }
 
 TEST_F(MatrixOps, ASolverOfAnotherKindIsRefused) {
