@@ -6,7 +6,7 @@
 //   klu     SUNSparseMatrix (CSC) + SUNLinSol_KLU (SuiteSparse)
 //   gmres   matrix-free SUNLinSol_SPGMR; J v from the analytic Jacobian or difference quotients;
 //           optionally left-preconditioned by SUNDIALS' banded difference-quotient preconditioner
-// Dense and band run with the project's compiled operations (sundials_matrix_ops.hpp).
+// Dense, band and KLU's sparse matrix run with the project's compiled operations (sundials_matrix_ops.hpp).
 #include "contact_ode/integrators/integrator.hpp"
 #include "sundials_handles.hpp"
 
