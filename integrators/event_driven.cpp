@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 namespace contact {
 
@@ -250,12 +251,14 @@ RunResult run_event_driven(const MechanicalSystem& model, const EventOptions& op
   // Per contact: the gap (impact) and the gap rate (apex), both on falling zeros only. A
   // resting contact's functions are held at 1 so they never fire.
   sys.root_count = 2 * nc;
+  std::vector<double> gaps(nc), rates(nc);
   sys.roots = [&](double, ConstVectorRef y, VectorRef g) {
+    model.gaps_and_rates(y, gaps, rates);
     for (std::size_t i = 0; i < nc; ++i) {
       const bool rest = impacts.resting(i);
       // Touching but not yet approaching still counts as apart (see kTouchOffset).
-      g[static_cast<Eigen::Index>(2 * i)] = rest ? 1.0 : model.gap(i, y) + kTouchOffset;
-      g[static_cast<Eigen::Index>(2 * i + 1)] = rest ? 1.0 : model.gap_rate(i, y);
+      g[static_cast<Eigen::Index>(2 * i)] = rest ? 1.0 : gaps[i] + kTouchOffset;
+      g[static_cast<Eigen::Index>(2 * i + 1)] = rest ? 1.0 : rates[i];
     }
   };
   EventHandling drive;

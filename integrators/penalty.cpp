@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <optional>
+#include <vector>
 
 namespace contact {
 
@@ -39,13 +40,15 @@ RunResult run_penalty(const Dynamics& model, const PenaltyOptions& opt, const So
   for (std::size_t i = 0; i < nc; ++i) releasing = releasing || geo.releases_while_overlapping(i);
   const std::size_t per = releasing ? 3 : 2;
   base.root_count = per * nc;
+  std::vector<double> switching(nc), rates(nc);
   base.roots = [&](double, ConstVectorRef y, VectorRef g) {
+    geo.switching_and_rates(y, switching, rates);
     for (std::size_t i = 0; i < nc; ++i) {
       const auto at = static_cast<Eigen::Index>(per * i);
       // Touching counts as the mode held (see contact_threshold).
       const double side = held[i] == ContactMode::Penalty ? threshold : -threshold;
-      g[at] = geo.switching(i, y) + side;
-      g[at + 1] = geo.gap_rate(i, y);
+      g[at] = switching[i] + side;
+      g[at + 1] = rates[i];
       if (releasing) g[at + 2] = geo.gap(i, y) + threshold;
     }
   };

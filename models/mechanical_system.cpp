@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <variant>
+
 namespace contact {
 
 Mask interleaved_positions(std::size_t n) {
@@ -17,6 +19,15 @@ std::vector<std::string> interleaved_labels(std::size_t n) {
     labels.push_back(fmt::format("v{}_mps", b));
   }
   return labels;
+}
+
+void OneLawSystem::switching_and_rates(ConstVectorRef y, std::span<double> s, std::span<double> r) const {
+  gaps_and_rates(y, s, r);
+  std::visit(
+      [&](const auto& law) {
+        for (std::size_t i = 0; i < s.size(); ++i) s[i] = law.switching(-s[i], -r[i]);
+      },
+      law_);
 }
 
 }  // namespace contact

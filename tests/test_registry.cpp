@@ -4,6 +4,7 @@
 #include "contact_ode/analysis/references.hpp"
 #include "contact_ode/integrators/method_registry.hpp"
 #include "contact_ode/models/law_registry.hpp"
+#include "contact_ode/models/mechanical_system.hpp"
 #include "contact_ode/models/scene_registry.hpp"
 
 #include <gtest/gtest.h>
@@ -11,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <random>
 #include <set>
 
 using namespace contact;
@@ -232,4 +234,43 @@ TEST(Registries, AScenesBodiesMustStartApart) {
   EXPECT_NO_THROW(make_scene("ball-stack", {{"n", 50.0}}));                    // touching
   EXPECT_NO_THROW(make_scene("ball-chain", {{"n", 50.0}, {"spacing", 0.0}}));  // touching
   EXPECT_NO_THROW(make_scene("spinning-box", {{"radius", 0.1}}));
+}
+
+// The batched gaps, gap rates and switching functions (what root functions read at every step)
+// are each contact's own, for every scene and law, on states that put contacts apart, touching,
+// overlapping, approaching and separating: the overrides (a chain's and a stack's loops, a one-law
+// scene's single dispatch) must not differ from the per-contact definitions they replace.
+TEST(Scenes, BatchedGapsAndSwitchingAreEachContactsOwn) {
+  std::mt19937 rng(7);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  int checked = 0;
+  for (const auto& name : scene_names())
+    for (const auto& law : law_names()) {
+      std::unique_ptr<Dynamics> scene;
+      try {
+        scene = make_scene(name, {}, law);
+      } catch (const std::invalid_argument&) {
+        continue;  // a law the scene does not take
+      }
+      const auto* geo = dynamic_cast<const ContactGeometry*>(scene.get());
+      const std::size_t nc = scene->contact_count();
+      if (!geo || nc == 0) continue;
+      const Vector y0 = scene->initial_state();
+      std::vector<double> d(nc), r(nc), s(nc), r2(nc);
+      for (int trial = 0; trial < 20; ++trial) {
+        Vector y = y0;
+        const double scale = trial == 0 ? 0.0 : std::pow(10.0, -(trial % 5) - 1);
+        for (Eigen::Index k = 0; k < y.size(); ++k) y[k] += scale * (1.0 + std::abs(y0[k])) * noise(rng);
+        geo->gaps_and_rates(y, d, r);
+        geo->switching_and_rates(y, s, r2);
+        for (std::size_t i = 0; i < nc; ++i) {
+          ASSERT_EQ(d[i], geo->gap(i, y)) << name << ' ' << law << " contact " << i;
+          ASSERT_EQ(r[i], geo->gap_rate(i, y)) << name << ' ' << law << " contact " << i;
+          ASSERT_EQ(s[i], geo->switching(i, y)) << name << ' ' << law << " contact " << i;
+          ASSERT_EQ(r2[i], geo->gap_rate(i, y)) << name << ' ' << law << " contact " << i;
+        }
+      }
+      ++checked;
+    }
+  EXPECT_GE(checked, 10) << checked;  // every contact scene under several laws
 }

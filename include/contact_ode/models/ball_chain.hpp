@@ -56,6 +56,9 @@ class BallChain final : public OneLawSystem,
   std::size_t contact_count() const override { return p_.n - 1; }
   double gap(std::size_t i, ConstVectorRef y) const override { return p_.spacing + (u(y, i + 1) - u(y, i)); }
   double gap_rate(std::size_t i, ConstVectorRef y) const override { return v(y, i + 1) - v(y, i); }
+  void gaps_and_rates(ConstVectorRef y, std::span<double> d, std::span<double> r) const override {
+    direct_gaps_and_rates(*this, y, d, r);
+  }
   double restitution(std::size_t) const override { return p_.e; }
   void project(std::size_t i, VectorRef y) const override;
   double apply_impulse(std::size_t i, double e, VectorRef y) const override;

@@ -44,6 +44,9 @@ class BallStack final : public OneLawSystem, public NormalImpulses, public Spher
   double gap_rate(std::size_t i, ConstVectorRef y) const override {
     return v(y, i) - (i ? v(y, i - 1) : 0.0);
   }
+  void gaps_and_rates(ConstVectorRef y, std::span<double> d, std::span<double> r) const override {
+    direct_gaps_and_rates(*this, y, d, r);
+  }
 
   double restitution(std::size_t) const override { return p_.e; }
   void project(std::size_t i, VectorRef y) const override;
