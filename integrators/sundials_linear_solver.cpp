@@ -32,14 +32,15 @@ void require(const Handle& h, const char* what, sunindextype n) {
 
 // KLU keeps its symbolic analysis across re-initialisations. CVODE and ARKODE initialise the
 // linear solver at the first step after every re-initialisation (a restart at each contact
-// switch), and SUNDIALS' KLU then redoes its symbolic analysis (the BTF and COLAMD orderings) and a
-// factorisation with pivoting: 95 times in the chain's run at N = 1e3, 15 % of its instructions.
-// The analysis depends on the pattern alone, which a scene's Jacobian keeps (every entry stored
-// whatever the modes), so initialisation keeps it, and setup redoes it only where the matrix's
-// pattern differs from the analysed one (compared entry by entry). Between re-initialisations
-// SUNDIALS refactors with the pivot order kept as before, and factorises afresh when the
-// condition estimate has grown. The analysed pattern lives in KLU's `common.user_data`, which only
-// a user ordering function (ordering 3, never set) would read; the solver's free deletes it.
+// switch), and SUNDIALS' KLU then redoes its symbolic analysis (the BTF and COLAMD orderings) and
+// a factorisation with pivoting: in the chain's run at N = 1e3, at its start and its 18 restarts,
+// 15 % of its instructions. The analysis depends on the pattern alone, which a scene's Jacobian
+// keeps (every entry stored whatever the modes), so initialisation keeps it, and setup redoes it
+// only where the matrix's pattern differs from the analysed one (compared entry by entry).
+// Between re-initialisations SUNDIALS refactors with the pivot order kept as before, and
+// factorises afresh when the condition estimate has grown. The analysed pattern lives in KLU's
+// `common.user_data`, which only a user ordering function (ordering 3, never set) would read; the
+// solver's free deletes it.
 struct KluPattern {
   std::vector<sunindextype> pointers, rows;
 };
