@@ -92,9 +92,10 @@ class ContactGeometry {
   // Elastic energy contact i's law holds at the present overlap, whether or not it pushes [J].
   virtual double elastic_energy(std::size_t i, ConstVectorRef y) const = 0;
 
-  // The same, for contacts 0 .. d.size() - 1 in one call: what root functions read at every step
-  // (a penalty chain of 1000 balls made some 5 indirect calls per contact and evaluation, 9 % of
-  // its run). By default contact by contact; a scene may give them in one loop.
+  // Contacts 0 .. d.size() - 1's gaps and gap rates (switching functions and gap rates) in one
+  // call: what root functions read at every step (a penalty chain of 1000 balls made some five
+  // indirect calls per contact and evaluation, 9 % of its run). By default contact by contact; a
+  // scene may give them in one loop.
   virtual void gaps_and_rates(ConstVectorRef y, std::span<double> d, std::span<double> r) const {
     for (std::size_t i = 0; i < d.size(); ++i) {
       d[i] = gap(i, y);
