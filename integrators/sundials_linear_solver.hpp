@@ -6,7 +6,8 @@
 //   klu     SUNSparseMatrix (CSC) + SUNLinSol_KLU (SuiteSparse)
 //   gmres   matrix-free SUNLinSol_SPGMR; J v from the analytic Jacobian or difference quotients;
 //           optionally left-preconditioned by SUNDIALS' banded difference-quotient preconditioner
-// Dense, band and KLU's sparse matrix run with the project's compiled operations (sundials_matrix_ops.hpp).
+// Dense, band and KLU's sparse matrix run with the project's compiled operations (sundials_matrix_ops.hpp);
+// KLU keeps its symbolic analysis across re-initialisations while the pattern stays (the .cpp says why).
 #include "contact_ode/integrators/integrator.hpp"
 #include "sundials_handles.hpp"
 

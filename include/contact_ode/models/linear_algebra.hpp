@@ -25,7 +25,8 @@ struct Bandwidth {
   long lower = 0;
   long upper = 0;
   // Whether band storage of a matrix of `size` rows pays: the band is narrower than the matrix
-  // (bench_chain: 1.5x faster than dense at 10 balls, 12x at 100, 160x at 1000).
+  // (bench_chain, both LUs compiled alike: level with dense at 10 balls, 4x faster at 100, 80x at
+  // 1000 in benchmarks/RESULTS.md's run of 2026-11-28).
   bool narrower_than(long size) const { return lower + upper + 1 < size; }
 };
 }  // namespace contact
