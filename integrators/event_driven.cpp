@@ -44,13 +44,14 @@ class Impacts {
   // the contact at rest when the guards say the bounces have accumulated.
   void resolve(std::size_t i, double t, VectorRef y) {
     count_impulse(t);
-    const double v_in = model_.gap_rate(i, y);
+    const ConstVectorView x(y);  // y as the read-only calls below take it, built once
+    const double v_in = model_.gap_rate(i, x);
     // Bodies that touch without approaching and are not pushed together (a cradle's resting
     // balls, no gravity) have a gap of zero to rounding, and an interpolated state (ARKODE's
     // Hermite) rounds it below zero now and then: a root, but no impact. Nothing happens. Nor when
     // they approach only by the rounding of their velocities (balls that a plastic impact left
     // moving together): struck, the rounding never settled (below).
-    if (v_in >= -rate_floor_ && numerical_ && !pushed_together(i, y)) return;
+    if (v_in >= -rate_floor_ && numerical_ && !pushed_together(i, x)) return;
     // A located gap root whose rate is not approaching is noise at the flight's resolution: a
     // bounce lower than its absolute tolerance, which the rest height should have caught.
     if (v_in >= 0 && numerical_)
@@ -61,25 +62,25 @@ class Impacts {
                       "absolute tolerance or raise the rest height ({:g} m)",
                       i, v_in, opt_.integrator.atol, rest_height_));
     rec_.contact_begin(i, t, v_in);
-    rec_.observe_penetration(i, -model_.gap(i, y));
+    rec_.observe_penetration(i, -model_.gap(i, x));
     model_.project(i, y);
     const bool unresolved = v_in >= 0;  // exact flight: touching without approach
-    const double before = rec_.energy(y);
+    const double before = rec_.energy(x);
     if (!unresolved) model_.apply_impulse(i, model_.restitution(i), y);
-    const double v_out = model_.gap_rate(i, y);
+    const double v_out = model_.gap_rate(i, x);
     // Resting by height stops a decaying cascade that was followed down to the flight's
     // resolution. A first bounce already that low, or one that does not decay (e = 1), was never
     // resolved: resting there would drop its energy silently. Unless the impact itself stopped a
     // resolved approach (e = 0, a plastic impact: it leaves slower than the rest speed what came
     // in faster): that bounce is low by the physics, and resting drops no energy the law kept.
-    const bool low = !unresolved && bounce_height(i, y) < rest_height_;
+    const bool low = !unresolved && bounce_height(i, x) < rest_height_;
     const bool stopped = v_out < opt_.rest_speed && -v_in >= opt_.rest_speed;
     if (low && !stopped && (last_[i] == -kInf || !(v_out < -v_in)))
       throw SolverFailure(
           Status::Unresolved, t,
           fmt::format("contact {}'s bounce rises {:.3g} m, below the {:g} m the flight resolves at "
                       "atol = {:g}, and it is {}: tighten the absolute tolerance",
-                      i, bounce_height(i, y), rest_height_, opt_.integrator.atol,
+                      i, bounce_height(i, x), rest_height_, opt_.integrator.atol,
                       last_[i] == -kInf ? "the contact's first" : "not decaying"));
     const bool slow = unresolved || v_out < opt_.rest_speed || low;
     const bool crowded = t - last_[i] < opt_.min_event_spacing;
@@ -88,11 +89,11 @@ class Impacts {
     // an impact together (a dropped column, e = 1) fly on as they are. Rested, the upper one was
     // held in mid-air at its speed while the lower flew, and the energy ledger ran off by 60 times
     // the drop's energy.
-    if ((slow || crowded) && pushed_together(i, y)) {
+    if ((slow || crowded) && pushed_together(i, x)) {
       model_.settle(i, y);
       modes_[i] = ContactMode::Resting;
     }
-    rec_.add_dissipated(before - rec_.energy(y));  // the impulse's loss, and the final stop
+    rec_.add_dissipated(before - rec_.energy(x));  // the impulse's loss, and the final stop
     last_[i] = t;
   }
 
@@ -150,8 +151,9 @@ class Impacts {
   static constexpr double kRateRounding = 1e-12;
   void resolve_from(std::size_t first, double t, VectorRef y) {
     instant_start_ = count_;
-    rate_floor_ = kRateRounding * std::max(std::abs(model_.gap_rate(first, y)),
-                                           velocities_.select(y.array().abs(), 0.0).maxCoeff());
+    const ConstVectorView x(y);  // y as the read-only calls below take it, built once
+    rate_floor_ = kRateRounding * std::max(std::abs(model_.gap_rate(first, x)),
+                                           velocities_.select(x.array().abs(), 0.0).maxCoeff());
     resolve(first, t, y);
     // One contact: the impulse has nowhere to go on to (it leaves separating or at rest).
     for (bool again = model_.contact_count() > 1; again;) {
@@ -159,8 +161,8 @@ class Impacts {
       const std::size_t n = model_.contact_count();
       for (std::size_t k = 0; k < n; ++k) {
         const std::size_t j = opt_.reverse_order ? n - 1 - k : k;
-        if (model_.gap(j, y) > 0) continue;  // the gap first: most contacts are apart
-        const double rate = model_.gap_rate(j, y);
+        if (model_.gap(j, x) > 0) continue;  // the gap first: most contacts are apart
+        const double rate = model_.gap_rate(j, x);
         if (resting(j) ? rate < -opt_.rest_speed : rate < -rate_floor_) {
           modes_[j] = ContactMode::Free;
           rate_floor_ = std::max(rate_floor_, -kRateRounding * rate);
@@ -319,6 +321,10 @@ RunResult run_event_driven(const MechanicalSystem& model, const AnalyticFlight& 
   Vector y_leg = model.initial_state();
   impacts.rest_initial_contacts(y_leg);
   Vector y = y_leg;
+  // Read-only views of the two states, built once: handed the vectors, the calls below built a
+  // temporary view each, 13 an impact (a tenth of its instructions). Both keep their storage: they
+  // are only ever assigned states of their own size.
+  const ConstVectorView leg(y_leg), now(y);
   bool any_rest =
       std::ranges::any_of(impacts.modes(), [](ContactMode m) { return m == ContactMode::Resting; });
   // Each contact's impact and apex times on the current leg, computed once per leg (the leg's
@@ -326,8 +332,8 @@ RunResult run_event_driven(const MechanicalSystem& model, const AnalyticFlight& 
   std::vector<double> leg_impact(nc), leg_apex(nc);
   const auto start_leg = [&] {
     for (std::size_t i = 0; i < nc; ++i) {
-      leg_impact[i] = flight.time_to_impact(i, y_leg);
-      leg_apex[i] = flight.time_to_apex(i, y_leg);
+      leg_impact[i] = flight.time_to_impact(i, leg);
+      leg_apex[i] = flight.time_to_apex(i, leg);
     }
   };
   start_leg();
@@ -339,7 +345,7 @@ RunResult run_event_driven(const MechanicalSystem& model, const AnalyticFlight& 
     // t = 0. The legs look for impacts strictly after their start, so the ball fell through the
     // floor and the run 'succeeded' (47 m down after 3 s, E + D off by 2e8 times E0).
     for (std::size_t i = 0; i < nc; ++i) {
-      if (impacts.resting(i) || model.gap(i, y_leg) > 0 || !(model.gap_rate(i, y_leg) < 0)) continue;
+      if (impacts.resting(i) || model.gap(i, leg) > 0 || !(model.gap_rate(i, leg) < 0)) continue;
       impacts.resolve_from(i, 0.0, y_leg);
       any_rest = impacts.resting(i);
       y = y_leg;
@@ -371,9 +377,9 @@ RunResult run_event_driven(const MechanicalSystem& model, const AnalyticFlight& 
       if (any_rest)
         y = y_leg;
       else
-        flight.propagate(y_leg, tau, y);
+        flight.propagate(leg, tau, y);
       if (which == nc) {
-        rec.sample(t, y);
+        rec.sample(t, now);
       } else if (impact) {
         impacts.resolve_from(which, t, y);
         any_rest = impacts.resting(which);
@@ -384,7 +390,7 @@ RunResult run_event_driven(const MechanicalSystem& model, const AnalyticFlight& 
         own.steps += 1;
         own.events += 1;
       } else {
-        rec.apex(which, t, model.gap(which, y), rec.energy(y));
+        rec.apex(which, t, model.gap(which, now), rec.energy(now));
         own.events += 1;
       }
     }
