@@ -103,13 +103,27 @@ class CliTest : public ::testing::Test {
                                         ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
     fs::create_directories(dir_);
+    // Open MPI's session directory, private to the test. Shared (/tmp/ompi.<host>.<uid>), two MPI
+    // programs that ctest started at once raced to create it and one failed in MPI_Init ("A call
+    // to mkdir was unable to create the desired directory ... File exists": Open MPI issue 8510,
+    // a ChainMpi test in CI). Short (mkdtemp in /tmp): PMIx puts sockets in it, whose paths are
+    // limited to 107 characters.
+    std::string pattern = (fs::temp_directory_path() / "contact_mpi_XXXXXX").string();
+    ASSERT_NE(::mkdtemp(pattern.data()), nullptr) << pattern;
+    mpi_dir_ = pattern;
   }
-  void TearDown() override { fs::remove_all(dir_); }
+  void TearDown() override {
+    fs::remove_all(dir_);
+    // A singleton's Open MPI helper may still be removing its tree when the program has exited:
+    // entries vanish under remove_all, which then fails; it is tried again, for at most a second.
+    std::error_code gone;
+    for (int attempt = 0; attempt < 20 && (fs::remove_all(mpi_dir_, gone), gone); ++attempt) ::usleep(50'000);
+  }
 
   // `prefix` goes before the program: environment settings, or a wrapper such as timeout.
   Outcome run(const std::string& exe, const std::string& args, const std::string& prefix = "") const {
-    const std::string cmd =
-        "cd '" + dir_.string() + "' && " + prefix + " '" + exe + "' " + args + " >stdout.txt 2>stderr.txt";
+    const std::string cmd = "cd '" + dir_.string() + "' && OMPI_MCA_orte_tmpdir_base='" + mpi_dir_.string() +
+                            "' " + prefix + " '" + exe + "' " + args + " >stdout.txt 2>stderr.txt";
     const int status = std::system(cmd.c_str());
     Outcome r{WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir_ / "stdout.txt"),
               slurp(dir_ / "stderr.txt")};
@@ -138,4 +152,5 @@ class CliTest : public ::testing::Test {
   }
 
   fs::path dir_;
+  fs::path mpi_dir_;  // Open MPI's session directory (SetUp)
 };
