@@ -158,10 +158,10 @@ TEST(BallChain, EveryLinearSolverGivesTheSamePenaltyRun) {
 
 // The default linear solver, auto, is the band one where the Jacobian's band is narrower than the
 // system, and dense where it is not. Dense was the default: a 200-ball Hooke column's penalty run
-// took 293 s where band takes 20 s (bench_chain: band 4x faster than dense at 100 balls, 80x at 1000). The
-// two are told apart by difference quotients: CVODE's band quotients cost bandwidth + 1 right-hand sides per
-// Jacobian, the dense ones one per state (with the analytic Jacobian the two factorisations gave the same run
-// to the bit here).
+// took 293 s where band takes 20 s (bench_chain: band 3.5 to 4x faster than dense at 100 balls, 70 to 80x at
+// 1000). The two are told apart by difference quotients: CVODE's band quotients cost bandwidth + 1 right-hand
+// sides per Jacobian, the dense ones one per state (with the analytic Jacobian the two factorisations gave
+// the same run to the bit here).
 TEST(BallChain, TheDefaultLinearSolverIsBandOnAChainAndDenseOnABall) {
   const auto run = [](const Dynamics& scene, std::optional<LinearSolverKind> ls) {
     PenaltyOptions o;

@@ -29,8 +29,8 @@ struct Bandwidth {
   long lower = 0;
   long upper = 0;
   // Whether band storage of a matrix of `size` rows pays: the band is narrower than the matrix
-  // (bench_chain, both LUs compiled alike: level with dense at 10 balls, 4x faster at 100, 80x at
-  // 1000 in benchmarks/RESULTS.md's run of 2026-11-28).
+  // (bench_chain, both LUs compiled alike: level with dense at 10 balls, 3.5 to 4x faster at 100,
+  // 70 to 80x at 1000 in the benchmark runs of 2026-11-28).
   bool narrower_than(long size) const { return lower + upper + 1 < size; }
 };
 }  // namespace contact
