@@ -116,8 +116,12 @@ class CliTest : public ::testing::Test {
     fs::remove_all(dir_);
     // A singleton's Open MPI helper may still be removing its tree when the program has exited:
     // entries vanish under remove_all, which then fails; it is tried again, for at most a second.
-    std::error_code gone;
-    for (int attempt = 0; attempt < 20 && (fs::remove_all(mpi_dir_, gone), gone); ++attempt) ::usleep(50'000);
+    for (int attempt = 0; attempt < 20; ++attempt) {
+      std::error_code error;
+      fs::remove_all(mpi_dir_, error);
+      if (!error) break;
+      ::usleep(50'000);
+    }
   }
 
   // `prefix` goes before the program: environment settings, or a wrapper such as timeout.

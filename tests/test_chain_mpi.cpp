@@ -83,12 +83,10 @@ TEST_F(ChainMpi, ByDefaultAnyChainRunsTheScenesSpan) {
   }
 }
 
-// --rtol took [0, 1], where every other experiment takes (0, 1): rtol 1 'succeeded' with an
-// energy error of 7e73 and rtol 0 ran for minutes. Refused like the others' (a bad input, serial).
 // Every program a test runs is told to keep Open MPI's session directory in the test's own (an
 // MPI program, even a singleton, creates one in MPI_Init): two tests' programs started at once
-// raced for the shared one under ctest -j2 and one failed (this test's refusal in CI: "A call to
-// mkdir was unable to create the desired directory ... File exists").
+// raced for the shared one under ctest -j2 and one failed (ToleranceOutOfRangeIsRefused in CI:
+// "A call to mkdir was unable to create the desired directory ... File exists").
 TEST_F(ChainMpi, EachTestKeepsOpenMpisSessionDirectoryToItself) {
   const Outcome r = run("sh", "-c 'printf %s \"$OMPI_MCA_orte_tmpdir_base\"'");
   ASSERT_EQ(r.code, 0);
@@ -97,6 +95,8 @@ TEST_F(ChainMpi, EachTestKeepsOpenMpisSessionDirectoryToItself) {
   EXPECT_EQ(run(CHAIN_MPI_EXE, "--balls 4 --t-end 0 --out tiny").code, 0);
 }
 
+// --rtol took [0, 1], where every other experiment takes (0, 1): rtol 1 'succeeded' with an
+// energy error of 7e73 and rtol 0 ran for minutes. Refused like the others' (a bad input, serial).
 TEST_F(ChainMpi, ToleranceOutOfRangeIsRefused) {
   expect_refused(CHAIN_MPI_EXE,
                  {{"--rtol 1", "--rtol", "'1'", "(0, 1)"}, {"--rtol 0", "--rtol", "'0'", "(0, 1)"}});
