@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <exception>
 #include <string_view>
 
@@ -13,13 +14,25 @@ namespace {
 
 CallbackData& data(void* user) { return *static_cast<CallbackData*>(user); }
 
-// Calls f and checks its output. A non-finite value is a recoverable refusal (positive return):
-// a trial state of an over-long step may leave the region where the model is defined, and the
-// solver then retries with a smaller step, failing only if the NaN persists.
+// Calls f, `what` naming it, and checks its time and its output. A non-finite output is a
+// recoverable refusal (positive return): a trial state of an over-long step may leave the region
+// where the model is defined, and the solver then retries with a smaller step, failing only if the
+// NaN persists.
 template <class F>
-int guarded(CallbackData& d, double t, Eigen::Map<Vector> out, F&& f) {
+int guarded(CallbackData& d, double t, Eigen::Map<Vector> out, const char* what, F&& f) {
   if (stop_requested()) {  // an unrecoverable refusal ends the solver's step at once
     d.stopped = true;
+    return -1;
+  }
+  // A time that is not finite is the solver's own arithmetic overflowing: CVODE's first-step
+  // estimate for an output 2.5e305 s away (t_end 5e307 s) is inf. No retry mends it, and CVODE,
+  // retrying recoverable refusals at t = inf, never returned.
+  if (!std::isfinite(t)) {
+    d.non_finite = true;
+    d.callback_error = fmt::format(
+        "the solver asked for the {} at t = {}: its time overflowed; shorten "
+        "the time span",
+        what, t);
     return -1;
   }
   try {
@@ -30,7 +43,7 @@ int guarded(CallbackData& d, double t, Eigen::Map<Vector> out, F&& f) {
   }
   if (!out.allFinite()) {
     d.non_finite = true;
-    d.callback_error = fmt::format("right-hand side is not finite at t = {:.17g}", t);
+    d.callback_error = fmt::format("{} not finite at t = {:.17g}", what, t);
     return 1;
   }
   return 0;
@@ -81,19 +94,19 @@ SolverFailure CallbackData::failure(int flag, const char* flag_name, double t_re
 int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
   auto& d = data(user);
   auto out = d.map(ydot);
-  return guarded(d, t, out, [&] { d.sys.rhs(t, d.map(y), out); });
+  return guarded(d, t, out, "right-hand side", [&] { d.sys.rhs(t, d.map(y), out); });
 }
 
 int implicit_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
   auto& d = data(user);
   auto out = d.map(ydot);
-  return guarded(d, t, out, [&] { d.sys.implicit_rhs(t, d.map(y), out); });
+  return guarded(d, t, out, "right-hand side", [&] { d.sys.implicit_rhs(t, d.map(y), out); });
 }
 
 int explicit_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
   auto& d = data(user);
   auto out = d.map(ydot);
-  return guarded(d, t, out, [&] {
+  return guarded(d, t, out, "right-hand side", [&] {
     if (d.sys.explicit_rhs) return d.sys.explicit_rhs(t, d.map(y), out);
     d.implicit_part.resize(out.size());
     d.sys.implicit_rhs(t, d.map(y), d.implicit_part);
@@ -131,8 +144,11 @@ int jtimes(N_Vector v, N_Vector Jv, sunrealtype, N_Vector, N_Vector, void* user,
 int roots(sunrealtype t, N_Vector y, sunrealtype* gout, void* user) {
   auto& d = data(user);
   Eigen::Map<Vector> g(gout, static_cast<Eigen::Index>(d.sys.root_count));
-  d.sys.roots(t, d.map(y), g);
-  return 0;
+  // Guarded as a right-hand side is: any non-zero return ends the solve (root functions have no
+  // retry), which a non-finite value must. Unchecked, an accepted step whose state overflowed (an
+  // explicit ARKODE step of 1e298 s, t_end 1e300 s) gave -inf and NaN root values, and ARKODE's
+  // root search, whose loop ends only when its bracket narrows, ran forever.
+  return guarded(d, t, g, "root functions", [&] { d.sys.roots(t, d.map(y), g); });
 }
 
 void error_handler(int code, const char* module, const char* function, char* msg, void* user) {

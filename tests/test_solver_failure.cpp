@@ -5,8 +5,12 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <limits>
+#include <mutex>
+#include <thread>
 
 using namespace contact;
 
@@ -75,4 +79,69 @@ TEST(SolverFailure, NonFiniteRightHandSideIsReportedNotPropagated) {
   EXPECT_NEAR(r.t_reached, std::sqrt(2 / 9.81), 1e-3);
   EXPECT_NE(r.message.find("not finite"), std::string::npos) << r.message;
   for (const auto& s : r.samples) EXPECT_TRUE(s.y.allFinite());
+}
+
+// Turns a run that never returns into a failed test: after `seconds` it requests the stop a
+// program's Ctrl-C would, which ends a solve that still calls the model (Status::Interrupted).
+// The runs below end within milliseconds; the guard is there for the code they were written
+// against, which looped inside SUNDIALS.
+class HangGuard {
+ public:
+  explicit HangGuard(double seconds)
+      : thread_([this, seconds] {
+          std::unique_lock lock(mutex_);
+          if (!done_cv_.wait_for(lock, std::chrono::duration<double>(seconds), [this] { return done_; }))
+            request_stop();
+        }) {}
+  ~HangGuard() {
+    {
+      std::lock_guard lock(mutex_);
+      done_ = true;
+    }
+    done_cv_.notify_one();
+    thread_.join();
+    clear_stop_request();
+  }
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable done_cv_;
+  bool done_ = false;
+  std::thread thread_;
+};
+
+// A ball at rest on the floor over 5e307 s, the first output 2.5e305 s away: CVODE's first-step
+// estimate overflows to inf, and it called the right-hand side at t = inf over and over, never
+// returning. A time that is not finite now ends the run at once, naming the overflow.
+TEST(SolverFailure, ATimeSpanThatOverflowsTheSolversTimeEndsTheRunNamingIt) {
+  const BallDrop model({1.0, 9.81, 0.0, 0.0, 0.8, Hooke{1e5}});
+  EventOptions o;
+  const SolveOptions span{.t_end = 5e307, .sample_dt = 2.5e305};
+  RunResult r;
+  {
+    const HangGuard guard(20.0);
+    r = run_event_driven(model, o, span);
+  }
+  EXPECT_EQ(r.status, Status::NonFiniteState) << r.message;
+  EXPECT_EQ(r.t_reached, 0.0);
+  EXPECT_NE(r.message.find("time overflowed"), std::string::npos) << r.message;
+}
+
+// A ball dropped from 1 m over 1e300 s: ARKODE's explicit first step (some 1e135 s) overflows, and
+// its root search, handed root functions of -inf and NaN, looped forever (calling no right-hand
+// side, so not even a stop request ended it). The root functions are now guarded as a right-hand
+// side is: their time and values not finite end the run.
+TEST(SolverFailure, NonFiniteRootFunctionsEndTheRunInsteadOfTheRootSearchLoopingForever) {
+  const BallDrop model({1.0, 9.81, 1.0, 0.0, 0.8, Hooke{1e5}});
+  EventOptions o;
+  o.integrator.method = "arkode-erk";
+  const SolveOptions span{.t_end = 1e300, .sample_dt = 1e298};
+  RunResult r;
+  {
+    const HangGuard guard(20.0);
+    r = run_event_driven(model, o, span);
+  }
+  EXPECT_EQ(r.status, Status::NonFiniteState) << r.message;
+  EXPECT_NE(r.message.find("ARK_RTFUNC_FAIL"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("root functions"), std::string::npos) << r.message;
 }
