@@ -78,19 +78,23 @@ std::vector<double> log_grid(double lo, double hi, long per_decade) {
   if (!(lo > 0 && hi >= lo && std::isfinite(hi) && per_decade >= 1))
     throw std::invalid_argument("log_grid: needs 0 < lo <= hi < inf and per_decade >= 1");
   if (hi == lo) return {lo};
+  // The decades as a difference of logs: hi / lo overflows (1e10 / 1e-300), and its log of inf
+  // made the grid {NaN, hi}.
+  const double decades = std::log10(hi) - std::log10(lo);
   // At least one interval: a range narrower than a point's share of a decade (1e5 ... 1.0001e5)
   // used to round to zero intervals and divide by zero (k = NaN).
-  const long n = std::max(1L, std::lround(std::log10(hi / lo) * static_cast<double>(per_decade)));
+  const long n = std::max(1L, std::lround(decades * static_cast<double>(per_decade)));
   // A whole number of decades above lo is lo times an exact power of ten: (hi/lo)^(j/n) put the
   // sweeps' k = 1e3 at 999.99999999999977 in their CSV files, which a reader's k == 1000 missed.
-  const double decades = std::log10(hi / lo);
   std::vector<double> grid;
   for (long j = 0; j < n; ++j) {
     const double d = decades * static_cast<double>(j) / static_cast<double>(n);
     const double whole = std::round(d);
     // 1e-9 of a decade: the log's rounding is ~1e-15, the grid's spacing at least 1e-2 (the programs' cap of
     // 100 a decade).
-    grid.push_back(lo * std::pow(10.0, std::abs(d - whole) < 1e-9 ? whole : d));
+    const double exponent = std::abs(d - whole) < 1e-9 ? whole : d;
+    const double scale = std::pow(10.0, exponent);  // inf past 308 decades above lo (lo < 1)
+    grid.push_back(std::isfinite(scale) ? lo * scale : std::pow(10.0, std::log10(lo) + exponent));
   }
   grid.push_back(hi);
   return grid;

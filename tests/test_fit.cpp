@@ -30,6 +30,17 @@ TEST(LogGrid, DecadesAreExactPowersOfTenAndTheRestEvenlySpacedInLog) {
   EXPECT_THROW(log_grid(0.0, 1.0, 1), std::invalid_argument);
 }
 
+// A range wider than the doubles' own (hi / lo = 1e310 overflows) is still 310 decades: the grid
+// was {NaN, hi}, and contact_cost --k-min 1e-300 ran a spring of k = NaN.
+TEST(LogGrid, ARangeWhoseRatioOverflowsIsStillADecadeGrid) {
+  const auto wide = log_grid(1e-300, 1e10, 1);
+  ASSERT_EQ(wide.size(), 311u);
+  for (std::size_t j = 0; j < wide.size(); ++j)
+    EXPECT_NEAR(std::log10(wide[j]), -300 + static_cast<double>(j), 1e-12) << j;
+  EXPECT_EQ(wide.front(), 1e-300);
+  EXPECT_EQ(wide.back(), 1e10);
+}
+
 // y = C x^p exactly: the fit returns p and C to rounding, with r^2 = 1.
 TEST(PowerFit, AnExactPowerLawIsFittedExactly) {
   const std::vector<double> x{1e-3, 1e-2, 1e-1, 1.0};
