@@ -19,10 +19,10 @@ double impact_speed(const BallDropOptions& o) { return std::sqrt(o.v0 * o.v0 + 2
 
 void check_scales(const BallDropOptions& o) {
   if (!std::isfinite(scaled_atol(o)) || !std::isfinite(impact_speed(o)))
-    throw std::invalid_argument(fmt::format(
-        "--h0, --v0: values '{}' and '{}' give a height scale h0 + v0^2 / (2 g) or an impact speed "
-        "sqrt(v0^2 + 2 g h0) beyond the doubles; accepted: both finite",
-        o.h0, o.v0));
+    throw std::invalid_argument(
+        fmt::format("--h0, --v0, --g: values '{}', '{}' and '{}' give a height scale h0 + v0^2 / (2 g) or an "
+                    "impact speed sqrt(v0^2 + 2 g h0) beyond the doubles; accepted: both finite",
+                    o.h0, o.v0, o.g));
   // Every run would fail at t = 0 on the samples it may keep (a work limit per method, exit 1):
   // the two options ask for it, so they are refused as such.
   const long kept = RunLimits{}.max_samples;

@@ -49,7 +49,7 @@ int program(int argc, char** argv) {
   app.add("--k", k, "linear penalty stiffness [N/m]", cli::positive());
   app.add("--dt", dt, "game step [s]", cli::positive());
   app.add_list("--spacings", spacings, "gaps between the resting balls [m], comma-separated",
-               cli::non_negative());
+               cli::real_in(0, 1, false, false));  // 34 diameters; 1e308 m overflowed a run's span
   return app.run(argc, argv, [&](OutputSet& files) {
     const double m = 0.1, radius = 0.0145, v0 = 1.0, approach = 0.01;
     const double hertz_k = hertz_stiffness(radius / 2, effective_modulus(200e9, 0.3, 200e9, 0.3));

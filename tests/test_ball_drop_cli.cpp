@@ -53,6 +53,8 @@ TEST_F(BallDropCli, BadInputIsRefusedWithOptionValueAndRangeAndWritesNothing) {
       // height scale) or, with --atol, as "linear_law_first_contact: V = inf".
       {"--v0 1e300", "--v0", "'1e+300'", "both finite"},
       {"--v0 -1e160 --atol 1e-9", "--v0", "'-1e+160'", "both finite"},
+      // The impact speed overflows through g alone; the refusal named --h0 and --v0 only.
+      {"--g 1e308", "--g", "'1e+308'", "both finite"},
       // More output samples than a run keeps: every method failed at t = 0 (exit 1, a row each).
       {"--sample-dt 1e-300", "--sample-dt", "'1e-300'", "--sample-dt >= --t-end / 10000000 = 3e-07"},
       {"--t-end 1e300", "--t-end", "'1e+300'", "--sample-dt >= --t-end / 10000000"},

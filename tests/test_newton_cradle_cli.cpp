@@ -138,7 +138,9 @@ TEST_F(NewtonCradleCli, BadInputIsRefused) {
                                         {"--balls 1", "--balls", "'1'", "[2, 100]"},
                                         // 1000 balls were accepted, some 7 hours of runs
                                         {"--balls 1000", "--balls", "'1000'", "[2, 100]"},
-                                        {"--spacings 0,-1e-3", "--spacings", "'-1e-3'", "[0, inf)"},
+                                        {"--spacings 0,-1e-3", "--spacings", "'-1e-3'", "[0, 1]"},
+                                        // refused as "--t-end: value 'inf'", an option it does not have
+                                        {"--spacings 1e308", "--spacings", "'1e308'", "[0, 1]"},
                                         {"--dt 0", "--dt", "'0'", "(0, inf)"},
                                     });
 }

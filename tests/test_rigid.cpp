@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <random>
 
 using namespace contact::rigid;
@@ -199,4 +200,13 @@ TEST(RigidBody, BadPropertiesAreRefusedByName) {
   EXPECT_THROW(b.validate(), std::invalid_argument);
   b.orientation = Quat(std::nan(""), 0, 0, 1);
   EXPECT_THROW(b.validate(), std::invalid_argument);
+  // A state entry that is not finite is named with its value (it was "ball state finite: value '0'").
+  b.orientation = Quat(1, 0, 0, 0);
+  b.velocity = Vec3(0, std::numeric_limits<double>::infinity(), 0);
+  try {
+    b.validate();
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("ball velocity: value 'inf'"), std::string::npos) << e.what();
+  }
 }
