@@ -353,6 +353,13 @@ print(co.solve("ball-drop", "penalty", t_end=1.0).status)
 """
 
 
+def cpu_seconds(pid):
+    """The process's CPU time so far (user and system), from /proc."""
+    with open(f"/proc/{pid}/stat") as f:
+        fields = f.read().rsplit(")", 1)[1].split()  # after the command's name, which may hold spaces
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
 @pytest.mark.parametrize("handler,outcome", [("default", ["KeyboardInterrupt"]),
                                              ("handler", ["handler ran", "Status.interrupted True"])])
 def test_ctrl_c_ends_a_solve_in_progress(handler, outcome):
@@ -362,7 +369,13 @@ def test_ctrl_c_ends_a_solve_in_progress(handler, outcome):
     child = subprocess.Popen([sys.executable, "-c", INTERRUPTED_CHILD, handler], stdout=subprocess.PIPE,
                              text=True, env=os.environ)
     assert child.stdout.readline().strip() == "solving"
-    time.sleep(0.5)  # into the solve (the chain's set-up takes milliseconds)
+    # Into the solve, by the child's CPU time: its set-up takes milliseconds, the solve some 20 s.
+    # Half a second of wall time was not always enough on a loaded machine: the signal came before
+    # the solve had begun, the caller's handler ran, and the solve went on to its end.
+    start = cpu_seconds(child.pid)
+    deadline = time.monotonic() + 60
+    while cpu_seconds(child.pid) - start < 0.3 and time.monotonic() < deadline:
+        time.sleep(0.01)
     child.send_signal(signal.SIGINT)
     try:
         out, _ = child.communicate(timeout=60)
