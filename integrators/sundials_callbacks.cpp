@@ -30,9 +30,7 @@ int guarded(CallbackData& d, double t, Eigen::Map<Vector> out, const char* what,
   if (!std::isfinite(t)) {
     d.non_finite = true;
     d.callback_error = fmt::format(
-        "the solver asked for the {} at t = {}: its time overflowed; shorten "
-        "the time span",
-        what, t);
+        "the solver asked for the {} at t = {}: its time overflowed; shorten the time span", what, t);
     return -1;
   }
   try {
@@ -145,8 +143,8 @@ int roots(sunrealtype t, N_Vector y, sunrealtype* gout, void* user) {
   auto& d = data(user);
   Eigen::Map<Vector> g(gout, static_cast<Eigen::Index>(d.sys.root_count));
   // Guarded as a right-hand side is: any non-zero return ends the solve (root functions have no
-  // retry), which a non-finite value must. Unchecked, an accepted step whose state overflowed (an
-  // explicit ARKODE step of 1e298 s, t_end 1e300 s) gave -inf and NaN root values, and ARKODE's
+  // retry), which a non-finite value must. Unchecked, an accepted step whose state overflowed (ARKODE's
+  // explicit first step of some 1e135 s, t_end 1e300 s) gave -inf and NaN root values, and ARKODE's
   // root search, whose loop ends only when its bracket narrows, ran forever.
   return guarded(d, t, g, "root functions", [&] { d.sys.roots(t, d.map(y), g); });
 }
