@@ -369,7 +369,7 @@ def test_ctrl_c_ends_a_solve_in_progress(handler, outcome):
     child = subprocess.Popen([sys.executable, "-c", INTERRUPTED_CHILD, handler], stdout=subprocess.PIPE,
                              text=True, env=os.environ)
     assert child.stdout.readline().strip() == "solving"
-    # Into the solve, by the child's CPU time: its set-up takes milliseconds, the solve some 20 s.
+    # Into the solve, by the child's CPU time: its set-up takes milliseconds, the solve some 10 s.
     # Half a second of wall time was not always enough on a loaded machine: the signal came before
     # the solve had begun, the caller's handler ran, and the solve went on to its end.
     start = cpu_seconds(child.pid)
