@@ -3,10 +3,13 @@
 #include "contact_ode/models/contact_law.hpp"
 #include "contact_ode/models/parameters.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <stdexcept>
 
 namespace contact {
 
@@ -14,6 +17,25 @@ namespace {
 // The closed forms' domains (references.hpp): outside them a formula returns NaN or a number
 // that means nothing (a negative damping ratio, an apex above the drop), so they are refused.
 constexpr Range kDampingRatio{.lo = 0, .hi = 1, .lo_open = false};
+
+// A spring contact's formulas divide by w^2 = k / m and by w (the sag g / w^2, the depth V / w)
+// and multiply by them; a ratio outside the doubles' normal range (k / m = 1e312 overflows, 1e-312
+// is subnormal) made every number NaN, returned as an answer, so it is refused.
+void require_frequency(const std::string& f, double m, double k, double g) {
+  constexpr double lo = std::numeric_limits<double>::min(), hi = std::numeric_limits<double>::max();
+  const double w2 = k / m;
+  if (!(w2 >= lo && w2 <= hi))
+    throw std::invalid_argument(
+        fmt::format("{}: k / m = {} (k = {}, m = {}), the contact's frequency "
+                    "squared, is out of the doubles' normal range [{}, {}]",
+                    f, w2, k, m, lo, hi));
+  if (!std::isfinite(g / w2))
+    throw std::invalid_argument(fmt::format(
+        "{}: the static sag g m / k = {} (g = {}, m = {}, k = {}) overflows", f, g / w2, g, m, k));
+}
+
+// The flights after the first impact, 2 e V / (g (1 - e)) for e < 1: the Zeno time's tail.
+double zeno_tail(const RigidBounces& b) { return 2.0 * b.e * b.V / (b.g * (1.0 - b.e)); }
 }  // namespace
 
 RigidBounces::RigidBounces(double h0, double v0, double g_, double e_)
@@ -22,16 +44,23 @@ RigidBounces::RigidBounces(double h0, double v0, double g_, double e_)
   require_in("rigid bounces: v0", v0, kAnyFinite);
   require_in("rigid bounces: g", g, kPositive);
   require_in("rigid bounces: e", e, kUnitInterval);
+  // Each argument finite, their impact still may not be (g = 1e308: 2 g h0 overflows, and every
+  // apex was NaN); refused, naming the three, as the ball-drop scene refuses them.
+  if (!std::isfinite(V) || !std::isfinite(T1))
+    throw std::invalid_argument(fmt::format(
+        "rigid bounces: the first impact (speed sqrt(v0^2 + 2 g h0) = {}, time (v0 + V) / g = {}) is "
+        "beyond the doubles' range for h0 = {}, v0 = {}, g = {}",
+        V, T1, h0, v0, g));
 }
 
 double RigidBounces::impact_time(std::size_t n) const {
-  // T(n) = T1 + (2V/g) (e + e^2 + ... + e^{n-1}), summed term by term (exact for e = 1 too).
-  double t = T1, en = 1.0;
-  for (std::size_t j = 1; j < n; ++j) {
-    en *= e;
-    t += 2.0 * en * V / g;
-  }
-  return t;
+  // T(n) = T1 + (2V/g) (e + e^2 + ... + e^{n-1}) in closed form: the Zeno tail 2eV / (g (1 - e))
+  // times 1 - e^{n-1}, a fraction of at most one (expm1 keeps it exact near e = 1), so T(n) never
+  // passes zeno_time() by rounding, and a large n is no longer n terms (2^63 never returned).
+  if (n <= 1) return T1;
+  const double gaps = static_cast<double>(n - 1);
+  if (e == 1.0) return T1 + gaps * (2.0 * V / g);
+  return T1 + zeno_tail(*this) * -std::expm1(gaps * std::log(e));  // e = 0: log 0 = -inf, the fraction 1
 }
 
 double RigidBounces::apex_height(std::size_t n) const {
@@ -44,7 +73,7 @@ double RigidBounces::apex_time(std::size_t n) const {
 }
 
 double RigidBounces::zeno_time() const {
-  return e < 1 ? T1 + 2.0 * e * V / (g * (1.0 - e)) : std::numeric_limits<double>::infinity();
+  return e < 1 ? T1 + zeno_tail(*this) : std::numeric_limits<double>::infinity();
 }
 
 SpringContact hooke_contact(double m, double k, double V, double g) {
@@ -52,8 +81,9 @@ SpringContact hooke_contact(double m, double k, double V, double g) {
   require_in("hooke_contact: k", k, kPositive);
   require_in("hooke_contact: g", g, kNonNegative);
   require_in("hooke_contact: V", V, g > 0 ? kNonNegative : kPositive);  // no contact without either
+  require_frequency("hooke_contact", m, k, g);
   const double w = std::sqrt(k / m), s = g / (w * w);
-  const double R = std::sqrt(s * s + (V / w) * (V / w));
+  const double R = std::hypot(s, V / w);  // s^2 overflowed for m = 1e308 (a depth of 2e305 m, given as inf)
   return {(std::numbers::pi + 2.0 * std::atan(g / (w * V))) / w, s + R, V};
 }
 
@@ -116,12 +146,14 @@ struct KelvinVoigtFirstContact {
   }
   // The release: the force's first zero after the deepest point (it turns at most twice before
   // x's next turn). Then free flight, x'' = g, until x = 0, provided the force stays <= 0 meanwhile
-  // (w^2 x + 2 sigma x' along the flight is tau (w^2 v_r + 2 sigma g + w^2 g tau / 2)); where the
-  // clamp takes hold again there is no closed form (NaN), and without a release the spring holds
-  // the ball as unclamped.
+  // (w^2 x + 2 sigma x' along the flight is w^2 tau (v_r + c g + g tau / 2), c = 2 sigma / w^2);
+  // where the clamp takes hold again there is no closed form (NaN), and without a release the
+  // spring holds the ball as unclamped. The force is taken over w^2 (its sign is all that counts),
+  // the flight's speeds over v_r: w^2 x and v_r^2 overflowed for a contact at 1e307 m/s, which
+  // came out as one that never let go.
   SpringContact clamped() const {
-    const double x_max = x(t_deepest);
-    const DampedWave force = DampedWave{0, 0, 0, sigma, x.wd}.plus(w * w, x).plus(2 * sigma, x.derivative());
+    const double x_max = x(t_deepest), c = 2 * (sigma / w) / w;
+    const DampedWave force = DampedWave{0, 0, 0, sigma, x.wd}.plus(1.0, x).plus(c, x.derivative());
     double lo = t_deepest, t_release = NAN;
     for (int piece = 0; piece < 3 && lo < t_shallowest && std::isnan(t_release); ++piece) {
       const double hi = std::min(force.next_turn(lo), t_shallowest);
@@ -130,11 +162,11 @@ struct KelvinVoigtFirstContact {
     }
     if (std::isnan(t_release)) return {std::numeric_limits<double>::infinity(), x_max, 0.0};
     const double x_r = x(t_release), v_r = x.derivative()(t_release);
-    const double discriminant = v_r * v_r - 2 * g * x_r;
-    if (!(v_r < 0 && discriminant >= 0)) return {NAN, x_max, NAN};
-    const double flight = 2 * x_r / (-v_r + std::sqrt(discriminant));
-    if (w * w * v_r + 2 * sigma * g + w * w * g * flight / 2 > 0) return {NAN, x_max, NAN};
-    return {t_release + flight, x_max, std::sqrt(discriminant)};
+    const double q = 2 * (g / v_r) * (x_r / v_r);  // 2 g x_r / v_r^2: the exit speed is |v_r| sqrt(1 - q)
+    if (!(v_r < 0 && q <= 1)) return {NAN, x_max, NAN};
+    const double root = std::sqrt(1 - q), flight = 2 * (x_r / -v_r) / (1 + root);
+    if (v_r + c * g + g * flight / 2 > 0) return {NAN, x_max, NAN};
+    return {t_release + flight, x_max, -v_r * root};
   }
 };
 
@@ -145,6 +177,7 @@ void require_kelvin_voigt(const char* name, double m, double k, double zeta, dou
   require_in(f + ": zeta", zeta, kDampingRatio);  // underdamped: the ball comes back
   require_in(f + ": g", g, kNonNegative);
   require_in(f + ": V", V, g > 0 ? kNonNegative : kPositive);  // no contact without either
+  require_frequency(f, m, k, g);
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <set>
@@ -188,6 +189,65 @@ TEST(Registries, ClosedFormsRefuseArgumentsOutsideTheirDomain) {
   // full period 2 pi / w), and a critically damped contact gives e = 0 (zeta = 1).
   EXPECT_NEAR(hooke_contact(1, 1e4, 0, 9.81).duration, 2 * std::numbers::pi / 100, 1e-14);
   EXPECT_EQ(damping_ratio_for_restitution(0.0), 1.0);
+}
+
+// The rigid bounces' impact times are a closed form: T(n) summed term by term took n steps (n = 2^63
+// never returned, from Python too) and passed the Zeno time by rounding (n = 1e6: 3 ulps past it).
+// The closed form agrees with the sum in long double to a few ulps of the tail (log and expm1 are
+// correct to an ulp; the fraction 1 - e^(n-1) is formed without cancellation), and never passes
+// zeno_time(). A first impact beyond the doubles' range (g = 1e308: 2 g h0 overflows) is refused;
+// every apex was NaN.
+TEST(Registries, RigidImpactTimesAreAClosedFormBoundedByTheZenoTime) {
+  const std::string why = refusal([] { RigidBounces(1.0, 0.0, 1e308, 0.8); });
+  EXPECT_NE(why.find("rigid bounces: the first impact (speed sqrt(v0^2 + 2 g h0) = inf"), std::string::npos)
+      << why;
+  EXPECT_NE(why.find("h0 = 1, v0 = 0, g = 1e+308"), std::string::npos) << why;
+  const std::vector<double> restitutions{0.0, 0.5, 0.8, 0.999999, 1.0};
+  for (const double e : restitutions) {
+    const RigidBounces ref(1.0, 0.5, 9.81, e);
+    long double sum = ref.T1, en = 1;
+    for (std::size_t n = 1; n <= 200; ++n) {
+      if (n > 1) sum += 2 * (en *= e) * static_cast<long double>(ref.V) / ref.g;
+      EXPECT_NEAR(ref.impact_time(n), static_cast<double>(sum), 8e-16 * static_cast<double>(sum))
+          << e << " " << n;
+    }
+    EXPECT_LE(ref.impact_time(1000000), ref.zeno_time()) << e;
+  }
+  // Last, as on the old code it never returns (the test's timeout ends it).
+  for (const double e : restitutions) {
+    const RigidBounces ref(1.0, 0.5, 9.81, e);
+    const std::size_t n = std::numeric_limits<std::size_t>::max();
+    EXPECT_LE(ref.impact_time(n), ref.zeno_time()) << e;
+    EXPECT_TRUE(std::isfinite(ref.apex_time(n))) << e;
+    if (e < 1) {
+      EXPECT_EQ(ref.impact_time(n), ref.zeno_time()) << e;  // e^(n-1) underflows: the fraction is 1
+    }
+  }
+}
+
+// The spring contacts' closed forms at the edges of the doubles. A contact scaled by lambda = 2^1020
+// in speed and gravity is the same contact, lambda times deeper and faster, equally long (the
+// scaling is exact in binary); the clamped law formed w^2 x and v_r^2 and called it a contact that
+// never let go. Hooke's depth under a heavy mass, 2 g m / k to 1e-15 here, was inf (s^2 overflowed).
+// A k / m outside the doubles' normal range, or a sag g m / k beyond it, is refused: each gave NaN.
+TEST(Registries, SpringContactClosedFormsScaleToTheEdgesOfTheDoubles) {
+  const double lambda = std::ldexp(1.0, 1020), m = 1.0, k = 1e4, zeta = 0.1, V = 1.0, g = 9.81;
+  for (const auto form : {&kelvin_voigt_contact, &clamped_kelvin_voigt_contact}) {
+    const SpringContact unit = form(m, k, zeta, V, g), big = form(m, k, zeta, lambda * V, lambda * g);
+    ASSERT_TRUE(std::isfinite(unit.duration));
+    EXPECT_NEAR(big.duration, unit.duration, 1e-14 * unit.duration);
+    EXPECT_NEAR(big.max_penetration / lambda, unit.max_penetration, 1e-14 * unit.max_penetration);
+    EXPECT_NEAR(big.exit_speed / lambda, unit.exit_speed, 1e-14 * unit.exit_speed);
+  }
+  EXPECT_NEAR(hooke_contact(1e308, 1e4, 1.0, 9.81).max_penetration, 2 * 9.81e304, 1e-15 * 2 * 9.81e304);
+  EXPECT_NE(refusal([] { kelvin_voigt_contact(1e-306, 1e4, 0.1, 1.0, 9.81); }).find("k / m = inf"),
+            std::string::npos);
+  EXPECT_NE(refusal([] { clamped_kelvin_voigt_contact(1.0, 1e-308, 0.1, 1.0, 9.81); })
+                .find("k / m = 1e-308 (k = 1e-308, m = 1), the contact's frequency squared, is out of the "
+                      "doubles' normal range"),
+            std::string::npos);
+  EXPECT_NE(refusal([] { hooke_contact(1.0, 1e-300, 1.0, 1e10); }).find("the static sag g m / k = inf"),
+            std::string::npos);
 }
 
 // A run that cannot fit is refused before it starts, naming what it would hold: its output samples

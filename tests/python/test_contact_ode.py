@@ -83,6 +83,8 @@ def test_exact_bounces_give_the_closed_forms():
         assert co.references.rigid_apex_height(h0, 0.0, 9.81, e, n) == pytest.approx(e ** (2 * n) * h0, rel=1e-14)
     t0 = math.sqrt(2 * h0 / 9.81)
     assert co.references.zeno_time(h0, 0.0, 9.81, e) == pytest.approx(t0 * (1 + e) / (1 - e), rel=1e-14)
+    # The impact times are a closed form: n = 2^63 was 2^63 terms, a call that never returned.
+    assert co.references.rigid_impact_time(h0, 0.0, 9.81, e, 2 ** 63) == co.references.zeno_time(h0, 0.0, 9.81, e)
 
 
 def test_spring_contact_closed_forms():
