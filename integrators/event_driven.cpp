@@ -66,7 +66,12 @@ class Impacts {
     model_.project(i, y);
     const bool unresolved = v_in >= 0;  // exact flight: touching without approach
     const double before = rec_.energy(x);
-    if (!unresolved) model_.apply_impulse(i, model_.restitution(i), y);
+    if (!unresolved) {
+      const double J = model_.apply_impulse(i, model_.restitution(i), y);
+      if (!y.allFinite())  // the closed-form flight would carry it on as a success (solve() ends it too)
+        throw SolverFailure(Status::NonFiniteState, t,
+                            fmt::format("contact {}'s impulse ({:.3g} N s) left the state not finite", i, J));
+    }
     const double v_out = model_.gap_rate(i, x);
     // Resting by height stops a decaying cascade that was followed down to the flight's
     // resolution. A first bounce already that low, or one that does not decay (e = 1), was never

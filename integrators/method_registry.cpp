@@ -39,6 +39,23 @@ const MethodInfo& method_info(const std::string& name) {
 
 namespace {
 
+// A method's own checks end a run whose state leaves the doubles' range as non-finite-state; this
+// holds for every method, whatever it checks: the exact bounces of a 1e308 kg ball (an impulse of
+// 8e308 N s) and of one thrown up at 1e308 m/s (past 1.8e308 m after 1.8 s) reported success with
+// a state of inf. The run ends at its first such sample, and what it recorded after that goes.
+void end_at_first_non_finite_sample(RunResult& r) {
+  const auto bad = std::ranges::find_if(r.samples, [](const Sample& s) { return !s.y.allFinite(); });
+  if (bad == r.samples.end()) return;
+  r.status = Status::NonFiniteState;
+  r.t_reached = bad->t;
+  r.message =
+      fmt::format("the state is not finite at t = {:.9g} s (sample {} of {}): beyond the doubles' range",
+                  bad->t, bad - r.samples.begin(), r.samples.size());
+  r.samples.erase(bad, r.samples.end());
+  std::erase_if(r.contacts, [&](const ContactRecord& c) { return c.t_begin >= r.t_reached; });
+  std::erase_if(r.apexes, [&](const Apex& a) { return a.t >= r.t_reached; });
+}
+
 // The settings of the time-stepping and event-driven methods, each in its range (whatever method
 // reads them, so that a wrong value never waits for the method that uses it).
 void check_method_settings(const Method& m) {
@@ -133,6 +150,7 @@ RunResult solve(const Dynamics& scene, const Method& method, const SolveOptions&
   }
   RunResult r = info.run(scene, method, options);
   r.method = info.name;
+  if (r.ok()) end_at_first_non_finite_sample(r);
   return r;
 }
 

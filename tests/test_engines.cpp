@@ -439,3 +439,28 @@ TEST(Siconos, ASpanBelowItsClockTickLeavesTheStateWhereItIs) {
   EXPECT_EQ(r.samples.back().y[0], 1.0);
   EXPECT_EQ(r.samples.back().y[1], 0.0);
 }
+
+// A stack of 3e307 kg balls weighs more than the doubles hold (m g overflows): Siconos's LCP solver
+// asserted on it and aborted the process. Refused before Siconos sees it, naming the body.
+TEST(Siconos, AnInfiniteWeightIsASolverErrorNotAnAbort) {
+  REQUIRE_ENGINE("siconos");
+  const BallStack column({.m = 3e307});
+  const RunResult r = solve(column, {.name = "siconos", .dt = 1e-3}, {.t_end = 2e-3, .sample_dt = 1e-3});
+  EXPECT_EQ(r.status, Status::SolverError) << r.message;
+  EXPECT_NE(r.message.find("Siconos cannot take body 0: its mass 3e+307 kg, weight inf N"), std::string::npos)
+      << r.message;
+}
+
+// Siconos prints a failing initialisation's interactions on standard output: a stack dropped from
+// 3e9 m, whose gaps round below its tolerance, put some 40 lines into the caller's output beside the
+// typed error. Its standard output is held aside while it initialises, as while it steps.
+TEST(Siconos, AFailedInitialisationPrintsNothing) {
+  REQUIRE_ENGINE("siconos");
+  const BallStack column({.drop = 3e9});
+  testing::internal::CaptureStdout();
+  const RunResult r = solve(column, {.name = "siconos", .dt = 1e-3}, {.t_end = 2e-3, .sample_dt = 1e-3});
+  const std::string printed = testing::internal::GetCapturedStdout();
+  EXPECT_EQ(r.status, Status::SolverError) << r.message;
+  EXPECT_NE(r.message.find("Siconos could not initialise the simulation"), std::string::npos) << r.message;
+  EXPECT_EQ(printed, "");
+}

@@ -409,3 +409,29 @@ TEST(EventDriven, APlasticImpulseLeftApproachingByRoundingIsNotStruckAgain) {
         << flight;
   }
 }
+
+// A state beyond the doubles ends a run as non-finite-state, whatever the method checks itself. The
+// exact bounces of a 1e308 kg ball (an impulse of 8e308 N s at its first impact) and of one thrown
+// up at 1e308 m/s (past 1.8e308 m after 1.8 s) reported success with a state of inf: the first
+// ends at its impact, naming the impulse; the second at its first sample that is not finite (solve()
+// looks at every method's samples), keeping only those before it.
+TEST(EventDriven, AStateBeyondTheDoublesEndsTheRunInsteadOfSucceeding) {
+  const Method exact{.name = "event-exact"};
+  const SolveOptions span{.t_end = 3.0, .sample_dt = 0.015};
+  const RunResult heavy = solve(BallDrop({.m = 1e308}), exact, span);
+  EXPECT_EQ(heavy.status, Status::NonFiniteState) << heavy.message;
+  EXPECT_NEAR(heavy.t_reached, RigidBounces(1.0, 0.0, 9.81, 0.8).T1, 1e-12);
+  EXPECT_NE(heavy.message.find("contact 0's impulse (inf N s) left the state not finite"), std::string::npos)
+      << heavy.message;
+  const RunResult thrown = solve(BallDrop({.v0 = 1e308}), exact, span);
+  EXPECT_EQ(thrown.status, Status::NonFiniteState) << thrown.message;
+  EXPECT_NEAR(thrown.t_reached, 1.8, 1e-12);  // 1 + 1e308 t passes DBL_MAX at t = 1.797 s
+  EXPECT_NE(thrown.message.find("the state is not finite at t = 1.8 s (sample 120 of 201)"),
+            std::string::npos)
+      << thrown.message;
+  for (const RunResult* r : {&heavy, &thrown}) {
+    ASSERT_FALSE(r->samples.empty());
+    for (const auto& s : r->samples) EXPECT_TRUE(s.y.allFinite()) << r->method << ", t " << s.t;
+    EXPECT_LT(r->samples.back().t, r->t_reached);
+  }
+}

@@ -63,6 +63,20 @@ struct SiconosLine::State {
 };
 
 SiconosLine::SiconosLine(const SiconosSpheres& sp) : s_(std::make_unique<State>()) {
+  // Its initialisation prints too when it fails (a stack dropped from 3e9 m, whose gaps round
+  // below its tolerance): some 40 lines on the caller's standard output, beside a typed error.
+  const QuietStdout quiet;
+  // Siconos's LCP solver asserts, aborting the process, where a weight is infinite (a stack of
+  // 3e307 kg balls: m g overflows); every body's numbers are checked first.
+  for (std::size_t b = 0; b < sp.mass.size(); ++b) {
+    const double weight = sp.vertical ? sp.mass[b] * sp.g : 0.0;
+    if (!(std::isfinite(sp.mass[b]) && std::isfinite(weight) && std::isfinite(sp.centre[b]) &&
+          std::isfinite(sp.velocity[b])))
+      throw std::runtime_error(fmt::format(
+          "Siconos cannot take body {}: its mass {:g} kg, weight {:g} N, centre {:g} m and velocity "
+          "{:g} m/s have to be finite",
+          b, sp.mass[b], weight, sp.centre[b], sp.velocity[b]));
+  }
   s_->spheres = sp;
   const double t_far = 1e9;  // the run ends when the caller stops stepping
   auto nsds = s_->nsds = std::make_shared<NonSmoothDynamicalSystem>(0.0, t_far);
