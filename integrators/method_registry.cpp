@@ -1,12 +1,15 @@
 #include "contact_ode/integrators/method_registry.hpp"
 
+#include "contact_ode/models/parameters.hpp"
 #include "contact_ode/models/registry.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <stdexcept>
+#include <tuple>
 
 namespace contact {
 
@@ -61,8 +64,25 @@ void end_at_first_non_finite_sample(RunResult& r) {
 void check_method_settings(const Method& m) {
   auto refuse = [](const char* name, double value, const char* range) {
     throw std::invalid_argument(
-        fmt::format("--{}: value '{}' is out of range; accepted range {}", name, value, range));
+        fmt::format("--{}: value '{}' is {}; accepted range {}", name, value, outside(value), range));
   };
+  // Below the smallest normal double, as the command line refuses (Range): a 1e-310 s step or
+  // tolerance ran into NaN, or a failure that did not name it.
+  for (const auto& [name, value, range] : std::initializer_list<std::tuple<const char*, double, const char*>>{
+           {"dt", m.dt, "(0, inf)"},
+           {"dt", m.integrator.dt, "[0, inf) (0: the integrator's own)"},
+           {"rtol", m.integrator.rtol, "(0, 1)"},
+           {"atol", m.integrator.atol, "(0, inf)"},
+           {"erp", m.erp, "[0, 1]"},
+           {"theta", m.theta, "[0, 1]"},
+           {"restitution-threshold", m.restitution_threshold, "[0, inf) or NaN (the method's default)"},
+           {"contact-hertz", m.contact_hertz, "[0, inf)"},
+           {"contact-damping-ratio", m.contact_damping_ratio, "[0, inf)"},
+           {"push-max", m.push_max, "(0, inf)"},
+           {"rest-speed", m.rest_speed, "(0, inf)"},
+           {"rest-height", m.rest_height, "(-inf, inf) (< 0: the default)"},
+           {"min-event-spacing", m.min_event_spacing, "[0, inf)"}})
+    if (is_subnormal(value)) refuse(name, value, range);
   if (m.iterations < 1) refuse("iterations", m.iterations, "[1, inf)");
   if (m.substeps < 1) refuse("substeps", m.substeps, "[1, inf)");
   if (!(m.erp >= 0 && m.erp <= 1)) refuse("erp", m.erp, "[0, 1]");
@@ -132,12 +152,13 @@ RunResult solve(const Dynamics& scene, const Method& method, const SolveOptions&
   if (!info.can_run(scene))
     throw std::invalid_argument(
         fmt::format("method '{}' cannot run scene '{}': it needs {}", info.name, scene.name(), info.needs));
-  if (!(std::isfinite(options.t_end) && options.t_end > 0))
-    throw std::invalid_argument(
-        fmt::format("--t-end: value '{}' is out of range; accepted range (0, inf)", options.t_end));
-  if (!(std::isfinite(options.sample_dt) && options.sample_dt > 0))
-    throw std::invalid_argument(
-        fmt::format("--sample-dt: value '{}' is out of range; accepted range (0, inf)", options.sample_dt));
+  // (A span of 1e-310 s, below the smallest normal double, gave CVODE's runs a NaN state.)
+  if (!kPositive.contains(options.t_end))
+    throw std::invalid_argument(fmt::format("--t-end: value '{}' is {}; accepted range (0, inf)",
+                                            options.t_end, outside(options.t_end)));
+  if (!kPositive.contains(options.sample_dt))
+    throw std::invalid_argument(fmt::format("--sample-dt: value '{}' is {}; accepted range (0, inf)",
+                                            options.sample_dt, outside(options.sample_dt)));
   if (info.fixed_step && !(std::isfinite(method.dt) && method.dt > 0))
     throw std::invalid_argument(
         fmt::format("--dt: value '{}' is out of range; accepted range (0, inf)", method.dt));

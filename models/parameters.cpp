@@ -4,13 +4,22 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace contact {
 
 bool Range::contains(double v) const {
-  return std::isfinite(v) && (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi) &&
-         (!whole || v == std::floor(v));
+  return std::isfinite(v) && !is_subnormal(v) && (lo_open ? v > lo : v >= lo) &&
+         (hi_open ? v < hi : v <= hi) && (!whole || v == std::floor(v));
+}
+
+bool is_subnormal(double v) { return v != 0 && std::abs(v) < std::numeric_limits<double>::min(); }
+
+std::string outside(double v) {
+  return is_subnormal(v)
+             ? fmt::format("below the smallest normal double ({:g})", std::numeric_limits<double>::min())
+             : "out of range";
 }
 
 std::string Range::to_string() const {
@@ -21,7 +30,7 @@ std::string Range::to_string() const {
 void require_in(const std::string& what, double value, const Range& accepted) {
   if (!accepted.contains(value))
     throw std::invalid_argument(
-        fmt::format("{} = {} is out of range; accepted range {}", what, value, accepted.to_string()));
+        fmt::format("{} = {} is {}; accepted range {}", what, value, outside(value), accepted.to_string()));
 }
 
 ParameterValues resolve(const std::vector<ParameterInfo>& parameters, const ParameterValues& given,

@@ -192,7 +192,7 @@ TEST(Registries, ClosedFormsRefuseArgumentsOutsideTheirDomain) {
 }
 
 // The rigid bounces' impact times are a closed form: T(n) summed term by term took n steps (n = 2^63
-// never returned, from Python too) and passed the Zeno time by rounding (n = 1e6: 3 ulps past it).
+// never returned, from Python too) and passed the Zeno time by rounding (n = 1e6: 4 ulps past it).
 // The closed form agrees with the sum in long double to a few ulps of the tail (log and expm1 are
 // correct to an ulp; the fraction 1 - e^(n-1) is formed without cancellation), and never passes
 // zeno_time(). A first impact beyond the doubles' range (g = 1e308: 2 g h0 overflows) is refused;
@@ -242,12 +242,47 @@ TEST(Registries, SpringContactClosedFormsScaleToTheEdgesOfTheDoubles) {
   EXPECT_NEAR(hooke_contact(1e308, 1e4, 1.0, 9.81).max_penetration, 2 * 9.81e304, 1e-15 * 2 * 9.81e304);
   EXPECT_NE(refusal([] { kelvin_voigt_contact(1e-306, 1e4, 0.1, 1.0, 9.81); }).find("k / m = inf"),
             std::string::npos);
-  EXPECT_NE(refusal([] { clamped_kelvin_voigt_contact(1.0, 1e-308, 0.1, 1.0, 9.81); })
-                .find("k / m = 1e-308 (k = 1e-308, m = 1), the contact's frequency squared, is out of the "
-                      "doubles' normal range"),
-            std::string::npos);
+  EXPECT_NE(
+      refusal([] { clamped_kelvin_voigt_contact(1e10, 1e-300, 0.1, 1.0, 0.0); })
+          .find(
+              "k / m = 1e-310 (k = 1e-300, m = 10000000000), the contact's frequency squared, is out of the "
+              "doubles' normal range"),
+      std::string::npos);
   EXPECT_NE(refusal([] { hooke_contact(1.0, 1e-300, 1.0, 1e10); }).find("the static sag g m / k = inf"),
             std::string::npos);
+}
+
+// A value below the smallest normal double is refused by every entry to the library, as the command
+// line refuses it, naming the option and its range: before, a 1e-310 s span under CVODE 'succeeded'
+// with a NaN state, and a 1e-310 kg ball, step or tolerance ended each method in another failure
+// that did not name it (a right-hand side not finite, ODE's LCP, MuJoCo's mass check).
+TEST(Solve, ValuesBelowTheSmallestNormalDoubleAreRefusedNamingThem) {
+  const auto ball = make_scene("ball-drop");
+  const auto tiny = [&](const Method& m, const SolveOptions& span) {
+    return refusal([&] { solve(*ball, m, span); });
+  };
+  const std::string below = "is below the smallest normal double (2.22507e-308); accepted range";
+  EXPECT_NE(
+      tiny({.name = "penalty"}, {.t_end = 1e-310}).find("--t-end: value '1e-310' " + below + " (0, inf)"),
+      std::string::npos);
+  EXPECT_NE(tiny({.name = "penalty"}, {.t_end = 1.0, .sample_dt = 5e-324})
+                .find("--sample-dt: value '5e-324' " + below),
+            std::string::npos);
+  Method penalty{.name = "penalty"};
+  penalty.integrator.atol = 1e-310;
+  EXPECT_NE(tiny(penalty, {.t_end = 1.0}).find("--atol: value '1e-310' " + below + " (0, inf)"),
+            std::string::npos);
+  EXPECT_NE(tiny({.name = "game-euler", .dt = 1e-310}, {.t_end = 1.0}).find("--dt: value '1e-310' " + below),
+            std::string::npos);
+  EXPECT_NE(refusal([] {
+              make_scene("ball-drop", {{"m", 1e-310}});
+            }).find("ball-drop: parameter 'm' = 1e-310 " + below + " (0, inf)"),
+            std::string::npos);
+  EXPECT_NE(refusal([] {
+              make_scene("ball-drop", {{"v0", -1e-310}});
+            }).find("'v0' = -1e-310 " + below),
+            std::string::npos);
+  EXPECT_NO_THROW(make_scene("ball-drop", {{"v0", 0.0}}));  // zero is no subnormal
 }
 
 // A run that cannot fit is refused before it starts, naming what it would hold: its output samples

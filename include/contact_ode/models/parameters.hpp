@@ -9,7 +9,9 @@
 namespace contact {
 
 // The values a parameter accepts: finite, between lo and hi (an open end excludes its bound), and
-// whole numbers only where `whole` (a count).
+// whole numbers only where `whole` (a count). Never a value below the smallest normal double
+// (1e-310 kg, 1e-310 s): the command line refuses one, and where it reached a solver it ended in
+// NaN or a failure that did not name it.
 struct Range {
   double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
   bool lo_open = true, hi_open = true, whole = false;
@@ -21,8 +23,13 @@ inline constexpr Range kPositive{.lo = 0};
 inline constexpr Range kNonNegative{.lo = 0, .lo_open = false};
 inline constexpr Range kUnitInterval{.lo = 0, .hi = 1, .lo_open = false, .hi_open = false};
 
-// Throws std::invalid_argument "<what> = <value> is out of range; accepted range <range>" unless
-// `accepted` contains the value.
+// A value below the smallest normal double, 0 apart (Range refuses one).
+bool is_subnormal(double v);
+// Why a value is outside a range: "out of range", or "below the smallest normal double (2.22507e-308)".
+std::string outside(double v);
+
+// Throws std::invalid_argument "<what> = <value> is <outside(value)>; accepted range <range>"
+// unless `accepted` contains the value.
 void require_in(const std::string& what, double value, const Range& accepted);
 
 struct ParameterInfo {
