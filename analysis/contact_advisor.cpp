@@ -7,6 +7,7 @@
 #include "contact_ode/integrators/game_step.hpp"
 #include "contact_ode/integrators/gsl_handles.hpp"
 #include "contact_ode/models/ball_drop.hpp"
+#include "contact_ode/models/parameters.hpp"
 
 #include <fmt/format.h>
 #include <gsl/gsl_errno.h>
@@ -25,7 +26,7 @@ using std::numbers::pi;
 
 [[noreturn]] void bad(const std::string& option, double value, const std::string& accepted) {
   throw std::invalid_argument(
-      fmt::format("{}: value '{}' is out of range; accepted {}", option, value, accepted));
+      fmt::format("{}: value '{}' is {}; accepted {}", option, value, outside(value), accepted));
 }
 
 // zeta in (0, 1) with e_clamped(zeta) = e, by GSL's Brent solver on [0, 1).
@@ -118,7 +119,8 @@ double game_energy_error(const ContactLaw& law, double m, double V, double dt) {
 }  // namespace
 
 void validate(const ContactRequest& r) {
-  auto finite = [](double v) { return std::isfinite(v); };
+  // (and normal, as the command line takes them: a 1e-310 kg mass was refused by a formula inside)
+  auto finite = [](double v) { return std::isfinite(v) && !is_subnormal(v); };
   if (!(finite(r.m) && r.m > 0)) bad("--m", r.m, "range (0, inf)");
   if (!(finite(r.v) && r.v > 0)) bad("--v", r.v, "range (0, inf)");
   if (!(finite(r.e) && r.e >= 0 && r.e <= 1)) bad("--e", r.e, "range [0, 1]");

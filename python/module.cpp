@@ -408,7 +408,11 @@ PYBIND11_MODULE(contact_ode, mod) {
          const std::string& law) {
         ContactRequest q{
             .m = m, .v = v, .e = e, .max_penetration = max_penetration, .duration = duration, .law = law};
-        validate(q);
+        try {
+          validate(q);
+        } catch (const std::invalid_argument& refused) {
+          throw py::value_error(python_names(refused.what()));  // "m: value ...", as solve() names keywords
+        }
         const ContactAdvice a = advise(q);
         return py::dict(py::arg("k_lin") = a.k_lin, py::arg("c_lin") = a.c_lin, py::arg("omega") = a.omega,
                         py::arg("zeta") = a.zeta, py::arg("frequency_hz") = a.frequency_hz,

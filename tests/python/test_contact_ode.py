@@ -100,6 +100,12 @@ def test_advisor_meets_its_budget():
     a = co.advise(m=1.0, v=5.0, e=0.8, max_penetration=1e-3)
     assert a["achieved_penetration"] == pytest.approx(1e-3, rel=1e-3)
     assert a["achieved_restitution"] == pytest.approx(0.8, abs=1e-3)
+    # Its arguments refused by their keywords, a value below the smallest normal double too (a
+    # 1e-310 kg mass was refused by "power_law_contact", a formula inside).
+    with pytest.raises(ValueError, match=re.escape("m: value '1e-310' is below the smallest normal double")):
+        co.advise(m=1e-310, v=5.0, e=0.8, max_penetration=1e-3)
+    with pytest.raises(ValueError, match=re.escape("max_penetration: value '-1' is out of range")):
+        co.advise(m=1.0, v=5.0, e=0.8, max_penetration=-1.0)
 
 
 def test_bad_arguments_raise_value_error_naming_them():
