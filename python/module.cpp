@@ -203,16 +203,27 @@ RunResult run(const std::string& scene, const std::string& method, const std::st
   return r;
 }
 
-// The library names options as the command line does ("--t-end: value ..."); Python callers
-// know them as keywords ("t_end: value ...").
-std::string python_names(std::string message) {
-  if (message.rfind("--", 0) != 0) return message;
-  message.erase(0, 2);
-  for (char& c : message) {
-    if (c == ':' || c == ' ') break;
-    if (c == '-') c = '_';
+// The library names options as the command line does ("--t-end: value ...", "--max-penetration /
+// --duration: give exactly one"); Python callers know them as keywords ("t_end: value ...").
+// Every such name in the message, not only its first (the advisor's said "max_penetration /
+// --duration").
+std::string python_names(const std::string& message) {
+  std::string out;
+  for (std::size_t i = 0; i < message.size(); ++i) {
+    const bool starts_name = message.compare(i, 2, "--") == 0 && i + 2 < message.size() &&
+                             std::islower(static_cast<unsigned char>(message[i + 2])) &&
+                             (i == 0 || !std::isalnum(static_cast<unsigned char>(message[i - 1])));
+    if (!starts_name) {
+      out += message[i];
+      continue;
+    }
+    for (i += 2;
+         i < message.size() && (std::isalnum(static_cast<unsigned char>(message[i])) || message[i] == '-');
+         ++i)
+      out += message[i] == '-' ? '_' : message[i];
+    --i;
   }
-  return message;
+  return out;
 }
 
 py::dict spring_contact(const SpringContact& c) {
@@ -224,6 +235,14 @@ py::dict spring_contact(const SpringContact& c) {
 
 PYBIND11_MODULE(contact_ode, mod) {
   mod.doc() = "contact-ode: contact resolution as ODEs (penalty, game, time-stepping, event-driven)";
+  // Every refusal, from any function here, is a ValueError naming the keywords (python_names).
+  py::register_local_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const std::invalid_argument& refused) {
+      PyErr_SetString(PyExc_ValueError, python_names(refused.what()).c_str());
+    }
+  });
 
   py::enum_<Status>(mod, "Status")
       .value("success", Status::Success)
@@ -303,13 +322,7 @@ PYBIND11_MODULE(contact_ode, mod) {
   mod.def(
       "solve",
       [](const std::string& scene, const std::string& method, const std::string& law,
-         const py::kwargs& options) {
-        try {
-          return run(scene, method, law, options, solver_error);
-        } catch (const std::invalid_argument& e) {
-          throw py::value_error(python_names(e.what()));
-        }
-      },
+         const py::kwargs& options) { return run(scene, method, law, options, solver_error); },
       py::arg("scene"), py::arg("method"), py::arg("law") = "",
       "Runs `method` on `scene` (with contact law `law` where the scene takes one; '': the scene's "
       "default_law in scenes(): hooke, undamped, which a penalty run takes without e; name "
@@ -408,11 +421,7 @@ PYBIND11_MODULE(contact_ode, mod) {
          const std::string& law) {
         ContactRequest q{
             .m = m, .v = v, .e = e, .max_penetration = max_penetration, .duration = duration, .law = law};
-        try {
-          validate(q);
-        } catch (const std::invalid_argument& refused) {
-          throw py::value_error(python_names(refused.what()));  // "m: value ...", as solve() names keywords
-        }
+        validate(q);
         const ContactAdvice a = advise(q);
         return py::dict(py::arg("k_lin") = a.k_lin, py::arg("c_lin") = a.c_lin, py::arg("omega") = a.omega,
                         py::arg("zeta") = a.zeta, py::arg("frequency_hz") = a.frequency_hz,

@@ -117,6 +117,15 @@ def test_bad_arguments_raise_value_error_naming_them():
         co.solve("ball-drop", "penalty", t_end=-1.0)
     with pytest.raises(ValueError, match="method: value 'nope' is not one of"):
         co.solve("ball-drop", "nope")
+    # Every function names keywords, every one in its message: methods_for and the closed forms said
+    # "--law", the advisor "max_penetration / --duration ... --radius".
+    with pytest.raises(ValueError, match="^law: value 'nope' is not one of"):
+        co.methods_for("ball-drop", "nope")
+    with pytest.raises(ValueError, match="^law: value 'nope' is not one of"):
+        co.references.linear_law_first_contact("nope", 1.0, 1e4, 0.8, 1.0)
+    with pytest.raises(ValueError, match=re.escape("max_penetration / duration: give exactly one requirement "
+                                                   "(or, for hertz, radius, young and poisson)")):
+        co.advise(m=1.0, v=1.0, e=0.8)
     # The scene as the caller named it, not the model's internal name ("spring_mass").
     with pytest.raises(ValueError, match="cannot run scene 'spring-mass'"):
         co.solve("spring-mass", "event-ode")
