@@ -68,7 +68,10 @@ class Impacts {
     const double before = rec_.energy(x);
     if (!unresolved) {
       const double J = model_.apply_impulse(i, model_.restitution(i), y);
-      if (!y.allFinite())  // the closed-form flight would carry it on as a success (solve() ends it too)
+      // An impulse beyond the doubles (a 1e308 kg ball's first, 8e308 N s) ends the run here; the
+      // closed-form flight would carry its inf on as a success (solve() would end it at the next
+      // sample). J alone is checked: 5 instructions an impact (callgrind), the whole state 19 (2.3 %).
+      if (!std::isfinite(J))
         throw SolverFailure(Status::NonFiniteState, t,
                             fmt::format("contact {}'s impulse ({:.3g} N s) left the state not finite", i, J));
     }
