@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <initializer_list>
 #include <stdexcept>
 #include <tuple>
 
@@ -62,45 +61,36 @@ void end_at_first_non_finite_sample(RunResult& r) {
 // The settings of the time-stepping and event-driven methods, each in its range (whatever method
 // reads them, so that a wrong value never waits for the method that uses it).
 void check_method_settings(const Method& m) {
-  auto refuse = [](const char* name, double value, const char* range) {
+  auto refuse = [](const char* name, double value, const std::string& range) {
     throw std::invalid_argument(
         fmt::format("--{}: value '{}' is {}; accepted range {}", name, value, outside(value), range));
   };
-  // Below the smallest normal double, as the command line refuses (Range): a 1e-310 s step or
-  // tolerance ran into NaN, or a failure that did not name it.
-  for (const auto& [name, value, range] : std::initializer_list<std::tuple<const char*, double, const char*>>{
-           {"dt", m.dt, "(0, inf)"},
-           {"dt", m.integrator.dt, "[0, inf) (0: the integrator's own)"},
-           {"rtol", m.integrator.rtol, "(0, 1)"},
-           {"atol", m.integrator.atol, "(0, inf)"},
-           {"erp", m.erp, "[0, 1]"},
-           {"theta", m.theta, "[0, 1]"},
-           {"restitution-threshold", m.restitution_threshold, "[0, inf) or NaN (the method's default)"},
-           {"contact-hertz", m.contact_hertz, "[0, inf)"},
-           {"contact-damping-ratio", m.contact_damping_ratio, "[0, inf)"},
-           {"push-max", m.push_max, "(0, inf)"},
-           {"rest-speed", m.rest_speed, "(0, inf)"},
-           {"rest-height", m.rest_height, "(-inf, inf) (< 0: the default)"},
-           {"min-event-spacing", m.min_event_spacing, "[0, inf)"}})
+  // Each real setting through its Range, which also refuses a value below the smallest normal
+  // double, as the command line does (a 1e-310 s step or tolerance ran into NaN, or a failure that
+  // did not name it).
+  auto need = [&](const char* name, double value, const Range& range, const char* note = "") {
+    if (!range.contains(value)) refuse(name, value, range.to_string() + note);
+  };
+  // The steps and tolerances have their ranges checked where they are read; here only the rule.
+  using Rule = std::tuple<const char*, double, const char*>;
+  for (const auto& [name, value, range] :
+       {Rule{"dt", m.dt, "(0, inf)"}, Rule{"dt", m.integrator.dt, "[0, inf) (0: the integrator's own)"},
+        Rule{"rtol", m.integrator.rtol, "(0, 1)"}, Rule{"atol", m.integrator.atol, "(0, inf)"}})
     if (is_subnormal(value)) refuse(name, value, range);
   if (m.iterations < 1) refuse("iterations", m.iterations, "[1, inf)");
   if (m.substeps < 1) refuse("substeps", m.substeps, "[1, inf)");
-  if (!(m.erp >= 0 && m.erp <= 1)) refuse("erp", m.erp, "[0, 1]");
-  if (!(m.theta >= 0 && m.theta <= 1)) refuse("theta", m.theta, "[0, 1]");
-  if (!std::isnan(m.restitution_threshold) &&
-      !(m.restitution_threshold >= 0 && std::isfinite(m.restitution_threshold)))
-    refuse("restitution-threshold", m.restitution_threshold, "[0, inf) or NaN (the method's default)");
-  if (!(m.contact_hertz >= 0 && std::isfinite(m.contact_hertz)))
-    refuse("contact-hertz", m.contact_hertz, "[0, inf)");
-  if (!(m.contact_damping_ratio >= 0 && std::isfinite(m.contact_damping_ratio)))
-    refuse("contact-damping-ratio", m.contact_damping_ratio, "[0, inf)");
-  if (!(m.push_max > 0 && std::isfinite(m.push_max))) refuse("push-max", m.push_max, "(0, inf)");
+  need("erp", m.erp, kUnitInterval);
+  need("theta", m.theta, kUnitInterval);
+  if (!std::isnan(m.restitution_threshold))
+    need("restitution-threshold", m.restitution_threshold, kNonNegative, " or NaN (the method's default)");
+  need("contact-hertz", m.contact_hertz, kNonNegative);
+  need("contact-damping-ratio", m.contact_damping_ratio, kNonNegative);
+  need("push-max", m.push_max, kPositive);
   // Event-driven guards: a rest speed <= 0 never stops a Zeno cascade (the exact flight then ran
   // into the record limit at the Zeno time, a work limit that did not name the cause).
-  if (!(m.rest_speed > 0 && std::isfinite(m.rest_speed))) refuse("rest-speed", m.rest_speed, "(0, inf)");
-  if (!std::isfinite(m.rest_height)) refuse("rest-height", m.rest_height, "(-inf, inf) (< 0: the default)");
-  if (!(m.min_event_spacing >= 0 && std::isfinite(m.min_event_spacing)))
-    refuse("min-event-spacing", m.min_event_spacing, "[0, inf)");
+  need("rest-speed", m.rest_speed, kPositive);
+  need("rest-height", m.rest_height, kAnyFinite, " (< 0: the default)");
+  need("min-event-spacing", m.min_event_spacing, kNonNegative);
   if (m.max_events < 1) refuse("max-events", static_cast<double>(m.max_events), "[1, inf)");
   if (m.persistence < 1) refuse("persistence", m.persistence, "[1, inf)");
 }
