@@ -138,6 +138,27 @@ TEST(RunBounds, AnEnergyGainOfAMillionFoldEndsDivergedEvenWhereTheStateStaysBelo
   }
 }
 
+// The state's line is no proof of instability: a weight far beyond what the spring holds sinks
+// through it with the energy conserved. A 1 kg ball under g = 1e20 m/s^2 on k = 1e5 N/m sags
+// m g / k = 1e15 m and swings at sqrt(k / m) = 316 /s about that, its speed 1e17 m/s, past 1e10 times
+// its 1 m start; CVODE follows it to its tolerance. The run still ends diverged (the line is the
+// run's bound), but the message said the method was unstable; it names the motion too now, and the
+// energy ledger's reading, which stays inside its own line.
+TEST(RunBounds, AStateBeyondItsLineWithTheEnergyConservedNamesTheMotionNotOnlyTheMethod) {
+  const double g = 1e20, k = 1e5, sag = g / k;
+  const BallDrop ball({.g = g, .law = Hooke{k}});
+  const RunResult r = solve(ball, {.name = "penalty"}, {.t_end = 0.05, .sample_dt = 0.005});
+  EXPECT_EQ(r.status, Status::Diverged) << to_string(r.status) << " " << r.message;
+  EXPECT_NE(r.message.find("is more than 1e+10 times the initial state"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("either the motion itself leaves that scale"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("unstable at these settings"), std::string::npos) << r.message;
+  ASSERT_FALSE(r.samples.empty());
+  const auto& last = r.samples.back();
+  EXPECT_GT(last.y[0], -2.0 * sag * (1 + 1e-6));  // the spring's swing about its sag, no further
+  EXPECT_LT(last.y.cwiseAbs().maxCoeff(), 1e10 * sag);
+  EXPECT_LT(last.energy + last.dissipated - r.energy0, 1e6 * r.energy0);  // the ledger holds
+}
+
 // A span below a billionth of the step was no step at all: every fixed-step method (game loops,
 // time stepping, the engines) 'succeeded' at t = 0 with no sample at t_end. One step, shortened
 // to the span, covers it; a span within 1e-9 dt of whole steps still takes that many.
