@@ -7,9 +7,9 @@
 // the scene), whose cost grows as N; 0 asks for the pulse through the whole chain (the striker's
 // approach plus three pair contacts per ball), whose span grows as N and so its cost as N^2 (1e5
 // balls: 210 s of simulated time, more than the 1e7 steps a run may take). Rank 0
-// writes velocities.csv (every ball's final displacement and velocity) and stats.csv (ranks,
+// writes velocities.csv (every ball's final displacement and velocity), stats.csv (ranks,
 // steps, right-hand sides per rank, GMRES iterations, preconditioner setups, wall time, relative
-// energy error).
+// energy error) and meta.json.
 // Progress is shown on a terminal; SIGINT or SIGTERM stops every rank within a few steps.
 // Exit codes: 0, 1 solver failure, 2 bad input, 130/143 interrupted.
 #include "cli.hpp"
@@ -89,8 +89,9 @@ int program(int argc, char** argv) {
   app.add("--atol", atol, "CVODE absolute tolerance [m, m/s]", cli::positive());
   app.add("--out", out, "results folder (written by rank 0)");
   if (const int code = app.parse(argc, argv); code >= 0) return code;
-  // --out is replaced whole: only a new or empty folder or an earlier run's (it holds stats.csv).
-  if (const std::string refusal = check_output_dir(out, "stats.csv"); !refusal.empty()) {
+  // --out is replaced whole: only a new or empty folder or an earlier run's (its meta.json names
+  // chain_mpi).
+  if (const std::string refusal = check_output_dir(out, "chain_mpi"); !refusal.empty()) {
     if (rank == 0) std::cerr << "chain_mpi: " << refusal << "\n";
     return cli::kExitBadInput;
   }
@@ -138,7 +139,10 @@ int program(int argc, char** argv) {
   OutputSet files;
   files.add("velocities.csv", velocities.to_csv());
   files.add("stats.csv", stats.to_csv());
-  files.write(out, "stats.csv");
+  files.add("meta.json",
+            run_meta_json("chain_mpi", app.values_json(), std::vector<std::string>(argv, argv + argc),
+                          r.stats.wall_time_s, size));
+  files.write(out, "chain_mpi");
   fmt::print(
       "chain_mpi: {} balls on {} ranks to t = {:g} s: {} steps, {} GMRES iterations, {:.3f} s; energy error "
       "{:.2g}\n",

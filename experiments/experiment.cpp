@@ -16,8 +16,6 @@
 
 namespace contact {
 
-const char* git_revision();  // generated at build time (cmake/git_revision.cmake)
-
 Experiment::Experiment(std::string name, std::string description, std::string default_out)
     : cli::Options(std::move(name), std::move(description)), out_(std::move(default_out)) {
   add("--out", out_, "output directory (replaced whole when the run succeeds)");
@@ -28,7 +26,7 @@ Experiment::~Experiment() = default;
 int Experiment::run_body(int argc, char** argv, const std::function<void(OutputSet&)>& body) {
   ranks_ = std::make_unique<Ranks>(argc, argv);
   if (const int code = parse(argc, argv); code >= 0) return code;
-  if (const auto err = check_output_dir(out_); !err.empty()) {
+  if (const auto err = check_output_dir(out_, program()); !err.empty()) {
     std::cerr << program() << ": " << err << "\n";
     return cli::kExitBadInput;
   }
@@ -38,18 +36,10 @@ int Experiment::run_body(int argc, char** argv, const std::function<void(OutputS
   if (ranks_->rank() != 0) return 0;  // rank 0 writes
   draw_figures(outputs);              // gnuplot's failure: exit 1 through guarded_main
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const nlohmann::json meta = {
-      {"experiment", program()},
-      {"options", nlohmann::json::parse(values_json())},
-      {"command_line", std::vector<std::string>(argv, argv + argc)},
-      {"git_revision", git_revision()},
-      {"libraries", nlohmann::json::parse(library_versions_json())},
-      {"wall_time_s", wall},
-      {"mpi_ranks", ranks_->size()},
-  };
-  outputs.add("meta.json", meta.dump(2) + "\n");
+  outputs.add("meta.json", run_meta_json(program(), values_json(),
+                                         std::vector<std::string>(argv, argv + argc), wall, ranks_->size()));
   try {
-    outputs.write(out_);
+    outputs.write(out_, program());
   } catch (const std::exception& e) {
     std::cerr << program() << ": " << e.what() << "\n";
     return cli::kExitFailure;

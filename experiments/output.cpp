@@ -68,11 +68,11 @@ ScratchDir::~ScratchDir() {
   if (!path.empty()) fs::remove_all(path, ec);
 }
 
-void OutputSet::write(const fs::path& dir_in, const std::string& marker) const {
+void OutputSet::write(const fs::path& dir_in, const std::string& program) const {
   throw_if_interrupted();
   // Checked again here, whatever the caller checked: replacing a folder that is not an earlier
   // run's results would delete what it holds (paper_numbers once replaced --out's whole folder).
-  if (const std::string refusal = check_output_dir(dir_in, marker); !refusal.empty())
+  if (const std::string refusal = check_output_dir(dir_in, program); !refusal.empty())
     throw std::runtime_error(refusal);
   if (!figures_.empty())
     throw std::logic_error(fmt::format("{} figure(s) queued but not drawn (draw_figures)", figures_.size()));
@@ -127,6 +127,8 @@ void OutputSet::write_into(const fs::path& dir) const {
   }
 }
 
+namespace {
+
 std::string library_versions_json() {
   return nlohmann::json{
       {"sundials", sundials_version()},
@@ -141,13 +143,39 @@ std::string library_versions_json() {
       .dump();
 }
 
-std::string check_output_dir(const fs::path& dir, const std::string& marker) {
+// The program whose results `dir` holds, by its meta.json: "" when there is none, or it names none.
+std::string owner_of(const fs::path& dir) {
+  std::ifstream in(dir / "meta.json");
+  if (!in) return "";
+  const nlohmann::json meta = nlohmann::json::parse(in, nullptr, false);
+  if (!meta.is_object() || !meta.contains("experiment") || !meta["experiment"].is_string()) return "";
+  return meta["experiment"].get<std::string>();
+}
+
+}  // namespace
+
+std::string run_meta_json(const std::string& program, const std::string& options_json,
+                          const std::vector<std::string>& command_line, double wall_time_s, int ranks) {
+  return nlohmann::json{
+             {"experiment", program},
+             {"options", nlohmann::json::parse(options_json)},
+             {"command_line", command_line},
+             {"git_revision", git_revision()},
+             {"libraries", nlohmann::json::parse(library_versions_json())},
+             {"wall_time_s", wall_time_s},
+             {"mpi_ranks", ranks},
+         }
+             .dump(2) +
+         "\n";
+}
+
+std::string check_output_dir(const fs::path& dir, const std::string& program) {
   auto refuse = [&](const std::string& why) {
-    return fmt::format(
-        "--out: value '{}' {}; accepted: {}", dir.string(), why,
-        marker.empty()
-            ? "a writable folder"
-            : "a new folder, an empty one, or an earlier --out of this program (it is replaced whole)");
+    return fmt::format("--out: value '{}' {}; accepted: {}", dir.string(), why,
+                       program.empty() ? "a writable folder"
+                                       : fmt::format("a new folder, an empty one, or an earlier --out of "
+                                                     "{} (it is replaced whole)",
+                                                     program));
   };
   if (dir.empty()) return refuse("is empty");
   std::error_code ec;
@@ -167,11 +195,16 @@ std::string check_output_dir(const fs::path& dir, const std::string& marker) {
                                   : fmt::format("lies under the file {}", existing.string()));
   if (existing != abs && ::access(existing.c_str(), W_OK | X_OK) != 0)
     return refuse(fmt::format("cannot be created: {} is not writable", existing.string()));
-  if (existing == abs && !marker.empty()) {
+  if (existing == abs && !program.empty()) {
     if (::access(abs.parent_path().c_str(), W_OK | X_OK) != 0)
       return refuse(fmt::format("cannot be replaced: {} is not writable", abs.parent_path().string()));
-    if (!fs::is_empty(abs, ec) && !fs::exists(abs / marker, ec))
-      return refuse(fmt::format("is a folder that is not empty and holds no {} of an earlier run", marker));
+    if (!fs::is_empty(abs, ec)) {
+      if (const std::string owner = owner_of(abs); owner.empty())
+        return refuse("is a folder that is not empty and holds no meta.json of an earlier run");
+      else if (owner != program)
+        return refuse(
+            fmt::format("holds the results of {} (its meta.json says so), not of {}", owner, program));
+    }
   }
   const fs::path here = fs::current_path(ec);
   if (abs == here || here.string().rfind(abs.string() + "/", 0) == 0)

@@ -46,9 +46,9 @@ class OutputSet {
   // Writes every file into a staging folder and swaps it in as `dir` (the previous `dir`, an
   // earlier run's results, is removed only then). Throws std::runtime_error naming the path on
   // failure, having removed the staging folder, and std::logic_error while figures wait undrawn.
-  // A `dir` that check_output_dir(dir, marker) refuses (a folder holding anything but an earlier
-  // run's results, which hold `marker`) is never replaced: the refusal is thrown.
-  void write(const std::filesystem::path& dir, const std::string& marker = "meta.json") const;
+  // A `dir` that check_output_dir(dir, program) refuses (a folder holding anything but an earlier
+  // run's results of `program`) is never replaced: the refusal is thrown.
+  void write(const std::filesystem::path& dir, const std::string& program) const;
   // Adds the files to the existing folder `dir`, each written to a temporary name and renamed
   // into place (the study's index beside the experiments' folders).
   void write_into(const std::filesystem::path& dir) const;
@@ -59,14 +59,18 @@ class OutputSet {
   std::vector<Figure> figures_;
 };
 
-// The versions of the libraries the project links, as a JSON object {"sundials": "6.4.1", ...}.
-std::string library_versions_json();
+// meta.json, the record every program leaves beside its results: the program's name (which makes
+// the folder its earlier --out, replaceable by its next run), its options (a JSON object), the
+// command line, the source revision, the libraries' versions, the wall time and the MPI ranks.
+std::string run_meta_json(const std::string& program, const std::string& options_json,
+                          const std::vector<std::string>& command_line, double wall_time_s, int ranks);
 
 // Checks before running that --out can receive the results: not empty, not a file or under one,
 // every name short enough for the staging folder beside it, the nearest existing folder
-// writable, and, if it exists, empty or an earlier run's results (holding `marker`, meta.json by
-// default; an empty marker skips this: the folder is written into, not replaced), since it will
-// be replaced whole. Returns an error line naming --out, or "".
-std::string check_output_dir(const std::filesystem::path& dir, const std::string& marker = "meta.json");
+// writable, and, if it exists, empty or an earlier run's results of `program` (its meta.json names
+// it), since it will be replaced whole; another program's results are not (ball_drop --out
+// results/zeno replaced zeno's). An empty `program` skips this: the folder is written into, not
+// replaced. Returns an error line naming --out, or "".
+std::string check_output_dir(const std::filesystem::path& dir, const std::string& program);
 
 }  // namespace contact

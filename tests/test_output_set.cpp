@@ -72,7 +72,7 @@ TEST(FigureBatch, AnUndrawnFigureIsNotWrittenSilentlyAway) {
   OutputSet out;
   contact::render({"pending", "1,1\n", "plot 'data.csv' using 1:2"}, out);
   const contact::ScratchDir scratch{contact::make_scratch_dir("figure_batch")};
-  EXPECT_THROW(out.write(scratch.path / "results"), std::logic_error);
+  EXPECT_THROW(out.write(scratch.path / "results", "probe"), std::logic_error);
 }
 
 }  // namespace
@@ -80,22 +80,61 @@ TEST(FigureBatch, AnUndrawnFigureIsNotWrittenSilentlyAway) {
 namespace {
 
 // OutputSet::write replaces its folder whole, so it checks the folder itself, whatever its caller
-// did: a folder holding anything but an earlier run's results (the marker file) is never replaced.
+// did: a folder holding anything but an earlier run's results (its meta.json naming the program)
+// is never replaced.
 TEST(OutputSetWrite, NeverReplacesAFolderOfOtherFiles) {
   const contact::ScratchDir scratch{contact::make_scratch_dir("output_set")};
   const auto mine = scratch.path / "mine";
   std::filesystem::create_directories(mine);
   std::ofstream(mine / "keep.txt") << "kept\n";
   OutputSet out;
-  out.add("meta.json", "{}\n");
-  EXPECT_THROW(out.write(mine), std::runtime_error);
+  out.add("meta.json", R"({"experiment": "probe"})"
+                       "\n");
+  EXPECT_THROW(out.write(mine, "probe"), std::runtime_error);
   EXPECT_TRUE(std::filesystem::exists(mine / "keep.txt"));
-  // An earlier run's folder (it holds the marker) is replaced.
-  out.write(scratch.path / "earlier");
+  // An earlier run's folder (its meta.json names the program) is replaced.
+  out.write(scratch.path / "earlier", "probe");
   std::ofstream(scratch.path / "earlier" / "stale.txt") << "stale\n";
-  out.write(scratch.path / "earlier");
+  out.write(scratch.path / "earlier", "probe");
   EXPECT_FALSE(std::filesystem::exists(scratch.path / "earlier" / "stale.txt"));
   EXPECT_TRUE(std::filesystem::exists(scratch.path / "earlier" / "meta.json"));
+}
+
+// Any folder holding a meta.json passed for an earlier run, whichever program wrote it:
+// `ball_drop --out results/zeno` replaced zeno's results, though the refusal's own words promised
+// "an earlier --out of this program". Another program's results, or a meta.json that names no
+// program, are refused, naming both programs.
+TEST(OutputSetWrite, NeverReplacesAnotherProgramsResults) {
+  const contact::ScratchDir scratch{contact::make_scratch_dir("output_set")};
+  OutputSet zeno;
+  zeno.add("meta.json", R"({"experiment": "zeno"})"
+                        "\n");
+  zeno.write(scratch.path / "zeno", "zeno");
+  OutputSet drop;
+  drop.add("meta.json", R"({"experiment": "ball_drop"})"
+                        "\n");
+  try {
+    drop.write(scratch.path / "zeno", "ball_drop");
+    ADD_FAILURE() << "ball_drop replaced zeno's results";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(
+        std::string(e.what()).find("holds the results of zeno (its meta.json says so), not of ball_drop"),
+        std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("an earlier --out of ball_drop"), std::string::npos) << e.what();
+  }
+  std::string kept;
+  std::getline(std::ifstream(scratch.path / "zeno" / "meta.json"), kept);
+  EXPECT_EQ(kept, R"({"experiment": "zeno"})");
+  for (const char* meta : {"{}", "[1, 2]", "not json", R"({"experiment": 3})"}) {
+    const auto dir = scratch.path / "odd";
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "meta.json") << meta;
+    EXPECT_NE(contact::check_output_dir(dir, "ball_drop").find("holds no meta.json of an earlier run"),
+              std::string::npos)
+        << meta;
+    EXPECT_EQ(contact::check_output_dir(dir, ""), "") << meta;  // written into, not replaced
+  }
 }
 
 }  // namespace
