@@ -231,6 +231,37 @@ py::dict spring_contact(const SpringContact& c) {
                   py::arg("exit_speed") = c.exit_speed);
 }
 
+// A damping rule by its name, as the command line's --rule takes it.
+DampingRule damping_rule_named(const std::string& name) {
+  std::vector<std::string> names;
+  for (const DampingRule rule : kDampingRules) {
+    if (to_string(rule) == name) return rule;
+    names.emplace_back(to_string(rule));
+  }
+  throw std::invalid_argument(
+      fmt::format("--rule: value '{}' is not one of: {}", name, fmt::join(names, ", ")));
+}
+
+// The advice under the names of contact_advisor's table (advice.csv's quantities).
+py::dict advice_dict(const ContactRequest& q, const ContactAdvice& a) {
+  return py::dict(
+      py::arg("law") = describe(a.law), py::arg("k_lin") = a.k_lin, py::arg("c_lin") = a.c_lin,
+      py::arg("omega") = a.omega, py::arg("frequency_hz") = a.frequency_hz, py::arg("zeta") = a.zeta,
+      py::arg("euler_max_dt") = a.euler_max_dt, py::arg("symplectic_max_dt") = a.symplectic_max_dt,
+      py::arg("game_dt") = a.game_dt, py::arg("ode_erp") = a.ode.erp, py::arg("ode_cfm") = a.ode.cfm,
+      py::arg("mujoco_timeconst") = a.mujoco.timeconst, py::arg("mujoco_dampratio") = a.mujoco.dampratio,
+      py::arg("mujoco_stiffness") = a.mujoco_direct.stiffness,
+      py::arg("mujoco_damping") = a.mujoco_direct.damping, py::arg("box2d_hertz") = a.box2d.hertz,
+      py::arg("box2d_damping_ratio") = a.box2d.damping_ratio,
+      py::arg("drake_penetration_allowance") = a.drake.penetration_allowance,
+      py::arg("drake_dissipation") = a.drake.dissipation,
+      py::arg("requested_penetration") = q.max_penetration,
+      py::arg("achieved_penetration") = a.achieved_penetration, py::arg("requested_duration") = q.duration,
+      py::arg("achieved_duration") = a.achieved_duration, py::arg("requested_restitution") = q.e,
+      py::arg("achieved_restitution") = a.achieved_restitution,
+      py::arg("game_energy_error") = a.game_energy_error);
+}
+
 }  // namespace
 
 PYBIND11_MODULE(contact_ode, mod) {
@@ -418,20 +449,34 @@ PYBIND11_MODULE(contact_ode, mod) {
   mod.def(
       "advise",
       [](double m, double v, double e, std::optional<double> max_penetration, std::optional<double> duration,
-         const std::string& law) {
-        ContactRequest q{
-            .m = m, .v = v, .e = e, .max_penetration = max_penetration, .duration = duration, .law = law};
+         const std::string& law, std::optional<std::string> rule, std::optional<double> radius,
+         std::optional<double> young, std::optional<double> poisson, double energy_error, double engine_step,
+         double g) {
+        ContactRequest q{.m = m,
+                         .v = v,
+                         .e = e,
+                         .max_penetration = max_penetration,
+                         .duration = duration,
+                         .law = law,
+                         .radius = radius,
+                         .young = young,
+                         .poisson = poisson,
+                         .energy_error = energy_error,
+                         .engine_step = engine_step,
+                         .g = g};
+        if (rule) q.rule = damping_rule_named(*rule);
         validate(q);
-        const ContactAdvice a = advise(q);
-        return py::dict(py::arg("k_lin") = a.k_lin, py::arg("c_lin") = a.c_lin, py::arg("omega") = a.omega,
-                        py::arg("zeta") = a.zeta, py::arg("frequency_hz") = a.frequency_hz,
-                        py::arg("euler_max_dt") = a.euler_max_dt,
-                        py::arg("symplectic_max_dt") = a.symplectic_max_dt, py::arg("game_dt") = a.game_dt,
-                        py::arg("achieved_penetration") = a.achieved_penetration,
-                        py::arg("achieved_duration") = a.achieved_duration,
-                        py::arg("achieved_restitution") = a.achieved_restitution);
+        return advice_dict(q, advise(q));
       },
       py::arg("m"), py::arg("v"), py::arg("e"), py::arg("max_penetration") = py::none(),
-      py::arg("duration") = py::none(), py::arg("law") = "kelvin-voigt",
-      "The stiffness advisor: a law, its linearisation and stable steps for a budget.");
+      py::arg("duration") = py::none(), py::arg("law") = "kelvin-voigt", py::arg("rule") = py::none(),
+      py::arg("radius") = py::none(), py::arg("young") = py::none(), py::arg("poisson") = py::none(),
+      py::arg("energy_error") = ContactRequest{}.energy_error,
+      py::arg("engine_step") = ContactRequest{}.engine_step, py::arg("g") = ContactRequest{}.g,
+      "The stiffness advisor, as the contact_advisor program: a law, its linearisation, stable steps and\n"
+      "the engines' parameters for a requirement (exactly one of max_penetration and duration, or for\n"
+      "hertz a material: radius, young and poisson), each checked by simulation. rule: the damping rule\n"
+      "of the Hunt-Crossley laws (hertz, hunt-crossley-linear); energy_error: the energy error per\n"
+      "contact game_dt may cost; engine_step: the step of ODE's and Bullet's ERP and CFM; g: gravity\n"
+      "for Drake's penetration allowance.");
 }

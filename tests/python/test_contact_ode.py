@@ -108,6 +108,37 @@ def test_advisor_meets_its_budget():
         co.advise(m=1.0, v=5.0, e=0.8, max_penetration=-1.0)
 
 
+def test_advisor_is_the_contact_advisor_program_with_every_option(tmp_path):
+    """advise() took a requirement only: its refusal asked for a hertz material (radius, young,
+    poisson) it had no keywords for, and it left out the damping rule, the energy error, the engine
+    step and g, and the engines' parameters. Every option and every quantity of advice.csv now,
+    to the CSV's exact digits."""
+    options = dict(m=0.17, v=2.0, e=0.9, law="hertz", rule="gonthier", radius=0.0286, young=2e9,
+                   poisson=0.35, energy_error=0.02, engine_step=0.01, g=3.7)
+    out = tmp_path / "advice"
+    args = [f"--{k.replace('_', '-')}={v}" for k, v in options.items()]
+    subprocess.run([str(EXPERIMENTS / "contact_advisor"), *args, "--out", str(out)], check=True,
+                   capture_output=True)
+    with open(out / "advice.csv") as f:
+        rows = {r["quantity"]: r for r in csv.DictReader(f)}
+    a = co.advise(**options)
+    assert a["law"] == rows.pop("law")["note"]
+    assert a["frequency_hz"] == float(rows.pop("frequency")["value"])
+    assert set(a) - {"law", "frequency_hz"} == set(rows)
+    for quantity, row in rows.items():
+        value = float(row["value"])
+        if math.isnan(value):
+            assert a[quantity] is None, quantity  # a requirement not given
+        else:
+            assert a[quantity] == value, quantity
+    assert a["law"].startswith("hunt-crossley")
+    with pytest.raises(ValueError, match=re.escape("rule: value 'x' is not one of: hunt-crossley, "
+                                                   "lankarani-nikravesh, flores, gonthier")):
+        co.advise(**{**options, "rule": "x"})
+    with pytest.raises(ValueError, match=re.escape("radius, young, poisson: give all three")):
+        co.advise(m=1.0, v=1.0, e=0.8, law="hertz", radius=0.1)
+
+
 def test_bad_arguments_raise_value_error_naming_them():
     with pytest.raises(ValueError, match="height: not an option of scene 'ball-drop'"):
         co.solve("ball-drop", "penalty", height=1.0)
