@@ -113,12 +113,12 @@ int program(int argc, char** argv) {
           "difference-quotient Jacobian it cannot take)",
           cli::one_of(linear_solver_names()));
   app.add("--jacobian", o.jacobian, "Jacobian of implicit integrators (penalty-dq always uses dq)",
-          cli::one_of({"analytic", "dq"}));
+          cli::one_of(jacobian_names()));
   app.add("--max-steps", o.max_steps, "integrator steps allowed between outputs", cli::integer_at_least(1));
   app.add("--max-records", o.max_records,
           "contact records and apexes a run may keep before it fails (a game ball in a bouncing limit "
           "cycle adds two every ~14 ms)",
-          cli::integer_in(1, 100'000'000));
+          cli::integer_in(1, kMaxRecords));
   app.add("--rest-speed", o.rest_speed, "event-driven: outgoing speed below which the ball rests [m/s]",
           cli::positive());
   app.add_flag("--sweep", o.sweep, "run every method for k from --k-min to --k-max and print one table");

@@ -44,7 +44,7 @@ Method method_for(const BallDropOptions& o, const std::string& name) {
   m.integrator.rtol = o.rtol;
   m.integrator.atol = scaled_atol(o);
   m.integrator.max_steps = o.max_steps;
-  m.integrator.jacobian = o.jacobian == "dq" ? JacobianMode::DifferenceQuotient : JacobianMode::Analytic;
+  m.integrator.jacobian = parse_jacobian(o.jacobian);
   m.integrator.linear_solver = parse_linear_solver(o.linear_solver);
   // Fixed-step integrators run at --dt; adaptive and exact ones choose their own steps.
   m.integrator.dt = needs_step(integrator_info(o.integrator)) ? o.dt : 0.0;

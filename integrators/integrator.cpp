@@ -74,6 +74,15 @@ LinearSolverKind parse_linear_solver(const std::string& name) {
                                           fmt::join(linear_solver_names(), ", ")));
 }
 
+std::vector<std::string> jacobian_names() { return {"analytic", "dq"}; }
+
+JacobianMode parse_jacobian(const std::string& name) {
+  if (name == "analytic") return JacobianMode::Analytic;
+  if (name == "dq") return JacobianMode::DifferenceQuotient;
+  throw std::invalid_argument(
+      fmt::format("--jacobian: value '{}' is not one of: {}", name, fmt::join(jacobian_names(), ", ")));
+}
+
 bool reads_rtol(const IntegratorOptions& o) {
   const IntegratorInfo& info = integrator_info(o.method);
   return info.implicit || (info.adaptive && !(o.dt > 0));

@@ -149,6 +149,10 @@ RunResult solve(const Dynamics& scene, const Method& method, const SolveOptions&
   if (!kPositive.contains(options.sample_dt))
     throw std::invalid_argument(fmt::format("--sample-dt: value '{}' is {}; accepted range (0, inf)",
                                             options.sample_dt, outside(options.sample_dt)));
+  if (!(options.limits.max_records >= 1 && options.limits.max_records <= kMaxRecords))
+    throw std::invalid_argument(
+        fmt::format("--max-records: value '{}' is out of range; accepted range [1, {}]",
+                    options.limits.max_records, kMaxRecords));
   if (info.fixed_step && !(std::isfinite(method.dt) && method.dt > 0))
     throw std::invalid_argument(
         fmt::format("--dt: value '{}' is out of range; accepted range (0, inf)", method.dt));

@@ -113,9 +113,15 @@ RunResult run_penalty(const Dynamics& model, const PenaltyOptions& opt, const So
 namespace contact {
 
 std::vector<MethodInfo> penalty_methods() {
+  // penalty-dq's Jacobian is its own: a jacobian setting would change nothing there.
+  auto settings = [](const std::optional<JacobianMode>& jacobian) {
+    std::vector<std::string> s = kIntegratorSettings;
+    if (jacobian) std::erase(s, "jacobian");
+    return s;
+  };
   // penalty takes the Jacobian the options ask for (analytic by default); penalty-dq always forms
   // difference quotients, the same run beside it with the solver's own Jacobian.
-  auto entry = [](std::string name, std::string description, std::optional<JacobianMode> jacobian) {
+  auto entry = [settings](std::string name, std::string description, std::optional<JacobianMode> jacobian) {
     return MethodInfo{.name = std::move(name),
                       .description = std::move(description),
                       .family = "penalty",
@@ -129,7 +135,7 @@ std::vector<MethodInfo> penalty_methods() {
                             if (jacobian) o.integrator.jacobian = *jacobian;
                             return run_penalty(scene, o, span);
                           },
-                      .settings = kIntegratorSettings,
+                      .settings = settings(jacobian),
                       .dq_jacobian = jacobian == JacobianMode::DifferenceQuotient};
   };
   return {entry("penalty",

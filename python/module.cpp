@@ -5,7 +5,8 @@
 //   r.contacts["max_penetration"] one NumPy array per column of the contact log
 // Keyword options are the scene's parameters (co.scenes()), the method's settings (dt, rtol,
 // atol, integrator, linear_solver, iterations, ...; co.methods() lists what each reads, and a
-// setting the method ignores raises a UserWarning) and the span (t_end, sample_dt); any other
+// setting the method ignores raises a UserWarning), the span (t_end, sample_dt) and the record
+// limit (max_records, as ball_drop's --max-records); any other
 // name, and any value out of range, raises ValueError naming it. A run that fails raises
 // co.SolverError with .status, .t_reached, .solver_message and the partial .result; Ctrl-C ends
 // a solve within a step (InterruptibleSolve).
@@ -71,6 +72,8 @@ const std::map<std::string, Setter>& method_settings() {
       {"atol", [](Method& m, const py::handle& v) { m.integrator.atol = v.cast<double>(); }},
       {"integrator", [](Method& m, const py::handle& v) { m.integrator.method = v.cast<std::string>(); }},
       {"max_steps", [](Method& m, const py::handle& v) { m.integrator.max_steps = v.cast<long>(); }},
+      {"jacobian",
+       [](Method& m, const py::handle& v) { m.integrator.jacobian = parse_jacobian(v.cast<std::string>()); }},
       // The implicit SUNDIALS integrators' linear solver: band, klu or gmres for a long chain.
       {"linear_solver",
        [](Method& m, const py::handle& v) {
@@ -150,8 +153,9 @@ RunResult run(const std::string& scene, const std::string& method, const std::st
     const auto name = key.cast<std::string>();
     const bool is_parameter = std::any_of(entry.parameters.begin(), entry.parameters.end(),
                                           [&](const ParameterInfo& p) { return p.name == name; });
-    if (!is_parameter && !method_settings().count(name) && name != "t_end" && name != "sample_dt") {
-      std::string accepted = "t_end, sample_dt";
+    if (!is_parameter && !method_settings().count(name) && name != "t_end" && name != "sample_dt" &&
+        name != "max_records") {
+      std::string accepted = "t_end, sample_dt, max_records";
       for (const auto& p : entry.parameters) accepted += ", " + p.name;
       for (const auto& s : method_settings()) accepted += ", " + s.first;
       throw std::invalid_argument(
@@ -169,6 +173,8 @@ RunResult run(const std::string& scene, const std::string& method, const std::st
         span.t_end = value.cast<double>();
       else if (name == "sample_dt")
         span.sample_dt = value.cast<double>();
+      else if (name == "max_records")
+        span.limits.max_records = value.cast<long>();
       else
         method_settings().at(name)(m, value);
     } catch (const py::cast_error&) {
@@ -358,7 +364,8 @@ PYBIND11_MODULE(contact_ode, mod) {
       "Runs `method` on `scene` (with contact law `law` where the scene takes one; '': the scene's "
       "default_law in scenes(): hooke, undamped, which a penalty run takes without e; name "
       "'kelvin-voigt' for a spring damped to e). Keywords: the scene's parameters, the method's "
-      "settings, t_end and sample_dt.");
+      "settings (methods() lists each one's), t_end, sample_dt and max_records (the contact records "
+      "and apexes a run may keep, 1e6 by default).");
 
   mod.def("scenes", [] {
     py::list out;

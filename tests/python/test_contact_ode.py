@@ -139,6 +139,28 @@ def test_advisor_is_the_contact_advisor_program_with_every_option(tmp_path):
         co.advise(m=1.0, v=1.0, e=0.8, law="hertz", radius=0.1)
 
 
+def test_solve_takes_the_jacobian_and_the_record_limit_as_the_program_does():
+    """ball_drop's --jacobian and --max-records had no keywords: an event-ode run could not take
+    difference quotients, and a long game run could not keep more than a million records."""
+    dq = co.solve("ball-drop", "penalty", "kelvin-voigt", jacobian="dq", t_end=1.0)
+    reference = co.solve("ball-drop", "penalty-dq", "kelvin-voigt", t_end=1.0)
+    np.testing.assert_array_equal(dq.y, reference.y)  # penalty-dq is penalty with dq, nothing else
+    assert dq.stats["rhs_evals"] > co.solve("ball-drop", "penalty", "kelvin-voigt", t_end=1.0).stats["rhs_evals"]
+    with pytest.warns(UserWarning, match="jacobian has no effect on method 'penalty-dq'"):
+        co.solve("ball-drop", "penalty-dq", jacobian="analytic", t_end=0.1)
+    with pytest.raises(ValueError, match=re.escape("jacobian: value 'x' is not one of: analytic, dq")):
+        co.solve("ball-drop", "event-ode", jacobian="x")
+    # The elastic ball bounces every 0.9 s: two records (a contact, an apex) a bounce.
+    with pytest.raises(co.SolverError, match="more than 5 contact records") as info:
+        co.solve("ball-drop", "event-exact", e=1.0, t_end=10.0, max_records=5)
+    assert info.value.status == co.Status.work_limit
+    assert co.solve("ball-drop", "event-exact", e=1.0, t_end=10.0, max_records=30).status == co.Status.success
+    for bad in (0, 10**9):
+        with pytest.raises(ValueError, match=re.escape(f"max_records: value '{bad}' is out of range; "
+                                                       "accepted range [1, 100000000]")):
+            co.solve("ball-drop", "event-exact", max_records=bad)
+
+
 def test_bad_arguments_raise_value_error_naming_them():
     with pytest.raises(ValueError, match="height: not an option of scene 'ball-drop'"):
         co.solve("ball-drop", "penalty", height=1.0)

@@ -94,5 +94,8 @@ std::string sundials_version();
 std::vector<std::string> linear_solver_names();
 std::string_view to_string(LinearSolverKind kind);
 LinearSolverKind parse_linear_solver(const std::string& name);  // throws std::invalid_argument
+// "analytic" and "dq" (difference quotients), as --jacobian takes them.
+std::vector<std::string> jacobian_names();
+JacobianMode parse_jacobian(const std::string& name);  // throws std::invalid_argument
 
 }  // namespace contact

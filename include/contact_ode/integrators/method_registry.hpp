@@ -75,8 +75,8 @@ struct MethodInfo {
 
 // The settings of a method that runs an ODE integrator (IntegratorOptions): a fixed step ("dt")
 // for an integrator that takes one, tolerances otherwise.
-inline const std::vector<std::string> kIntegratorSettings = {"integrator", "rtol", "atol",
-                                                             "max_steps",  "dt",   "linear_solver"};
+inline const std::vector<std::string> kIntegratorSettings = {
+    "integrator", "rtol", "atol", "max_steps", "dt", "linear_solver", "jacobian"};
 
 const std::vector<MethodInfo>& method_registry();
 std::vector<std::string> method_names();

@@ -22,6 +22,10 @@ double half_the_machines_memory();
 // Status::WorkLimit and the time reached, instead of running for hours or exhausting memory.
 // The defaults are far above what any experiment here needs (the study's largest run takes
 // ~1e6 steps and keeps ~1e4 records) and far below what this machine can hold.
+// The most records a run may be allowed (solve() refuses a larger max_records): 1e8 of them take
+// some 5 GB (a contact record is 48 bytes).
+inline constexpr long kMaxRecords = 100'000'000;
+
 struct RunLimits {
   long max_steps = 100'000'000;   // integrator steps over the whole run, restarts included
   long max_records = 1'000'000;   // contact records, apexes and notifications kept
