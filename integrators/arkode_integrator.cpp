@@ -47,6 +47,7 @@ class ErkIntegrator final : public sundials::IntegratorBase {
   }
   int root_info(int* found) override { return ERKStepGetRootInfo(mem_.get(), found); }
   int restart(double t) override { return ERKStepReInit(mem_.get(), sundials::rhs, t, y_.get()); }
+  int set_initial_step(double h) override { return ERKStepSetInitStep(mem_.get(), h); }
   int root_directions(int* d) override { return ERKStepSetRootDirection(mem_.get(), d); }
   double current_time() const override {
     double t = t_;
@@ -138,6 +139,7 @@ class ArkIntegrator final : public sundials::IntegratorBase {
     return imex_ ? ARKStepReInit(mem_.get(), sundials::explicit_rhs, sundials::implicit_rhs, t, y_.get())
                  : ARKStepReInit(mem_.get(), nullptr, sundials::rhs, t, y_.get());
   }
+  int set_initial_step(double h) override { return ARKStepSetInitStep(mem_.get(), h); }
   int root_directions(int* d) override { return ARKStepSetRootDirection(mem_.get(), d); }
   double current_time() const override {
     double t = t_;

@@ -52,6 +52,7 @@ class CvodeIntegrator final : public sundials::IntegratorBase {
   }
   int root_info(int* found) override { return CVodeGetRootInfo(mem_.get(), found); }
   int restart(double t) override { return CVodeReInit(mem_.get(), t, y_.get()); }
+  int set_initial_step(double h) override { return CVodeSetInitStep(mem_.get(), h); }
   int root_directions(int* d) override { return CVodeSetRootDirection(mem_.get(), d); }
   double current_time() const override {
     double t = t_;

@@ -11,7 +11,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <stdexcept>
 
 namespace contact::sundials {
@@ -21,6 +24,8 @@ class IntegratorBase : public Integrator {
   Outcome advance(double t_out) override {
     Outcome out;
     data_.clear();
+    const bool starting = !(current_time() > t_);  // no step past t_ yet: (re)started there
+    if (starting) start_y_ = y();
     int flag = evolve(t_out, out.t);
     counters_stale_ = false;
     if (flag < 0 && data_.root_held_zero) {
@@ -34,11 +39,30 @@ class IntegratorBase : public Integrator {
       flag = evolve(t_out, out.t);
       counters_stale_ = false;
     }
-    if (flag < 0) {
-      char* name = flag_name(flag);
-      const SolverFailure f = data_.failure(flag, name ? name : "SUNDIALS error", current_time());
-      std::free(name);
-      throw f;
+    if (flag < 0) throw failure(flag);
+    // A return at a time the solver never reached. CVODE and ARKODE start (and restart) with the
+    // step sqrt(hlb hub), which underflows to 0 at extreme scales (a 1e217 N/m Kelvin–Voigt
+    // contact, 1e-108 s long: its dashpot's power against the absolute tolerance made hub 1e-227,
+    // hlb 3e-122); the solver then stepped by 0 and returned t_out, with the state of the start, as
+    // a success (the ball held at the floor). Restarted from there with the estimate's lower bound
+    // hlb = 100 u max(|t|, |t_out|) as its first step, it runs (the error test grows the step).
+    if (starting && out.t > t_ && !(current_time() > t_)) {
+      check(set_initial_step(100 * std::numeric_limits<double>::epsilon() *
+                             std::max(std::abs(t_), std::abs(t_out))),
+            "setting the initial step");
+      reinit(t_, start_y_);
+      data_.clear();
+      flag = evolve(t_out, out.t);
+      counters_stale_ = false;
+      check(set_initial_step(0.0),
+            "setting the initial step");  // the solver's own estimate at later restarts
+      if (flag < 0) throw failure(flag);
+      if (out.t > t_ && !(current_time() > t_))
+        throw SolverFailure(
+            Status::NoProgress, t_,
+            fmt::format("the solver returned t = {:.6g} s without a step from t = {:.6g} s, its "
+                        "first step 0 even when set",
+                        out.t, t_));
     }
     t_ = out.t;
     if (flag == kRootReturn) {
@@ -47,6 +71,14 @@ class IntegratorBase : public Integrator {
       root_info(out.roots_found.data());
     }
     return out;
+  }
+
+  // The solver's failure `flag` as a SolverFailure with its name and message.
+  SolverFailure failure(int flag) const {
+    char* name = flag_name(flag);
+    SolverFailure f = data_.failure(flag, name ? name : "SUNDIALS error", current_time());
+    std::free(name);
+    return f;
   }
 
   void reinit(double t, ConstVectorRef y) override {
@@ -103,6 +135,7 @@ class IntegratorBase : public Integrator {
   virtual int evolve(double t_out, double& t_ret) = 0;
   virtual int root_info(int* found) = 0;
   virtual int restart(double t) = 0;
+  virtual int set_initial_step(double h) = 0;  // 0: the solver's own estimate
   virtual int root_directions(int* d) = 0;
   virtual double current_time() const = 0;
   virtual char* flag_name(int flag) const = 0;  // malloc'd by SUNDIALS; freed here
@@ -121,6 +154,7 @@ class IntegratorBase : public Integrator {
   // iterations) still hold the closed segment's until the next step's setup zeroes them: the
   // segment counts nothing until the solver is called again.
   bool counters_stale_ = false;
+  Vector start_y_;  // the state at t_ while the solver has taken no step past it (advance())
   double t_;
 };
 

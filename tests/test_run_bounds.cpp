@@ -14,6 +14,7 @@
 
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 using namespace contact;
 
@@ -157,6 +158,36 @@ TEST(RunBounds, AStateBeyondItsLineWithTheEnergyConservedNamesTheMotionNotOnlyTh
   EXPECT_GT(last.y[0], -2.0 * sag * (1 + 1e-6));  // the spring's swing about its sag, no further
   EXPECT_LT(last.y.cwiseAbs().maxCoeff(), 1e10 * sag);
   EXPECT_LT(last.energy + last.dissipated - r.energy0, 1e6 * r.energy0);  // the ledger holds
+}
+
+// CVODE and ARKODE (re)start with the step sqrt(hlb hub), which underflows to 0 at extreme scales;
+// they then stepped by 0 and returned the next output time with the state of the start, as a
+// success. A 0.17 kg ball at 2 m/s into a 1e217 N/m Kelvin–Voigt contact (tuned to e = 0.9; 4e-109
+// s long) with the tolerance scaled to it: after the contact's switch the dashpot's power against
+// the absolute tolerance made hub 1e-227 and hlb 3e-122, and every SUNDIALS integrator 'succeeded'
+// with the ball held at the floor at -2 m/s, the contact never ended. Restarted with hlb as the
+// first step, each runs the contact to its restitution, or fails typed; none succeeds wrongly.
+TEST(RunBounds, AFirstStepThatUnderflowsIsRetriedNotASuccessWithoutASingleStep) {
+  const double m = 0.17, V = 2.0, e = 0.9, k = 1e217;
+  const double duration = std::numbers::pi * std::sqrt(m / k), depth = 2 * V * std::sqrt(m / k);
+  const BallDrop ball({m, 0.0, 1e-3 * depth, -V, e, kelvin_voigt_for_restitution(k, m, e, false)});
+  PenaltyOptions o;
+  o.integrator.rtol = 1e-8;
+  o.integrator.atol = 1e-11 * depth;
+  for (const char* integrator : {"cvode-bdf", "cvode-adams", "arkode-erk", "arkode-dirk", "arkode-imex"}) {
+    o.integrator.method = integrator;
+    const RunResult r = run_penalty(ball, o, {.t_end = 3 * duration, .sample_dt = 3 * duration});
+    if (!r.ok()) {  // a typed failure (ARKODE's implicit stages at these scales), never a wrong success
+      EXPECT_NE(r.status, Status::Success) << integrator;
+      continue;
+    }
+    ASSERT_EQ(r.contacts.size(), 1u) << integrator;
+    ASSERT_TRUE(r.contacts[0].closed()) << integrator << ": the contact never ended";
+    EXPECT_NEAR(r.contacts[0].restitution(), e, 1e-6) << integrator;  // undamped by gravity: exactly e
+    EXPECT_NEAR(r.samples.back().y[1], e * V, 1e-6) << integrator;
+  }
+  o.integrator.method = "cvode-bdf";  // the default must run it
+  EXPECT_TRUE(run_penalty(ball, o, {.t_end = 3 * duration, .sample_dt = 3 * duration}).ok());
 }
 
 // A span below a billionth of the step was no step at all: every fixed-step method (game loops,
