@@ -73,7 +73,7 @@ Designed design(const ContactRequest& r) {
     const double wT = clamped ? (pi - 2 * std::asin(zeta)) / s + 2 * zeta : pi / s;
     const double w =
         r.max_penetration ? V * std::exp(-zeta * theta / s) / *r.max_penetration : wT / *r.duration;
-    const double k = m * w * w, c = 2 * zeta * std::sqrt(k * m);
+    const double k = m * w * w, c = 2 * zeta * m * w;  // 2 zeta sqrt(k m), without forming k m
     return {KelvinVoigt{k, c, clamped}, k, c};
   }
   if (r.law == "hooke") {
@@ -202,7 +202,7 @@ ContactAdvice advise(const ContactRequest& r) {
   a.k_lin = d.k_lin;
   a.c_lin = d.c_lin;
   a.omega = std::sqrt(d.k_lin / r.m);
-  a.zeta = d.c_lin / (2 * std::sqrt(d.k_lin * r.m));
+  a.zeta = damping_ratio(d.k_lin, d.c_lin, r.m);
   a.frequency_hz = a.omega / (2 * pi);
   a.euler_max_dt =
       a.zeta < 1 ? 2 * a.zeta / a.omega : 2 / (a.omega * (a.zeta + std::sqrt(a.zeta * a.zeta - 1)));

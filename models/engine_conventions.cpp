@@ -6,7 +6,11 @@
 
 namespace contact {
 
-OdeErpCfm to_ode(double k, double c, double h) { return {h * k / (h * k + c), 1.0 / (h * k + c)}; }
+// The root of each factor: k m underflowed for 1e-300 kg on 1e-295 N/m (the ratio came out NaN).
+double damping_ratio(double k, double c, double m) { return c / (2.0 * std::sqrt(k) * std::sqrt(m)); }
+
+// erp as 1 / (1 + c / (h k)): h k / (h k + c) was inf / inf, NaN, for a step of 1e308 s.
+OdeErpCfm to_ode(double k, double c, double h) { return {1.0 / (1.0 + c / (h * k)), 1.0 / (h * k + c)}; }
 
 void from_ode(const OdeErpCfm& p, double h, double& k, double& c) {
   k = p.erp / (h * p.cfm);
@@ -14,7 +18,7 @@ void from_ode(const OdeErpCfm& p, double h, double& k, double& c) {
 }
 
 MujocoSolref to_mujoco(double k, double c, double m) {
-  return {c > 0 ? 2.0 * m / c : std::numeric_limits<double>::infinity(), c / (2.0 * std::sqrt(k * m))};
+  return {c > 0 ? 2.0 * m / c : std::numeric_limits<double>::infinity(), damping_ratio(k, c, m)};
 }
 
 void from_mujoco(const MujocoSolref& p, double m, double& k, double& c) {
@@ -32,7 +36,7 @@ void from_mujoco_direct(const MujocoDirect& p, double m, double& k, double& c) {
 }
 
 Box2dSoft to_box2d(double k, double c, double m) {
-  return {std::sqrt(k / m) / (2.0 * std::numbers::pi), c / (2.0 * std::sqrt(k * m))};
+  return {std::sqrt(k / m) / (2.0 * std::numbers::pi), damping_ratio(k, c, m)};
 }
 
 void from_box2d(const Box2dSoft& p, double m, double& k, double& c) {

@@ -77,6 +77,29 @@ TEST(Advisor, KelvinVoigtDesignMeetsPenetrationOrDurationAndRestitution) {
     }
 }
 
+// The design does not depend on the mass's scale but through k and c: a 1e-300 kg body meets
+// the same restitution and penetration as a 1 kg one. c = 2 zeta sqrt(k m) formed k m, which
+// underflowed (1e-300 kg on 8e-295 N/m), and the advice was an undamped spring (c = 0, zeta NaN,
+// its measured restitution 1 for the 0.8 asked), with exit 0. So was MuJoCo's and Box2D's damping
+// ratio, and ODE's ERP at an engine step of 1e308 s (inf / inf).
+TEST(Advisor, ALightBodyGetsTheSameDampingRatioAsAHeavyOne) {
+  for (const char* law : {"kelvin-voigt", "kelvin-voigt-clamped"}) {
+    ContactRequest r{.m = 1.0, .v = 1.0, .e = 0.8, .max_penetration = 1e-3, .law = law};
+    const ContactAdvice heavy = advise(r);
+    r.m = 1e-300;
+    const ContactAdvice light = advise(r);
+    EXPECT_NEAR(light.zeta, heavy.zeta, 1e-15) << law;
+    EXPECT_NEAR(light.c_lin / (1e-300 * heavy.c_lin), 1.0, 1e-14) << law;
+    EXPECT_NEAR(light.achieved_restitution, 0.8, 1e-6) << law;
+    EXPECT_NEAR(light.achieved_penetration / 1e-3, 1.0, 1e-6) << law;
+    EXPECT_NEAR(light.mujoco.dampratio, heavy.zeta, 1e-15) << law;
+    EXPECT_NEAR(light.box2d.damping_ratio, heavy.zeta, 1e-15) << law;
+  }
+  const OdeErpCfm long_step = to_ode(1e5, 50.0, 1e308);
+  EXPECT_EQ(long_step.erp, 1.0);
+  EXPECT_EQ(long_step.cfm, 0.0);
+}
+
 TEST(Advisor, HertzDesignFromPenetrationOrMaterial) {
   ContactRequest r;
   r.m = 0.1;

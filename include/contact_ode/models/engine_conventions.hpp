@@ -23,6 +23,10 @@
 
 namespace contact {
 
+// The damping ratio zeta = c / (2 sqrt(k m)), formed without k m (which underflows for a light
+// body on a soft spring).
+double damping_ratio(double k, double c, double m);
+
 struct OdeErpCfm {
   double erp;  // error reduction parameter, in (0, 1]
   double cfm;  // constraint force mixing [m / (N s)]
