@@ -16,7 +16,9 @@ double damping_ratio_for_restitution(double e) {
 }
 
 KelvinVoigt kelvin_voigt_for_restitution(double k, double m, double e, bool no_pull) {
-  return KelvinVoigt{k, 2.0 * damping_ratio_for_restitution(e) * std::sqrt(k * m), no_pull};
+  // sqrt(k) sqrt(m), not sqrt(k m): k m underflowed for a light body on a soft spring (1e-200 kg
+  // on 1e-195 N/m), and the dashpot tuned to e came out 0: the ball bounced at e = 1.
+  return KelvinVoigt{k, 2.0 * damping_ratio_for_restitution(e) * std::sqrt(k) * std::sqrt(m), no_pull};
 }
 
 LinearLaw linear_law(const ContactLaw& law) {

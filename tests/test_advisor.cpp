@@ -3,6 +3,7 @@
 #include "contact_ode/analysis/references.hpp"
 #include "contact_ode/integrators/fixed_step.hpp"
 #include "contact_ode/integrators/game_step.hpp"
+#include "contact_ode/integrators/penalty.hpp"
 #include "contact_ode/models/ball_drop.hpp"
 #include "contact_ode/models/engine_conventions.hpp"
 
@@ -98,6 +99,25 @@ TEST(Advisor, ALightBodyGetsTheSameDampingRatioAsAHeavyOne) {
   const OdeErpCfm long_step = to_ode(1e5, 50.0, 1e308);
   EXPECT_EQ(long_step.erp, 1.0);
   EXPECT_EQ(long_step.cfm, 0.0);
+}
+
+// The same root in the law every scene tunes to e: kelvin_voigt_for_restitution formed k m, which
+// underflowed for a 1e-200 kg ball on a 1e-195 N/m spring (k / m the default 1e5 /s^2), and its
+// dashpot came out 0: the ball dropped onto it bounced at restitution 1. Now at the closed form's
+// exit speed with gravity, as the 1 kg ball on 1e5 N/m (the tolerance's 1e-6, over ~100 steps of
+// rtol 1e-8).
+TEST(ContactLaws, ALightBallOnASoftSpringIsDampedAsAHeavyOne) {
+  for (const double m : {1.0, 1e-200}) {
+    const double k = 1e5 * m, V = std::sqrt(2 * 9.81);
+    const KelvinVoigt law = kelvin_voigt_for_restitution(k, m, 0.8, false);
+    EXPECT_NEAR(law.c / (2 * std::sqrt(k) * std::sqrt(m)), damping_ratio_for_restitution(0.8), 1e-15) << m;
+    const RunResult r =
+        run_penalty(BallDrop({m, 9.81, 1.0, 0.0, 0.8, law}), {}, {.t_end = 1.0, .sample_dt = 1.0});
+    ASSERT_TRUE(r.ok()) << r.message;
+    ASSERT_FALSE(r.contacts.empty());
+    const double exact = kelvin_voigt_contact(m, k, damping_ratio_for_restitution(0.8), V, 9.81).exit_speed;
+    EXPECT_NEAR(r.contacts[0].v_out / exact, 1.0, 1e-6) << m;
+  }
 }
 
 TEST(Advisor, HertzDesignFromPenetrationOrMaterial) {
