@@ -297,7 +297,15 @@ PYBIND11_MODULE(contact_ode, mod) {
   static py::exception<SolverFailure> solver_error(mod, "SolverError", PyExc_RuntimeError);
   solver_error.doc() = "a run that failed: .status, .t_reached, .solver_message and the partial .result";
 
-  py::class_<RunResult>(mod, "Result")
+  py::class_<RunResult>(
+      mod, "Result",
+      "A run: t, y (a row per sample, columns state_labels), energy and dissipated (the "
+      "ledger: energy + dissipated stays energy0 to the method's accuracy) as NumPy "
+      "arrays; contacts (contact, t_begin, t_end, max_penetration, v_in, v_out), apexes "
+      "(contact, t, gap, energy, dissipated) and notifications (the batched begin / end "
+      "events of the game loops: contact, begin, step, t) as dicts of arrays; stats (steps, "
+      "right-hand sides, Jacobians, Newton and linear iterations, ...); status, t_reached "
+      "and message.")
       .def_readonly("method", &RunResult::method)
       .def_readonly("state_labels", &RunResult::state_labels)
       .def_readonly("status", &RunResult::status)
@@ -343,17 +351,35 @@ PYBIND11_MODULE(contact_ode, mod) {
           "apexes",
           [](const RunResult& r) {
             return py::dict(
+                py::arg("contact") =
+                    column<Apex>(r.apexes, [](const Apex& a) { return static_cast<double>(a.contact); }),
                 py::arg("t") = column<Apex>(r.apexes, [](const Apex& a) { return a.t; }),
                 py::arg("gap") = column<Apex>(r.apexes, [](const Apex& a) { return a.gap; }),
-                py::arg("energy") = column<Apex>(r.apexes, [](const Apex& a) { return a.energy; }));
+                py::arg("energy") = column<Apex>(r.apexes, [](const Apex& a) { return a.energy; }),
+                py::arg("dissipated") = column<Apex>(r.apexes, [](const Apex& a) { return a.dissipated; }));
+          })
+      .def_property_readonly(
+          "notifications",
+          [](const RunResult& r) {
+            using N = CollisionEvent;
+            return py::dict(
+                py::arg("contact") =
+                    column<N>(r.notifications, [](const N& n) { return static_cast<double>(n.contact); }),
+                py::arg("begin") = column<N>(r.notifications,
+                                             [](const N& n) { return n.kind == N::Kind::Begin ? 1.0 : 0.0; })
+                                       .attr("astype")(py::module_::import("numpy").attr("bool_")),
+                py::arg("step") =
+                    column<N>(r.notifications, [](const N& n) { return static_cast<double>(n.step); }),
+                py::arg("t") = column<N>(r.notifications, [](const N& n) { return n.t; }));
           })
       .def_property_readonly("stats", [](const RunResult& r) {
         const SolverStats& s = r.stats;
         return py::dict(py::arg("steps") = s.steps, py::arg("failed_steps") = s.failed_steps,
                         py::arg("rhs_evals") = s.rhs_evals, py::arg("jac_evals") = s.jac_evals,
                         py::arg("newton_iters") = s.newton_iters, py::arg("linear_setups") = s.linear_setups,
-                        py::arg("root_evals") = s.root_evals, py::arg("events") = s.events,
-                        py::arg("restarts") = s.restarts, py::arg("wall_time_s") = s.wall_time_s);
+                        py::arg("linear_iters") = s.linear_iters, py::arg("root_evals") = s.root_evals,
+                        py::arg("events") = s.events, py::arg("restarts") = s.restarts,
+                        py::arg("wall_time_s") = s.wall_time_s);
       });
 
   mod.def(

@@ -161,6 +161,26 @@ def test_solve_takes_the_jacobian_and_the_record_limit_as_the_program_does():
             co.solve("ball-drop", "event-exact", max_records=bad)
 
 
+def test_result_has_the_notifications_apex_ledger_and_linear_iterations():
+    """The tutorial's batched begin / end notifications, the apexes' contact and ledger and the
+    linear iterations were in the C++ result and not in Python's."""
+    dt = 1e-3
+    r = co.solve("ball-drop", "game-symplectic", "kelvin-voigt", t_end=2.0, dt=dt)
+    n = r.notifications
+    first = math.ceil(math.sqrt(2 / 9.81) / dt)  # the step in which the ball first reaches the floor
+    assert n["begin"].dtype == bool and n["begin"][0] and not n["begin"][1]
+    assert n["step"][0] == first
+    np.testing.assert_allclose(n["t"], n["step"] * dt, rtol=1e-12)  # delivered at a step's end
+    assert int(n["begin"].sum()) == len(r.contacts["t_begin"])
+    exact = co.solve("ball-drop", "event-exact", t_end=3.0)
+    a = exact.apexes
+    assert set(a) == {"contact", "t", "gap", "energy", "dissipated"} and (a["contact"] == 0).all()
+    np.testing.assert_allclose(a["energy"] + a["dissipated"], exact.energy0, rtol=1e-12)  # the ledger
+    chain = co.solve("ball-chain", "penalty", "hooke", n=20, linear_solver="gmres")
+    assert chain.stats["linear_iters"] > 0
+    assert co.solve("ball-chain", "penalty", "hooke", n=20, linear_solver="band").stats["linear_iters"] == 0
+
+
 def test_bad_arguments_raise_value_error_naming_them():
     with pytest.raises(ValueError, match="height: not an option of scene 'ball-drop'"):
         co.solve("ball-drop", "penalty", height=1.0)
