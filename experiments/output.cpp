@@ -70,6 +70,9 @@ ScratchDir::~ScratchDir() {
 
 void OutputSet::write(const fs::path& dir_in, const std::string& program) const {
   throw_if_interrupted();
+  // (An empty program is check_output_dir's folder written into, never one replaced whole.)
+  if (program.empty())
+    throw std::logic_error("OutputSet::write: the program whose results it replaces is empty");
   // Checked again here, whatever the caller checked: replacing a folder that is not an earlier
   // run's results would delete what it holds (paper_numbers once replaced --out's whole folder).
   if (const std::string refusal = check_output_dir(dir_in, program); !refusal.empty())
