@@ -178,7 +178,10 @@ TEST(RunBounds, AFirstStepThatUnderflowsIsRetriedNotASuccessWithoutASingleStep) 
     o.integrator.method = integrator;
     const RunResult r = run_penalty(ball, o, {.t_end = 3 * duration, .sample_dt = 3 * duration});
     if (!r.ok()) {  // a typed failure (ARKODE's implicit stages at these scales), never a wrong success
-      EXPECT_NE(r.status, Status::Success) << integrator;
+      EXPECT_TRUE(r.status == Status::ErrorTestFailure || r.status == Status::ConvergenceFailure ||
+                  r.status == Status::NoProgress)
+          << integrator << ": " << to_string(r.status) << " " << r.message;
+      EXPECT_LT(r.t_reached, 3 * duration) << integrator;
       continue;
     }
     ASSERT_EQ(r.contacts.size(), 1u) << integrator;
