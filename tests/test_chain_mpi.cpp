@@ -41,6 +41,26 @@ class ChainMpi : public CliTest {
 };
 }  // namespace
 
+// chain_mpi replaced any folder holding a stats.csv, which ball_drop's results hold too. It now
+// leaves a meta.json naming itself, replaces a folder only when that names it, and refuses
+// another program's results (here a zeno run's), naming both.
+TEST_F(ChainMpi, ReplacesOnlyItsOwnResults) {
+  for (int i = 0; i < 2; ++i) {
+    const Outcome r = run(CHAIN_MPI_EXE, "--balls 4 --out c");
+    ASSERT_EQ(r.code, 0) << r.err;
+  }
+  EXPECT_NE(slurp(dir_ / "c" / "meta.json").find("\"experiment\": \"chain_mpi\""), std::string::npos);
+  std::filesystem::create_directories(dir_ / "z");
+  std::ofstream(dir_ / "z" / "meta.json") << R"({"experiment": "zeno"})";
+  std::ofstream(dir_ / "z" / "stats.csv") << "kept\n";
+  const Outcome r = run(CHAIN_MPI_EXE, "--balls 4 --out z");
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("holds the results of zeno (its meta.json says so), not of chain_mpi"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(slurp(dir_ / "z" / "stats.csv"), "kept\n");
+}
+
 // A tolerance that allows anything (atol 1e300: every step passes the error test) gave a
 // "successful" run with any answer, its energy 1e11 times E0 (the stats' energy error said what it
 // was worth); such a gain ends a run as diverged now (RunRecorder), and no output is written.
