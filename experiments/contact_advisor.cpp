@@ -37,10 +37,8 @@ int program(int argc, char** argv) {
   app.add_unset("--duration", duration, "required contact duration [s] (or --max-penetration)",
                 cli::positive());
   app.add("--law", r.law, "contact law", cli::one_of(law_names()));
-  std::vector<std::string> rules;
-  for (const DampingRule k : kDampingRules) rules.emplace_back(to_string(k));
   app.add("--rule", rule, "damping rule of the Hunt-Crossley laws (hertz, hunt-crossley-linear)",
-          cli::one_of(rules));
+          cli::one_of(damping_rule_names()));
   app.add_unset("--radius", radius, "hertz from a material: sphere radius [m]", cli::positive());
   app.add_unset("--young", young, "hertz from a material: Young's modulus [Pa]", cli::positive());
   app.add_unset("--poisson", poisson, "hertz from a material: Poisson ratio",
@@ -55,9 +53,7 @@ int program(int argc, char** argv) {
     if (app.given("--radius")) r.radius = radius;
     if (app.given("--young")) r.young = young;
     if (app.given("--poisson")) r.poisson = poisson;
-    if (app.given("--rule"))
-      for (const DampingRule k : kDampingRules)
-        if (to_string(k) == rule) r.rule = k;
+    if (app.given("--rule")) r.rule = parse_damping_rule(rule);
     validate(r);
     const ContactAdvice a = advise(r);
     const double nan = std::nan("");

@@ -3,6 +3,9 @@
 #include "contact_ode/models/parameters.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <stdexcept>
 
 #include <numbers>
 
@@ -85,6 +88,19 @@ double damping_factor(DampingRule rule, double e, double v) {
       return (1.0 - e * e) / (e * v);
   }
   return 0.0;
+}
+
+std::vector<std::string> damping_rule_names() {
+  std::vector<std::string> names;
+  for (const DampingRule rule : kDampingRules) names.emplace_back(to_string(rule));
+  return names;
+}
+
+DampingRule parse_damping_rule(const std::string& name) {
+  for (const DampingRule rule : kDampingRules)
+    if (to_string(rule) == name) return rule;
+  throw std::invalid_argument(
+      fmt::format("--rule: value '{}' is not one of: {}", name, fmt::join(damping_rule_names(), ", ")));
 }
 
 std::string_view to_string(DampingRule rule) {

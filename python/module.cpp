@@ -237,17 +237,6 @@ py::dict spring_contact(const SpringContact& c) {
                   py::arg("exit_speed") = c.exit_speed);
 }
 
-// A damping rule by its name, as the command line's --rule takes it.
-DampingRule damping_rule_named(const std::string& name) {
-  std::vector<std::string> names;
-  for (const DampingRule rule : kDampingRules) {
-    if (to_string(rule) == name) return rule;
-    names.emplace_back(to_string(rule));
-  }
-  throw std::invalid_argument(
-      fmt::format("--rule: value '{}' is not one of: {}", name, fmt::join(names, ", ")));
-}
-
 // The advice under the names of contact_advisor's table (advice.csv's quantities).
 py::dict advice_dict(const ContactRequest& q, const ContactAdvice& a) {
   return py::dict(
@@ -382,16 +371,18 @@ PYBIND11_MODULE(contact_ode, mod) {
                         py::arg("wall_time_s") = s.wall_time_s);
       });
 
-  mod.def(
-      "solve",
-      [](const std::string& scene, const std::string& method, const std::string& law,
-         const py::kwargs& options) { return run(scene, method, law, options, solver_error); },
-      py::arg("scene"), py::arg("method"), py::arg("law") = "",
+  static const std::string solve_doc = fmt::format(
       "Runs `method` on `scene` (with contact law `law` where the scene takes one; '': the scene's "
       "default_law in scenes(): hooke, undamped, which a penalty run takes without e; name "
       "'kelvin-voigt' for a spring damped to e). Keywords: the scene's parameters, the method's "
       "settings (methods() lists each one's), t_end, sample_dt and max_records (the contact records "
-      "and apexes a run may keep, 1e6 by default).");
+      "and apexes a run may keep, {} by default).",
+      RunLimits{}.max_records);
+  mod.def(
+      "solve",
+      [](const std::string& scene, const std::string& method, const std::string& law,
+         const py::kwargs& options) { return run(scene, method, law, options, solver_error); },
+      py::arg("scene"), py::arg("method"), py::arg("law") = "", solve_doc.c_str());
 
   mod.def("scenes", [] {
     py::list out;
@@ -497,7 +488,7 @@ PYBIND11_MODULE(contact_ode, mod) {
                          .energy_error = energy_error,
                          .engine_step = engine_step,
                          .g = g};
-        if (rule) q.rule = damping_rule_named(*rule);
+        if (rule) q.rule = parse_damping_rule(*rule);
         validate(q);
         return advice_dict(q, advise(q));
       },

@@ -20,6 +20,7 @@
 #include <string>
 #include <string_view>
 #include <variant>
+#include <vector>
 
 namespace contact {
 
@@ -109,6 +110,9 @@ inline constexpr std::array<DampingRule, 4> kDampingRules = {
     DampingRule::HuntCrossley, DampingRule::LankaraniNikravesh, DampingRule::Flores, DampingRule::Gonthier};
 double damping_factor(DampingRule rule, double e, double v);
 std::string_view to_string(DampingRule rule);
+std::vector<std::string> damping_rule_names();  // kDampingRules' names, in order
+// The rule named `name`; throws std::invalid_argument naming --rule and the accepted names.
+DampingRule parse_damping_rule(const std::string& name);
 
 // Hertz stiffness of a sphere of radius R [m] on a flat, K = (4/3) E* sqrt(R) [N/m^(3/2)], with
 // the effective modulus 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2 (a rigid flat: E2 = infinity).
