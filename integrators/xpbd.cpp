@@ -55,8 +55,10 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
 
 std::vector<MethodInfo> xpbd_methods() {
   return {{.name = "xpbd",
-           .description = "XPBD with small steps: 4 sub-steps of one compliant, damped position "
-                          "correction, matched to the penalty law",
+           .description =
+               "XPBD with small steps: 4 sub-steps of one compliant, damped position "
+               "correction, matched to the penalty law (contacts only push: a Kelvin-Voigt law acts "
+               "clamped)",
            .family = "time-stepping",
            .fixed_step = true,
            .uses_contact_law = true,

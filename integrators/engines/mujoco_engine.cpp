@@ -161,7 +161,8 @@ std::vector<MethodInfo> mujoco_methods() {
                     "MuJoCo 2.2.2 at its defaults: soft contacts solref (0.02, 1), semi-implicit Euler",
                     false, [](const EngineScene& s) { return std::make_unique<MujocoWorld>(s, false); }),
       engine_method("mujoco-spring",
-                    "MuJoCo 2.2.2 tuned to the scene's spring-damper: solref (-k w, -c w), impedance 0.9999",
+                    "MuJoCo 2.2.2 tuned to the scene's spring-damper: solref (-k w, -c w), impedance 0.9999 "
+                    "(contacts only push: a Kelvin-Voigt law acts clamped)",
                     true, [](const EngineScene& s) { return std::make_unique<MujocoWorld>(s, true); })};
 }
 

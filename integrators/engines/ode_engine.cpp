@@ -235,9 +235,11 @@ std::vector<MethodInfo> ode_engine_methods() {
       engine_method("ode-quick",
                     "ODE 0.16 (double) as ode, stepped by dWorldQuickStep (20 Gauss-Seidel iterations)",
                     false, [](const EngineScene& s) { return std::make_unique<OdeWorld>(s, false, true); }),
-      engine_method("ode-spring",
-                    "ODE 0.16 (double) with the scene's spring-damper as soft ERP/CFM (implicit Euler)", true,
-                    [](const EngineScene& s) { return std::make_unique<OdeWorld>(s, true, false); })};
+      engine_method(
+          "ode-spring",
+          "ODE 0.16 (double) with the scene's spring-damper as soft ERP/CFM (implicit Euler; contacts "
+          "only push: a Kelvin-Voigt law acts clamped)",
+          true, [](const EngineScene& s) { return std::make_unique<OdeWorld>(s, true, false); })};
 }
 
 }  // namespace contact
