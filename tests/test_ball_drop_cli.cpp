@@ -1,6 +1,7 @@
 // The ball_drop executable's contract: bad input -> one line naming the option, the value and
 // the accepted range, exit code 2, no output; success -> every declared file with its columns.
 #include "cli_fixture.hpp"
+#include "contact_ode/analysis/table.hpp"
 #include "contact_ode/integrators/method_registry.hpp"
 
 #include <regex>
@@ -133,6 +134,36 @@ TEST_F(BallDropCli, SweepPrintsOneRowPerStiffnessAndMethod) {
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 3 * dependent + independent + 1) << csv;
   EXPECT_EQ(csv.rfind("k_N_per_m,method,omega_dt,closed_form_penetration_m,closed_form_duration_s,status", 0),
             0u);
+}
+
+// The README's reading of the default sweep (k = 1e2 ... 1e8, dt = 1 ms): CVODE's cost per run stays
+// between 500 and 1000 right-hand sides across the six decades (an error-controlled step follows
+// the contact, whose steps per contact do not depend on k); explicit Euler's spring gains energy
+// in a contact (restitution above 1) from w dt = 0.3 on, its (1 + w^2 dt^2) growth per step; the
+// semi-implicit spring keeps the ball's restitution below 1 up to its stability bound w dt = 2
+// and gains energy beyond it.
+TEST_F(BallDropCli, TheDefaultSweepReadsAsTheReadmeSays) {
+  const Outcome r = run("--sweep --out full");
+  ASSERT_EQ(r.code, 0) << r.err;
+  int penalty = 0, euler = 0, symplectic = 0;
+  for (const auto& row : contact::read_csv(dir_ / "full" / "sweep.csv")) {
+    const std::string& method = row.at("method");
+    const double omega_dt = std::stod(row.at("omega_dt")), e = std::stod(row.at("first_restitution"));
+    if (method == "penalty") {
+      ++penalty;
+      EXPECT_GE(std::stod(row.at("rhs_evals")), 500) << row.at("k_N_per_m");
+      EXPECT_LE(std::stod(row.at("rhs_evals")), 1000) << row.at("k_N_per_m");
+    } else if (method == "game-euler-spring" && omega_dt >= 0.3) {
+      ++euler;
+      EXPECT_GT(e, 1.0) << "w dt = " << omega_dt;
+    } else if (method == "game-symplectic-spring") {
+      ++symplectic;
+      EXPECT_EQ(e > 1.0, omega_dt > 2) << "w dt = " << omega_dt << ", restitution " << e;
+    }
+  }
+  EXPECT_EQ(penalty, 7);
+  EXPECT_EQ(euler, 4);
+  EXPECT_EQ(symplectic, 7);
 }
 
 // Without gravity a ball at rest (or thrown up) never reaches the floor: every method runs to the
