@@ -192,6 +192,42 @@ void SteppingIntegrator::scan_for_crossing(double& t_hi, Vector& y_hi) {
 }
 
 bool SteppingIntegrator::locate_root(double t_hi, ConstVectorRef y_hi, Outcome& out) {
+  const std::size_t n = sys_.root_count;
+  Vector y(y_.size()), g(static_cast<Eigen::Index>(n)), y_end = y_hi;
+  double t_root = t_hi;
+  // A function that crosses zero twice within [t_, t_hi] (a ball that leaves a sagging spring and
+  // lands on it again within one step) has the same sign at both ends and is not narrowed. Where
+  // another function's root falls between its two crossings (the flight's apex) it has changed
+  // sign at that root: its first crossing is earlier. It was reported at the apex, as if the ball
+  // left the spring there at rest. So the roots are narrowed again over [t_, that root] until every
+  // function that changed sign there was narrowed: each pass ends before the one before it, so
+  // there are at most as many passes as functions.
+  for (std::size_t pass = 0; pass <= n; ++pass) {
+    const double t_end = t_root;
+    t_root = narrow_earliest_root(t_end, y_end, y);
+    if (!std::isfinite(t_root)) return false;
+    eval_roots(t_root, y, g);
+    bool hidden = false;
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto k = static_cast<Eigen::Index>(i);
+      hidden = hidden || (allowed(i, crossing(g_[k], g[k])) && !allowed(i, crossing(g_[k], g_hi_[k])));
+    }
+    if (!hidden || !(t_root < t_end)) break;
+    y_end = y;
+  }
+  out = Outcome{t_root, true, std::vector<int>(n, 0)};
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto k = static_cast<Eigen::Index>(i);
+    const int dir = crossing(g_[k], g[k]);
+    if (allowed(i, dir)) out.roots_found[i] = dir;
+  }
+  t_ = t_root;
+  y_ = y;
+  g_ = g;
+  return true;
+}
+
+double SteppingIntegrator::narrow_earliest_root(double t_hi, ConstVectorRef y_hi, Vector& y_root) {
   eval_roots(t_hi, y_hi, g_hi_);
   const std::size_t n = sys_.root_count;
   // CVODE's root tolerance: 100 ulps of t.
@@ -201,7 +237,7 @@ bool SteppingIntegrator::locate_root(double t_hi, ConstVectorRef y_hi, Outcome& 
   // The state at the earliest root's bracket end, kept as the bracket narrows: the end is the last
   // re-step on the new sign's side, so the root's state needs no re-step of its own (one of the
   // 3-5 per root; bitwise the same state).
-  Vector y_root = y_hi;
+  y_root = y_hi;
   for (std::size_t i = 0; i < n; ++i) {
     const auto k = static_cast<Eigen::Index>(i);
     const int dir = crossing(g_[k], g_hi_[k]);
@@ -265,19 +301,7 @@ bool SteppingIntegrator::locate_root(double t_hi, ConstVectorRef y_hi, Outcome& 
       y_root = y_new_sign;  // hi is t_new_sign
     }
   }
-  if (!std::isfinite(t_root)) return false;
-  y = y_root;
-  eval_roots(t_root, y, g);
-  out = Outcome{t_root, true, std::vector<int>(n, 0)};
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto k = static_cast<Eigen::Index>(i);
-    const int dir = crossing(g_[k], g[k]);
-    if (allowed(i, dir)) out.roots_found[i] = dir;
-  }
-  t_ = t_root;
-  y_ = y;
-  g_ = g;
-  return true;
+  return t_root;
 }
 
 }  // namespace contact
