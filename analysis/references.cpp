@@ -39,7 +39,9 @@ double zeno_tail(const RigidBounces& b) { return 2.0 * b.e * b.V / (b.g * (1.0 -
 }  // namespace
 
 RigidBounces::RigidBounces(double h0, double v0, double g_, double e_)
-    : g(g_), e(e_), V(std::sqrt(v0 * v0 + 2.0 * g_ * h0)), T1((v0 + V) / g_) {
+    // A ball thrown down fast under weak gravity: v0 + V cancelled (T1 = 0.0142 s for 0.01 s at
+    // h0 = 1 m, v0 = -100 m/s, g = 1e-12 m/s^2), where 2 h0 / (V - v0), the same root, does not.
+    : g(g_), e(e_), V(std::sqrt(v0 * v0 + 2.0 * g_ * h0)), T1(v0 < 0 ? 2.0 * h0 / (V - v0) : (v0 + V) / g_) {
   require_in("rigid bounces: h0", h0, kNonNegative);
   require_in("rigid bounces: v0", v0, kAnyFinite);
   require_in("rigid bounces: g", g, kPositive);

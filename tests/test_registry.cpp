@@ -3,6 +3,7 @@
 // paradigm functions give (closed forms checked through the registry route).
 #include "contact_ode/analysis/references.hpp"
 #include "contact_ode/integrators/method_registry.hpp"
+#include "contact_ode/models/ball_drop.hpp"
 #include "contact_ode/models/law_registry.hpp"
 #include "contact_ode/models/mechanical_system.hpp"
 #include "contact_ode/models/scene_registry.hpp"
@@ -222,6 +223,22 @@ TEST(Registries, RigidImpactTimesAreAClosedFormBoundedByTheZenoTime) {
     if (e < 1) {
       EXPECT_EQ(ref.impact_time(n), ref.zeno_time()) << e;  // e^(n-1) underflows: the fraction is 1
     }
+  }
+}
+
+// A ball thrown down fast under weak gravity reaches the floor at T1 = 2 h0 / (V - v0), h0 / |v0| to
+// first order in g h0 / v0^2. (v0 + V) / g, the same root, cancelled: 0.0142 s for 0.01 s at
+// h0 = 1 m, v0 = -100 m/s, g = 1e-12 m/s^2, 7.9e-7 of it off at g = 1e-6. The exact flight
+// (event-exact) finds it too; both are held to the series h0 / |v0| (1 - g h0 / (2 v0^2)) to 1e-15.
+TEST(Registries, ABallThrownDownUnderWeakGravityLandsAtItsClosedFormTime) {
+  for (const double g : {1e-12, 1e-6, 1e-4}) {  // the series's next term, (g h0 / v0^2)^2 / 2, below 1e-16
+    const double h0 = 1, v0 = -100, series = h0 / -v0 * (1 - g * h0 / (2 * v0 * v0));
+    EXPECT_NEAR(RigidBounces(h0, v0, g, 0.8).T1, series, 1e-15 * series) << g;
+    const BallDrop ball({.m = 1, .g = g, .h0 = h0, .v0 = v0, .e = 0.8, .law = Hooke{1e5}});
+    const RunResult r = solve(ball, {.name = "event-exact"}, {.t_end = 0.02, .sample_dt = 0.02});
+    ASSERT_TRUE(r.ok()) << r.message;
+    ASSERT_FALSE(r.contacts.empty()) << g;
+    EXPECT_NEAR(r.contacts.front().t_begin, series, 1e-15 * series) << g;
   }
 }
 

@@ -3,7 +3,7 @@
 //
 // Rigid bounces (Newton's law v+ = -e v-). A ball released at height h0 with vertical velocity
 // v0 under gravity g reaches the floor with speed V = sqrt(v0^2 + 2 g h0) at
-//   T1 = (v0 + V) / g,
+//   T1 = (v0 + V) / g = 2 h0 / (V - v0)   (the second where v0 < 0: the first cancels),
 // and after the n-th impact leaves with speed e^n V, so
 //   T(n+1) = T(n) + 2 e^n V / g,     apex n:  h_n = (e^n V)^2 / (2g)  (= e^{2n} h0 when v0 = 0),
 // and the impacts accumulate at the Zeno time  t_inf = T1 + 2 e V / (g (1 - e)).
