@@ -193,8 +193,10 @@ void SteppingIntegrator::scan_for_crossing(double& t_hi, Vector& y_hi) {
 
 bool SteppingIntegrator::locate_root(double t_hi, ConstVectorRef y_hi, Outcome& out) {
   const std::size_t n = sys_.root_count;
-  Vector y(y_.size()), g(static_cast<Eigen::Index>(n)), y_end = y_hi;
-  double t_root = t_hi;
+  Vector y(y_.size()), g(static_cast<Eigen::Index>(n)), y_work(y_.size()), g_work(g.size());
+  double t_root = narrow_earliest_root(t_hi, y_hi, y, y_work, g_work);
+  if (!std::isfinite(t_root)) return false;
+  eval_roots(t_root, y, g);
   // A function that crosses zero twice within [t_, t_hi] (a ball that leaves a sagging spring and
   // lands on it again within one step) has the same sign at both ends and is not narrowed. Where
   // another function's root falls between its two crossings (the flight's apex) it has changed
@@ -202,18 +204,20 @@ bool SteppingIntegrator::locate_root(double t_hi, ConstVectorRef y_hi, Outcome& 
   // left the spring there at rest. So the roots are narrowed again over [t_, that root] until every
   // function that changed sign there was narrowed: each pass ends before the one before it, so
   // there are at most as many passes as functions.
-  for (std::size_t pass = 0; pass <= n; ++pass) {
-    const double t_end = t_root;
-    t_root = narrow_earliest_root(t_end, y_end, y);
-    if (!std::isfinite(t_root)) return false;
-    eval_roots(t_root, y, g);
-    bool hidden = false;
+  auto crossed_twice = [&] {
     for (std::size_t i = 0; i < n; ++i) {
       const auto k = static_cast<Eigen::Index>(i);
-      hidden = hidden || (allowed(i, crossing(g_[k], g[k])) && !allowed(i, crossing(g_[k], g_hi_[k])));
+      if (allowed(i, crossing(g_[k], g[k])) && !allowed(i, crossing(g_[k], g_hi_[k]))) return true;
     }
-    if (!hidden || !(t_root < t_end)) break;
-    y_end = y;
+    return false;
+  };
+  for (std::size_t pass = 0; pass < n && crossed_twice(); ++pass) {
+    const double t_end = t_root;
+    const Vector y_end = y;
+    // (Some function changed sign over [t_, t_end]; were none found, y is left at y_end.)
+    t_root = std::min(t_end, narrow_earliest_root(t_end, y_end, y, y_work, g_work));
+    eval_roots(t_root, y, g);
+    if (!(t_root < t_end)) break;
   }
   out = Outcome{t_root, true, std::vector<int>(n, 0)};
   for (std::size_t i = 0; i < n; ++i) {
@@ -227,13 +231,13 @@ bool SteppingIntegrator::locate_root(double t_hi, ConstVectorRef y_hi, Outcome& 
   return true;
 }
 
-double SteppingIntegrator::narrow_earliest_root(double t_hi, ConstVectorRef y_hi, Vector& y_root) {
+double SteppingIntegrator::narrow_earliest_root(double t_hi, ConstVectorRef y_hi, Vector& y_root, Vector& y,
+                                                Vector& g) {
   eval_roots(t_hi, y_hi, g_hi_);
   const std::size_t n = sys_.root_count;
   // CVODE's root tolerance: 100 ulps of t.
   const double tol = 100 * std::numeric_limits<double>::epsilon() * std::max(std::abs(t_), std::abs(t_hi));
   double t_root = std::numeric_limits<double>::infinity();
-  Vector y(y_.size()), g(static_cast<Eigen::Index>(n));
   // The state at the earliest root's bracket end, kept as the bracket narrows: the end is the last
   // re-step on the new sign's side, so the root's state needs no re-step of its own (one of the
   // 3-5 per root; bitwise the same state).

@@ -70,8 +70,8 @@ class SteppingIntegrator : public Integrator {
   // A root in (t_, t_hi] given the state there; fills out and moves (t_, y_) to it.
   bool locate_root(double t_hi, ConstVectorRef y_hi, Outcome& out);
   // The earliest root in (t_, t_hi] of the functions whose signs at t_ and t_hi differ (their
-  // values at t_hi left in g_hi_), and the state there; +inf (y_root untouched) if none.
-  double narrow_earliest_root(double t_hi, ConstVectorRef y_hi, Vector& y_root);
+  // values at t_hi left in g_hi_), and the state there; +inf if none. y and g: its work space.
+  double narrow_earliest_root(double t_hi, ConstVectorRef y_hi, Vector& y_root, Vector& y, Vector& g);
   // Whether a sign change of root function i in direction dir (+1 rising, -1 falling, 0 none)
   // counts, given the directions asked for.
   bool allowed(std::size_t i, int dir) const;
