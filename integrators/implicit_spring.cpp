@@ -111,8 +111,12 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
       else
         dz = lu.solve(G);
       z -= dz;
+      // Relative to the state's size, as the header says: (1 + |z|) made it 1e-12 in the state's
+      // units, and a drop scaled to picometres (h0 = 1e-12 m, g scaled alike) stopped at a first
+      // iterate of its size: its contacts moved by 26 ms and its exit speed by 12 %.
       const double size = dz.lpNorm<Eigen::Infinity>();
-      if (size <= kNewtonTolerance * (1 + z.lpNorm<Eigen::Infinity>())) break;
+      if (size <= kNewtonTolerance * std::max(z.lpNorm<Eigen::Infinity>(), y.lpNorm<Eigen::Infinity>()))
+        break;
       if (it == kMaxNewton || !z.allFinite())
         throw SolverFailure(Status::ConvergenceFailure, t,
                             fmt::format("implicit Euler: Newton did not converge in {} iterations (last "

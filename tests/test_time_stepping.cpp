@@ -152,6 +152,31 @@ TEST(ImplicitSpring, UndampedSpringLosesEnergyByExactlyOnePlusWSquaredHSquared) 
         << n;
 }
 
+// The motion scaled in length (h0 and g by lambda, k / m kept) is the same motion, lambda times the
+// size: implicit Euler's steps are linear in the state, so its contacts fall at the same steps and
+// its exit speeds scale by lambda, to Newton's 1e-12 of the state (and the samples' rounding).
+// Newton stopped at 1e-12 (1 + |z|), 1e-12 m and m/s whatever the state: at lambda = 1e-12 its
+// first iterate, off by its own size, was taken, and the contacts moved by 26 ms.
+TEST(ImplicitSpring, ADropScaledInLengthIsTheSameMotionScaled) {
+  const auto run = [](double lambda) {
+    const BallDrop ball(
+        {.m = 2.0, .g = kGravity * lambda, .h0 = lambda, .v0 = 0.0, .e = 0.8, .law = Hooke{1e4}});
+    return solve(ball, {.name = "game-implicit-spring", .dt = kDt}, {.t_end = 1.5, .sample_dt = 0.5});
+  };
+  const RunResult one = run(1.0);
+  ASSERT_TRUE(one.ok()) << one.message;
+  ASSERT_GE(one.contacts.size(), 2u);
+  for (const double lambda : {1e-12, 1e-100, 1e100}) {
+    const RunResult r = run(lambda);
+    ASSERT_TRUE(r.ok()) << r.message;
+    ASSERT_EQ(r.contacts.size(), one.contacts.size()) << lambda;
+    for (std::size_t i = 0; i < one.contacts.size(); ++i) {
+      EXPECT_EQ(r.contacts[i].t_begin, one.contacts[i].t_begin) << lambda << " contact " << i;
+      EXPECT_NEAR(r.contacts[i].v_out / lambda, one.contacts[i].v_out, 1e-9) << lambda << " contact " << i;
+    }
+  }
+}
+
 // The implicit Euler spring keeps the LU of I - h J across iterations and steps (a chord method)
 // and forms it again only where the modes change, an iteration fails to halve its correction, or
 // after 20 steps. On the Hertz contact, F = k x^1.5 (its Jacobian changes within every step), each
