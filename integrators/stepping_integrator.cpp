@@ -193,7 +193,12 @@ void SteppingIntegrator::scan_for_crossing(double& t_hi, Vector& y_hi) {
 
 bool SteppingIntegrator::locate_root(double t_hi, ConstVectorRef y_hi, Outcome& out) {
   const std::size_t n = sys_.root_count;
-  Vector y(y_.size()), g(static_cast<Eigen::Index>(n)), y_work(y_.size()), g_work(g.size());
+  Vector y(y_.size()), g(static_cast<Eigen::Index>(n));
+  // The narrowing's work space: the scan's, which is done with them by now (no allocation per root).
+  Vector& y_work = y_scan_;
+  Vector& g_work = g_scan_;
+  y_work.resize(y_.size());
+  g_work.resize(g.size());
   double t_root = narrow_earliest_root(t_hi, y_hi, y, y_work, g_work);
   if (!std::isfinite(t_root)) return false;
   eval_roots(t_root, y, g);

@@ -83,7 +83,8 @@ class SteppingIntegrator : public Integrator {
   void shorten_until_hermite_is_faithful();
 
   double t_;
-  Vector y_, g_, g_hi_, f_a_, f_b_, y_scan_, g_scan_;
+  Vector y_, g_, g_hi_, f_a_, f_b_;
+  Vector y_scan_, g_scan_;  // the root scan's and the narrowing's work space
   bool have_start_slope_ = false, have_end_slope_ = false;
   std::vector<int> directions_;
   long max_steps_;
