@@ -16,7 +16,7 @@ namespace contact {
 namespace {
 // The closed forms' domains (references.hpp): outside them a formula returns NaN or a number
 // that means nothing (a negative damping ratio, an apex above the drop), so they are refused.
-constexpr Range kDampingRatio{.lo = 0, .hi = 1, .lo_open = false};
+constexpr Range kDampingRatio{.lo = 0, .hi = 1, .lo_open = false, .hi_open = false};
 
 // A spring contact's formulas divide by w^2 = k / m and by w (the sag g / w^2, the depth V / w)
 // and multiply by them; a ratio outside the doubles' normal range (k / m = 1e312 overflows, 1e-312
@@ -93,19 +93,32 @@ namespace {
 
 // c + e^(-s t) (a cos(wd t) + b sin(wd t)): a Kelvin–Voigt contact's penetration about its static
 // sag c, and every linear combination of it and its derivatives (a damped wave about a constant).
+// Critically damped (wd = 0, e = 0) it is c + e^(-s t) (a + b t), the limit with b standing for
+// wd b: the formulas were 0 / 0 there, NaN for every quantity of a contact tuned to e = 0. (b is
+// not wd b throughout: w^2 b overflowed for a contact scaled by 2^1020.) At t = +inf the wave has
+// settled on c.
 struct DampedWave {
   double c, a, b, s, wd;
   double operator()(double t) const {
-    return c + std::exp(-s * t) * (a * std::cos(wd * t) + b * std::sin(wd * t));
+    if (t == std::numeric_limits<double>::infinity()) return c;
+    return c + std::exp(-s * t) * (wd > 0 ? a * std::cos(wd * t) + b * std::sin(wd * t) : a + b * t);
   }
-  DampedWave derivative() const { return {0.0, -s * a + wd * b, -s * b - wd * a, s, wd}; }
+  DampedWave derivative() const {
+    if (!(wd > 0)) return {0.0, -s * a + b, -s * b, s, wd};
+    return {0.0, -s * a + wd * b, -s * b - wd * a, s, wd};
+  }
   DampedWave plus(double k, const DampedWave& o) const {
     return {c + k * o.c, a + k * o.a, b + k * o.b, s, wd};
   }
   // The first time after t at which the wave turns (its derivative's zeros are pi / wd apart; one
-  // within 1e-9 of that of t, t's own by rounding, is not after it).
+  // within 1e-9 of that of t, t's own by rounding, is not after it); +inf if none (critically
+  // damped, it turns once at most).
   double next_turn(double t) const {
     const DampedWave d = derivative();  // d = e^(-s t) r cos(wd t - psi): zero at wd t = psi + pi/2 + j pi
+    if (!(wd > 0)) {                    // d = e^(-s t) (A + B t)
+      const double turn = d.b != 0 ? -d.a / d.b : std::numeric_limits<double>::infinity();
+      return turn > t + 1e-9 * std::abs(turn) ? turn : std::numeric_limits<double>::infinity();
+    }
     const double psi = std::atan2(d.b, d.a), period = std::numbers::pi / wd;
     double turn = (psi + std::numbers::pi / 2) / wd;
     turn += period * std::ceil((t - turn) / period);
@@ -134,7 +147,8 @@ struct KelvinVoigtFirstContact {
   KelvinVoigtFirstContact(double m, double k, double zeta, double V, double g_)
       : w(std::sqrt(k / m)), sigma(zeta * w), g(g_) {
     const double wd = w * std::sqrt(1.0 - zeta * zeta), sag = g / (w * w);
-    x = {sag, -sag, (V - sigma * sag) / wd, sigma, wd};  // x(0) = 0, x'(0) = V
+    const double rise = V - sigma * sag;  // x'(0) = V
+    x = {sag, -sag, wd > 0 ? rise / wd : rise, sigma, wd};
     t_deepest = x.next_turn(0.0);
     t_shallowest = x.next_turn(t_deepest);
   }
@@ -142,7 +156,9 @@ struct KelvinVoigtFirstContact {
   // ball for good (later turns are shallower still): an unending contact, left at speed 0.
   SpringContact unclamped() const {
     const double x_max = x(t_deepest);
-    if (x(t_shallowest) > 0) return {std::numeric_limits<double>::infinity(), x_max, 0.0};
+    // (Critically damped, x settles on the sag without turning back: t_shallowest = +inf.)
+    if (!std::isfinite(t_shallowest) || x(t_shallowest) > 0)
+      return {std::numeric_limits<double>::infinity(), x_max, 0.0};
     const double t_end = x.zero_between(t_deepest, t_shallowest);
     return {t_end, x_max, -x.derivative()(t_end)};
   }
@@ -159,7 +175,7 @@ struct KelvinVoigtFirstContact {
     double lo = t_deepest, t_release = NAN;
     for (int piece = 0; piece < 3 && lo < t_shallowest && std::isnan(t_release); ++piece) {
       const double hi = std::min(force.next_turn(lo), t_shallowest);
-      if (force(hi) <= 0) t_release = force.zero_between(lo, hi);
+      if (std::isfinite(hi) && force(hi) <= 0) t_release = force.zero_between(lo, hi);
       lo = hi;
     }
     if (std::isnan(t_release)) return {std::numeric_limits<double>::infinity(), x_max, 0.0};
@@ -176,7 +192,7 @@ void require_kelvin_voigt(const char* name, double m, double k, double zeta, dou
   const std::string f(name);
   require_in(f + ": m", m, kPositive);
   require_in(f + ": k", k, kPositive);
-  require_in(f + ": zeta", zeta, kDampingRatio);  // underdamped: the ball comes back
+  require_in(f + ": zeta", zeta, kDampingRatio);  // up to critical damping (e = 0)
   require_in(f + ": g", g, kNonNegative);
   require_in(f + ": V", V, g > 0 ? kNonNegative : kPositive);  // no contact without either
   require_frequency(f, m, k, g);
@@ -195,6 +211,7 @@ SpringContact clamped_kelvin_voigt_contact(double m, double k, double zeta, doub
 }
 
 double clamped_kelvin_voigt_restitution(double zeta) {
+  if (zeta == 1) return std::exp(-2.0);  // the limit: (pi - 2 asin zeta) / sqrt(1 - zeta^2) -> 2
   return std::exp(-zeta * (std::numbers::pi - 2.0 * std::asin(zeta)) / std::sqrt(1.0 - zeta * zeta));
 }
 
@@ -208,7 +225,7 @@ SpringContact linear_law_first_contact(const std::string& law, double m, double 
   require_in("linear_law_first_contact: g", g, kNonNegative);
   if (law == "hooke") return hooke_contact(m, k, V, g);
   const bool clamped = law == "kelvin-voigt-clamped";
-  if ((law != "kelvin-voigt" && !clamped) || !(e > 0)) return {nan, nan, nan};
+  if (law != "kelvin-voigt" && !clamped) return {nan, nan, nan};
   const double zeta = damping_ratio_for_restitution(e);
   return clamped ? clamped_kelvin_voigt_contact(m, k, zeta, V, g) : kelvin_voigt_contact(m, k, zeta, V, g);
 }

@@ -269,6 +269,47 @@ TEST(Registries, SpringContactClosedFormsScaleToTheEdgesOfTheDoubles) {
             std::string::npos);
 }
 
+// Critical damping (e = 0): the Kelvin–Voigt formulas divide by w_d = 0, and every quantity of a
+// contact tuned to e = 0 was NaN. The motion is V t e^(-w t) without gravity: deepest V / (w e) at
+// 1 / w; the unclamped overlap never closes (duration +inf, exit speed 0); the clamped force,
+// w^2 x + 2 w x' = V w^2 e^(-w t) (2 / w - t), lets go at 2 / w at speed V e^-2, and the overlap
+// (2 V / (w e^2)) closes 2 / w later. exact-linear, the exact solution, agrees (to 1e-11, as on
+// every linear contact: tests/test_exact_linear.cpp), with gravity too, where both hold the ball
+// for good.
+TEST(Registries, ACriticallyDampedContactHasItsClosedForms) {
+  const double m = 1, k = 1e4, w = 100, V = 1;
+  const SpringContact open = linear_law_first_contact("kelvin-voigt", m, k, 0.0, V, 0.0);
+  EXPECT_EQ(open.duration, std::numeric_limits<double>::infinity());
+  EXPECT_EQ(open.exit_speed, 0.0);
+  EXPECT_NEAR(open.max_penetration, V / (w * std::numbers::e), 1e-17);
+  const SpringContact clamped = linear_law_first_contact("kelvin-voigt-clamped", m, k, 0.0, V, 0.0);
+  EXPECT_NEAR(clamped.duration, 4 / w, 1e-16);
+  EXPECT_NEAR(clamped.exit_speed, V * std::exp(-2.0), 1e-16);
+  EXPECT_NEAR(clamped_kelvin_voigt_restitution(1.0), std::exp(-2.0), 0.0);
+  for (const double g : {0.0, 9.81})
+    for (const std::string law : {"kelvin-voigt", "kelvin-voigt-clamped"}) {
+      const double h0 = 1e-2;
+      const double v0 = g > 0 ? 0.0 : -V, speed = std::sqrt(v0 * v0 + 2 * g * h0);
+      const SpringContact ref = linear_law_first_contact(law, m, k, 0.0, speed, g);
+      Method exact{.name = "penalty"};
+      exact.integrator.method = "exact-linear";
+      exact.integrator.atol = 1e-16;
+      const auto ball =
+          make_scene("ball-drop", {{"m", m}, {"k", k}, {"e", 0.0}, {"g", g}, {"h0", h0}, {"v0", v0}}, law);
+      const RunResult r = solve(*ball, exact, {.t_end = 0.3, .sample_dt = 0.3});
+      ASSERT_TRUE(r.ok()) << r.message;
+      ASSERT_FALSE(r.contacts.empty()) << law << " g = " << g;
+      const ContactRecord& c = r.contacts.front();
+      EXPECT_NEAR(c.max_penetration, ref.max_penetration, 1e-11 * ref.max_penetration) << law << " g = " << g;
+      if (std::isinf(ref.duration)) {
+        EXPECT_FALSE(c.closed()) << law << " g = " << g << ": held for good";
+      } else {
+        EXPECT_NEAR(c.duration(), ref.duration, 1e-11 * ref.duration) << law << " g = " << g;
+        EXPECT_NEAR(c.v_out, ref.exit_speed, 1e-11 * ref.exit_speed) << law << " g = " << g;
+      }
+    }
+}
+
 // A value below the smallest normal double is refused by every entry to the library, as the command
 // line refuses it, naming the option and its range: before, a 1e-310 s span under CVODE 'succeeded'
 // with a NaN state, and a 1e-310 kg ball, step or tolerance ended each method in another failure

@@ -74,7 +74,7 @@ struct SpringContact {
 
 // Hooke spring of stiffness k on mass m, entered at speed V > 0, under gravity g >= 0.
 SpringContact hooke_contact(double m, double k, double V, double g);
-// Kelvin–Voigt spring and dashpot of damping ratio zeta < 1 on mass m, entered at speed V under
+// Kelvin–Voigt spring and dashpot of damping ratio zeta <= 1 on mass m, entered at speed V under
 // gravity g >= 0, exactly: the penetration is a damped oscillation about the static sag g / w^2,
 // its deepest point and exit speed in closed form, its end (where the overlap closes) the one zero
 // of a monotone stretch, found by bisection to the doubles' resolution. Where the spring holds the
@@ -90,14 +90,15 @@ SpringContact kelvin_voigt_contact(double m, double k, double zeta, double V, do
 // (pi - 2 asin zeta) / w_d plus 2 zeta / w of free flight, exit speed
 // clamped_kelvin_voigt_restitution(zeta) V.
 SpringContact clamped_kelvin_voigt_contact(double m, double k, double zeta, double V, double g = 0.0);
-// Restitution achieved by the clamped law with damping ratio zeta < 1, no gravity.
+// Restitution achieved by the clamped law with damping ratio zeta <= 1, no gravity (e^-2 at 1).
 double clamped_kelvin_voigt_restitution(double zeta);
 // Undamped power-law contact: duration, maximum penetration, exit speed V.
 SpringContact power_law_contact(double m, double K, double n, double V);
 // The first contact of a linear law of the registry, tuned to restitution e (its gravity-free
 // value), entered at speed V under gravity g, exactly: "hooke" (hooke_contact), "kelvin-voigt"
 // (kelvin_voigt_contact), "kelvin-voigt-clamped" (clamped_kelvin_voigt_contact). NaN for every
-// other law, and for e = 0 (critical damping: no bounce to compare).
+// other law. At e = 0 (critical damping) the unclamped contact never ends (duration +inf, exit speed
+// 0) and the clamped one lets go at 2 / w and leaves at e^-2 V, 4 / w after it began (no gravity).
 SpringContact linear_law_first_contact(const std::string& law, double m, double k, double e, double V,
                                        double g);
 // B(1/(n+1), 1/2)/(n+1): the power-law contact time is 2 delta_max / V times this.
