@@ -161,6 +161,7 @@ TEST_F(BallDropCli, TheDefaultSweepReadsAsTheReadmeSays) {
       EXPECT_EQ(e > 1.0, omega_dt > 2) << "w dt = " << omega_dt << ", restitution " << e;
     }
   }
+  // The default sweep: k = 1e2 ... 1e8, one a decade (7 rows); w dt = sqrt(k) 1e-3 >= 0.3 from 1e5 (4).
   EXPECT_EQ(penalty, 7);
   EXPECT_EQ(euler, 4);
   EXPECT_EQ(symplectic, 7);
