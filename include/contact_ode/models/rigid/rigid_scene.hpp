@@ -37,6 +37,7 @@ class RigidScene final : public MechanicalSystem, public NormalImpulses {
   std::vector<RigidBody> bodies_at(ConstVectorRef y) const;
   void store(const std::vector<RigidBody>& bodies, VectorRef y) const;
   const std::vector<RigidBody>& bodies() const { return bodies_; }
+  const Vec3& gravity() const { return gravity_; }
   // Which bodies candidate contact i joins.
   std::pair<std::size_t, std::size_t> pair(std::size_t i) const {
     return {candidates_[i].a, candidates_[i].b};
