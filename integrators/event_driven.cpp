@@ -157,19 +157,28 @@ class Impacts {
   // approach of 5.5e-17 m/s, the fastest of that instant. 1e-12 is 1e4 times that rounding, and a
   // speed no contact here resolves.
   static constexpr double kRateRounding = 1e-12;
+  // Gaps that close at one instant in exact arithmetic close a rounding apart in floating point.
+  // Moving the wedge at 1 m/s (the same motion) put the root of the striker's second ball 1.6e-17
+  // s after the first's, its gap 1.4e-17 m at the first (an ulp or two of the 0.05 m coordinates):
+  // two instants, so rounding decided which ball took its impulse first, not the sweep's order, and
+  // event-ode-reversed gave event-ode's answer, mirrored. A gap within kGapRounding of the positions'
+  // size is closed at this instant: some 50 ulps of the coordinates, far below any length a flight
+  // resolves.
+  static constexpr double kGapRounding = 1e-14;
   void resolve_from(std::size_t first, double t, VectorRef y) {
     instant_start_ = count_;
     const ConstVectorView x(y);  // y as the read-only calls below take it, built once
     rate_floor_ = kRateRounding * std::max(std::abs(model_.gap_rate(first, x)),
                                            velocities_.select(x.array().abs(), 0.0).maxCoeff());
-    resolve(first, t, y);
+    closed_gap_ = kGapRounding * velocities_.select(0.0, x.array().abs()).maxCoeff();
+    resolve(leading(first, x), t, y);
     // One contact: the impulse has nowhere to go on to (it leaves separating or at rest).
     for (bool again = model_.contact_count() > 1; again;) {
       again = false;
       const std::size_t n = model_.contact_count();
       for (std::size_t k = 0; k < n; ++k) {
         const std::size_t j = opt_.reverse_order ? n - 1 - k : k;
-        if (model_.gap(j, x) > 0) continue;  // the gap first: most contacts are apart
+        if (model_.gap(j, x) > closed_gap_) continue;  // the gap first: most contacts are apart
         const double rate = model_.gap_rate(j, x);
         if (resting(j) ? rate < -opt_.rest_speed : rate < -rate_floor_) {
           modes_[j] = ContactMode::Free;
@@ -192,6 +201,18 @@ class Impacts {
   }
 
  private:
+  // The contact that takes the instant's first impulse: the first in the sweep's order among
+  // `first` (the located root) and the free contacts closed with it and approaching.
+  std::size_t leading(std::size_t first, ConstVectorRef x) const {
+    const std::size_t n = model_.contact_count();
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t j = opt_.reverse_order ? n - 1 - k : k;
+      if (j == first) break;
+      if (!resting(j) && model_.gap(j, x) <= closed_gap_ && model_.gap_rate(j, x) < -rate_floor_) return j;
+    }
+    return first;
+  }
+
   // Every impulse counts against the cap, whose message says how many came at one instant.
   void count_impulse(double t) {
     if (++count_ > opt_.max_events)
@@ -239,6 +260,7 @@ class Impacts {
   double rest_height_;
   Mask velocities_;          // the state's velocity entries
   double rate_floor_ = 0.0;  // approaches slower than this are rounding (resolve_from)
+  double closed_gap_ = 0.0;  // gaps below this are closed at the instant (resolve_from)
   long instant_start_ = 0;   // count_ when this instant's impulses began
   ContactModes modes_;
   std::vector<double> last_;
