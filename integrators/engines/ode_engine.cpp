@@ -24,6 +24,7 @@
 #include <cstdarg>
 #include <cstdint>
 #include <cstdio>
+#include <mutex>
 #include <string>
 
 #include <stdexcept>
@@ -49,6 +50,16 @@ void keep_message(int num, const char* msg, va_list ap) {
   char text[512];
   std::vsnprintf(text, sizeof text, msg, ap);
   throw EngineError(fmt::format("ODE error {}: {}", num, text));
+}
+
+// ODE keeps process-wide state: the random generator that QuickStep shuffles its constraints by
+// (reseeded per world, drawn from at every step), the library's reference count and its handlers.
+// Worlds stepped at once in two threads drew each other's numbers: of 24 engine solves run three
+// at a time, ode and ode-quick gave three answers that differed from their serial runs. One ODE
+// world exists at a time in a process; the other methods' solves still run side by side.
+std::mutex& ode_in_use() {
+  static std::mutex m;
+  return m;
 }
 
 // dInitODE2/dCloseODE are reference-counted: one pair per world.
@@ -210,6 +221,7 @@ class OdeWorld final : public EngineWorld {
                      {contact.geom.normal[0], contact.geom.normal[1], contact.geom.normal[2]}});
   }
 
+  std::lock_guard<std::mutex> one_world_at_a_time_{ode_in_use()};  // first: held until ODE is closed
   OdeLibrary library_;
   EngineScene scene_;
   bool spring_;

@@ -6,10 +6,18 @@
 #include "siconos_line.hpp"
 
 #include <memory>
+#include <mutex>
 
 namespace contact {
 
 namespace {
+
+// Siconos keeps settings in globals (its event-driven tolerance, written by every simulation):
+// one Siconos world at a time in a process, as ODE's (ode_engine.cpp).
+std::mutex& siconos_in_use() {
+  static std::mutex m;
+  return m;
+}
 
 class SiconosWorld final : public EngineWorld {
  public:
@@ -41,6 +49,7 @@ class SiconosWorld final : public EngineWorld {
   void impulses(std::vector<double>& impulse) const override { line_.impulses(impulse); }
 
  private:
+  std::lock_guard<std::mutex> one_world_at_a_time_{siconos_in_use()};  // first: held until line_ is gone
   SiconosLine line_;
 };
 
