@@ -170,10 +170,13 @@ class Impacts {
     const ConstVectorView x(y);  // y as the read-only calls below take it, built once
     rate_floor_ = kRateRounding * std::max(std::abs(model_.gap_rate(first, x)),
                                            velocities_.select(x.array().abs(), 0.0).maxCoeff());
-    closed_gap_ = kGapRounding * velocities_.select(0.0, x.array().abs()).maxCoeff();
-    resolve(leading(first, x), t, y);
-    // One contact: the impulse has nowhere to go on to (it leaves separating or at rest).
-    for (bool again = model_.contact_count() > 1; again;) {
+    // One contact: the impulse has nowhere to go on to (it leaves separating or at rest), and no
+    // other closes with it (the positions' size is not taken: 5 % of the exact bounces'
+    // instructions, callgrind).
+    const bool others = model_.contact_count() > 1;
+    if (others) closed_gap_ = kGapRounding * velocities_.select(0.0, x.array().abs()).maxCoeff();
+    resolve(others ? leading(first, x) : first, t, y);
+    for (bool again = others; again;) {
       again = false;
       const std::size_t n = model_.contact_count();
       for (std::size_t k = 0; k < n; ++k) {
