@@ -193,8 +193,11 @@ class ExactLinearIntegrator final : public SteppingIntegrator {
     return s;
   }
 
-  // Each quadrature's gradient and Hessian by polarisation on unit probes (exact for a quadratic;
-  // the state is in SI units): m (m + 3) / 2 right-hand sides.
+  // Each quadrature's gradient and Hessian by polarisation on probes (exact for a quadratic): m (m
+  // + 3) / 2 right-hand sides. A probe is at least the entry's own size: unit probes on a state far
+  // larger than 1 took the Hessian from differences of nearly equal ledger rates, off by their
+  // rounding (a drop sped up 1e4 times, its speeds 4e4 m/s, was refused as not quadratic); a probe
+  // larger than the state costs nothing on an exact quadratic.
   void quadratic_forms(Segment& s) {
     const Index m = static_cast<Index>(p_.size()), r = static_cast<Index>(q_.size());
     s.G = Matrix::Zero(r, m);
@@ -206,6 +209,8 @@ class ExactLinearIntegrator final : public SteppingIntegrator {
                       "every restart; m = {} entries is beyond its {}: use an adaptive integrator",
                       m, kMaxQuadratureStates));
     const Vector c = s.f0(q_);
+    Vector probe(m);
+    for (Index k = 0; k < m; ++k) probe[k] = std::max(1.0, std::abs(ya_[p_[k]]));
     auto at = [&](Index k, double dk, Index l, double dl) -> Vector {
       Vector y = ya_;
       y[p_[k]] += dk;
@@ -213,17 +218,22 @@ class ExactLinearIntegrator final : public SteppingIntegrator {
       return rhs_at(ta_, y)(q_);
     };
     for (Index k = 0; k < m; ++k) {
-      const Vector plus = at(k, 1.0, -1, 0), minus = at(k, -1.0, -1, 0);
-      s.G.col(k) = 0.5 * (plus - minus);
+      const double h = probe[k];
+      const Vector plus = at(k, h, -1, 0), minus = at(k, -h, -1, 0);
+      s.G.col(k) = 0.5 * (plus - minus) / h;
       for (Index i = 0; i < r; ++i)
-        s.H[static_cast<std::size_t>(i)](k, k) = 0.5 * (plus[i] + minus[i] - 2 * c[i]);
+        s.H[static_cast<std::size_t>(i)](k, k) = 0.5 * (plus[i] + minus[i] - 2 * c[i]) / (h * h);
     }
     for (Index k = 0; k < m; ++k)
       for (Index l = k + 1; l < m; ++l) {
-        const Vector both = at(k, 1.0, l, 1.0);
+        const double hk = probe[k], hl = probe[l];
+        const Vector both = at(k, hk, l, hl);
         for (Index i = 0; i < r; ++i) {
           Matrix& H = s.H[static_cast<std::size_t>(i)];
-          H(k, l) = H(l, k) = 0.5 * (both[i] - c[i] - s.G(i, k) - s.G(i, l) - H(k, k) - H(l, l));
+          H(k, l) = H(l, k) =
+              0.5 *
+              (both[i] - c[i] - s.G(i, k) * hk - s.G(i, l) * hl - H(k, k) * hk * hk - H(l, l) * hl * hl) /
+              (hk * hl);
         }
       }
   }
