@@ -9,6 +9,7 @@
 #include "contact_ode/models/ball_drop.hpp"
 #include "contact_ode/models/rigid/rigid_scenes.hpp"
 #include "contact_ode/models/scene_registry.hpp"
+#include "time_scaled.hpp"
 
 #include <gtest/gtest.h>
 
@@ -218,17 +219,7 @@ TEST(ImplicitSpring, ADropSpedUpOrSlowedDownIsTheSameMotion) {
     return solve(ball, {.name = "game-implicit-spring", .dt = kDt * s},
                  {.t_end = 3 * s, .sample_dt = 0.5 * s});
   };
-  const RunResult one = run(1.0);
-  ASSERT_TRUE(one.ok()) << one.message;
-  for (const double s : {1e-3, 1e-6, 1e3}) {
-    const RunResult r = run(s);
-    ASSERT_TRUE(r.ok()) << s << ": " << r.message;
-    ASSERT_EQ(r.samples.size(), one.samples.size()) << s;
-    for (std::size_t n = 0; n < one.samples.size(); ++n) {
-      EXPECT_NEAR(r.samples[n].y[0], one.samples[n].y[0], 1e-8) << s << " sample " << n;
-      EXPECT_NEAR(r.samples[n].y[1] * s, one.samples[n].y[1], 1e-8) << s << " sample " << n;
-    }
-  }
+  expect_the_same_motion_in_other_time_units(run, {1e-3, 1e-6, 1e3}, 1e-8);
 }
 
 // The implicit Euler spring keeps the LU of I - h J across iterations and steps (a chord method)
