@@ -94,8 +94,6 @@ TEST(ExactLinear, TheFreeSpringIsItsClosedForm) {
   }
 }
 
-// Newton's cradle with damped springs: momentum is conserved to rounding (internal forces only),
-// and E + D = E0 holds at every sample, whatever the tolerance-free steps were.
 // P1 scaled in time (g and k / m times 1 / s^2, the span s times: the same motion, velocities
 // 1 / s times) is the same motion, and its ledger closes, at every s: sped up 1e4 times its speeds
 // of 4e4 m/s made the ledger's Hessian, taken on unit probes, a difference of nearly equal rates,
@@ -119,6 +117,8 @@ TEST(ExactLinear, ADropSpedUpOrSlowedDownIsTheSameMotion) {
   });
 }
 
+// Newton's cradle with damped springs: momentum is conserved to rounding (internal forces only),
+// and E + D = E0 holds at every sample, whatever the tolerance-free steps were.
 TEST(ExactLinear, TheDampedCradleKeepsMomentumAndItsLedgerToRounding) {
   BallChainParams p;
   p.e = 0.7;
