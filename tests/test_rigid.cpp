@@ -10,6 +10,7 @@
 // k = 1/mu: a loss of mu (1 - e^2) v^2 / 2 with mu = m_a m_b / (m_a + m_b).
 // Tolerances: a handful of floating-point operations per quantity: 1e-13 relative.
 #include "contact_ode/models/rigid/rigid_resolution.hpp"
+#include "contact_ode/models/rigid/rigid_scene.hpp"
 
 #include <gtest/gtest.h>
 
@@ -208,5 +209,72 @@ TEST(RigidBody, BadPropertiesAreRefusedByName) {
     FAIL();
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("ball velocity: value 'inf'"), std::string::npos) << e.what();
+  }
+}
+
+// The fields a maker checks are public, so the scene checks them again: a shape set by hand, a
+// plane given a mass (its geometry is its normal and offset: it cannot move), a static body given a
+// velocity (its state has no derivatives: contacts would see a wall that moves and stays), an
+// inertia that is not symmetric positive definite (it is inverted). Each was taken without a word.
+TEST(RigidBody, ShapesPlanesInertiasAndStaticBodiesAreCheckedByName) {
+  const auto refused = [](const RigidBody& b, const std::string& what) {
+    try {
+      b.validate();
+      ADD_FAILURE() << "accepted: " << what;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+  };
+  RigidBody ball = RigidBody::sphere("ball", 1.0, 0.1, 1.0);
+  ball.shape = Sphere{-0.1};
+  refused(ball, "ball radius: value '-0.1'");
+  RigidBody box = RigidBody::cuboid("box", 1.0, Vec3(0.1, 0.2, 0.3), 1.0);
+  box.shape = Cuboid{Vec3(0.1, std::nan(""), 0.3)};
+  refused(box, "box half extent: value 'nan'");
+  box = RigidBody::cuboid("box", 1.0, Vec3(0.1, 0.2, 0.3), 1.0);
+  box.inverse_inertia(0, 1) = 1.0;
+  refused(box, "box inverse inertia asymmetry: value '1'");
+  box.inverse_inertia(1, 0) = 1.0e3;
+  box.inverse_inertia(0, 1) = 1.0e3;  // symmetric, indefinite
+  refused(box, "box inverse inertia's smallest eigenvalue");
+  RigidBody floor = RigidBody::plane("floor", Vec3(0, 0, 2), 0.0, 1.0);
+  EXPECT_NO_THROW(floor.validate());  // the maker normalises
+  floor.inverse_mass = 1.0;
+  refused(floor, "floor inverse mass (a plane): value '1'");
+  floor.inverse_mass = 0.0;
+  floor.shape = Plane{Vec3(0, 0, 2), 0.0};
+  refused(floor, "floor plane normal length: value '2'");
+  RigidBody wall = RigidBody::sphere("wall", 1.0, 0.1, 1.0);
+  wall.inverse_mass = 0;
+  EXPECT_NO_THROW(wall.validate());
+  wall.velocity = Vec3(0, 3, 4);
+  refused(wall, "wall speed (infinite mass): value '5'");
+  wall.velocity.setZero();
+  wall.angular_velocity = Vec3(0, 0, 2);
+  refused(wall, "wall angular speed (infinite mass): value '2'");
+}
+
+// Two cuboids have no contact model: such a pair passed through each other without a word. A
+// gravity that is not finite made every state NaN.
+TEST(RigidBody, AScenesPairsAndGravityAreCheckedByName) {
+  RigidBody a = RigidBody::cuboid("crate", 1.0, Vec3(0.1, 0.1, 0.1), 1.0),
+            b = RigidBody::aabb("shelf", 1.0, Vec3(0.5, 0.1, 0.1), 1.0);
+  b.position = Vec3(0, 0, -1);
+  try {
+    RigidScene("crates", {a, b}, Vec3(0, 0, -9.81), Hooke{1e6});
+    ADD_FAILURE() << "two cuboids accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("bodies 'crate' and 'shelf'"), std::string::npos) << e.what();
+  }
+  b.inverse_mass = 0;  // one static: the crate still falls through it
+  EXPECT_THROW(RigidScene("crates", {a, b}, Vec3(0, 0, -9.81), Hooke{1e6}), std::invalid_argument);
+  a.inverse_mass = 0;  // both static: they never meet
+  EXPECT_EQ(RigidScene("crates", {a, b}, Vec3(0, 0, -9.81), Hooke{1e6}).contact_count(), 0u);
+  try {
+    RigidScene("crates", {a, b}, Vec3(0, 0, std::numeric_limits<double>::infinity()), Hooke{1e6});
+    ADD_FAILURE() << "an infinite gravity accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("scene 'crates' gravity: value 'inf'"), std::string::npos)
+        << e.what();
   }
 }

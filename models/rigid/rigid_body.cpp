@@ -15,6 +15,23 @@ void require(bool ok, const std::string& what, double value, const std::string& 
         fmt::format("{}: value '{}' is out of range; accepted range {}", what, value, range));
 }
 
+void validate_shape(const RigidBody& b) {
+  if (const auto* s = std::get_if<Sphere>(&b.shape))
+    require(std::isfinite(s->radius) && s->radius > 0, b.name + " radius", s->radius, "(0, inf)");
+  if (const auto* c = std::get_if<Cuboid>(&b.shape))
+    for (int i = 0; i < 3; ++i)
+      require(std::isfinite(c->half_extents[i]) && c->half_extents[i] > 0, b.name + " half extent",
+              c->half_extents[i], "(0, inf)");
+  if (const auto* p = std::get_if<Plane>(&b.shape)) {
+    // Its geometry is its normal and offset, not the body's position: a plane cannot move.
+    require(b.inverse_mass == 0, b.name + " inverse mass (a plane)", b.inverse_mass, "0: a plane is static");
+    const double length = p->normal.norm();
+    require(p->normal.allFinite() && std::abs(length - 1) <= 1e-12, b.name + " plane normal length", length,
+            "1 (a unit vector, to 1e-12; RigidBody::plane normalises)");
+    require(std::isfinite(p->offset), b.name + " plane offset", p->offset, "finite values");
+  }
+}
+
 }  // namespace
 
 RigidBody RigidBody::sphere(std::string name, double mass, double radius, double elasticity) {
@@ -57,8 +74,11 @@ RigidBody RigidBody::plane(std::string name, const Vec3& normal, double offset, 
 }
 
 bool RigidBody::rotates() const {
+  // Infinite mass is the tutorial's static object, which turns no more than it moves: the sphere and
+  // cuboid makers give every body an inertia, and one made static by its inverse mass alone kept it
+  // (a static box hit off its centre took up a turn it never made and a third of the ball's bounce).
   const auto* c = std::get_if<Cuboid>(&shape);
-  return !(c && c->axis_aligned) && !inverse_inertia.isZero(0);
+  return inverse_mass > 0 && !(c && c->axis_aligned) && !inverse_inertia.isZero(0);
 }
 
 Mat3 RigidBody::world_inverse_inertia() const {
@@ -94,6 +114,30 @@ void RigidBody::validate() const {
   require_finite(position, "position");
   require_finite(velocity, "velocity");
   require_finite(angular_velocity, "angular velocity");
+  validate_shape(*this);
+  for (Eigen::Index i = 0; i < 9; ++i)
+    require(std::isfinite(inverse_inertia(i)), name + " inverse inertia", inverse_inertia(i),
+            "finite values");
+  // A turning body's inertia is inverted (its angular momentum): symmetric positive definite, or zero
+  // for a body that does not turn.
+  if (rotates()) {
+    const double size = inverse_inertia.cwiseAbs().maxCoeff();
+    const double asymmetry = (inverse_inertia - inverse_inertia.transpose()).cwiseAbs().maxCoeff();
+    require(asymmetry <= 1e-12 * size, name + " inverse inertia asymmetry", asymmetry,
+            "0 (a symmetric matrix, to 1e-12 of its largest entry)");
+    const double lowest =
+        Eigen::SelfAdjointEigenSolver<Mat3>(inverse_inertia, Eigen::EigenvaluesOnly).eigenvalues()[0];
+    require(lowest > 0, name + " inverse inertia's smallest eigenvalue", lowest,
+            "(0, inf), or the zero matrix for a body that does not turn");
+  }
+  // Infinite mass never moves (its state has no derivatives), so a velocity would be one it does not
+  // have: contacts would see a wall that moves and stays.
+  if (inverse_mass == 0) {
+    require(velocity.isZero(0), name + " speed (infinite mass)", velocity.norm(),
+            "0: a static body never moves");
+    require(angular_velocity.isZero(0), name + " angular speed (infinite mass)", angular_velocity.norm(),
+            "0: a static body never turns");
+  }
 }
 
 }  // namespace contact::rigid

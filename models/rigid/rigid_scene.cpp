@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <stdexcept>
 #include <tuple>
 
@@ -11,6 +12,11 @@ namespace contact::rigid {
 
 RigidScene::RigidScene(std::string name, std::vector<RigidBody> bodies, Vec3 gravity, LawForPair law_for)
     : name_(std::move(name)), bodies_(std::move(bodies)), gravity_(std::move(gravity)) {
+  for (int i = 0; i < 3; ++i)
+    if (!std::isfinite(gravity_[i]))
+      throw std::invalid_argument(
+          fmt::format("scene '{}' gravity: value '{}' is out of range; accepted range finite values", name_,
+                      gravity_[i]));
   for (auto& b : bodies_) {
     b.validate();
     b.orientation.normalize();
@@ -19,6 +25,12 @@ RigidScene::RigidScene(std::string name, std::vector<RigidBody> bodies, Vec3 gra
     for (std::size_t b = a + 1; b < bodies_.size(); ++b) {
       const double inv = bodies_[a].inverse_mass + bodies_[b].inverse_mass;
       if (inv == 0) continue;  // two static bodies
+      // A pair without a contact model would pass through each other without a word.
+      if (candidate_count(bodies_[a], bodies_[b]) == 0)
+        throw std::invalid_argument(fmt::format(
+            "bodies '{}' and '{}': no contact between two cuboids is modelled (a pair needs a sphere, or "
+            "a cuboid and a plane)",
+            bodies_[a].name, bodies_[b].name));
       const ContactLaw law = law_for(pair_restitution(bodies_[a], bodies_[b]), 1.0 / inv);
       for (std::size_t k = 0; k < candidate_count(bodies_[a], bodies_[b]); ++k)
         candidates_.push_back({a, b, k, law});

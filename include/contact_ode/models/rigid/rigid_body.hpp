@@ -1,6 +1,6 @@
 #pragma once
 // Rigid bodies for the 3D scenes, in the tutorial's terms: inverse mass (0: infinite mass, a body
-// that never moves), inverse inertia tensor in the body frame (world: R I^-1 R^T), elasticity (a
+// that neither moves nor turns), inverse inertia tensor in the body frame (world: R I^-1 R^T), elasticity (a
 // pair's restitution is the product of the two), position, unit orientation quaternion, linear
 // and angular velocity (world frame).
 // Shapes: sphere, cuboid (an oriented box), axis-aligned box (never rotates: its inverse inertia
@@ -56,7 +56,9 @@ struct RigidBody {
   Vec3 momentum() const;                           // m v (zero for infinite mass)
   Vec3 angular_momentum(const Vec3& about) const;  // (x - about) x m v + I w
 
-  // Throws std::invalid_argument naming the field, the value and the accepted range.
+  // Throws std::invalid_argument naming the field, the value and the accepted range: shape
+  // dimensions, a static plane of unit normal, a finite inverse inertia (symmetric positive definite
+  // where the body turns), and a body of infinite mass at rest.
   void validate() const;
 };
 
