@@ -172,8 +172,19 @@ std::string read_text(const std::filesystem::path& path) {
   return s.str();
 }
 
-int guarded_main(const char* name, int argc, char** argv, int (*body)(int, char**)) {
-  install_interrupt_handlers();
+namespace {
+
+// The report a program prints must reach its reader: stdout is flushed at exit, so to a full disk
+// the report was cut short and the program still exited 0.
+int report_written(const char* name) {
+  errno = 0;
+  if (std::fflush(stdout) == 0 && std::ferror(stdout) == 0) return 0;
+  fmt::print(stderr, "{}: cannot write its report to standard output: {}\n", name,
+             errno != 0 ? std::strerror(errno) : "a write failed");
+  return cli::kExitFailure;
+}
+
+int run_body(const char* name, int argc, char** argv, int (*body)(int, char**)) {
   try {
     return body(argc, argv);
   } catch (const Interrupted&) {
@@ -191,6 +202,14 @@ int guarded_main(const char* name, int argc, char** argv, int (*body)(int, char*
     fmt::print(stderr, "{}: unknown error\n", name);
     return cli::kExitFailure;
   }
+}
+
+}  // namespace
+
+int guarded_main(const char* name, int argc, char** argv, int (*body)(int, char**)) {
+  install_interrupt_handlers();
+  const int code = run_body(name, argc, argv, body);
+  return code != 0 ? code : report_written(name);
 }
 
 std::string first_line_of(const std::string& command) {

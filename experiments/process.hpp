@@ -47,7 +47,8 @@ std::string first_line_of(const std::string& command);
 
 // main() for every executable: installs the handlers and runs `body`; bad input it throws as
 // std::invalid_argument is exit 2, any other exception exit 1, an interrupt 130, each with one
-// line on stderr naming the program. No exception escapes.
+// line on stderr naming the program, and a report that could not be written to stdout (a full
+// disk) exit 1. No exception escapes.
 int guarded_main(const char* name, int argc, char** argv, int (*body)(int, char**));
 
 }  // namespace contact

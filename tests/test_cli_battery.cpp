@@ -126,3 +126,21 @@ TEST_F(CliBattery, EveryDefaultShownIsAValueItsOptionAccepts) {
   }
   EXPECT_GE(checked, 80u);  // the programs' tolerances, steps, stiffnesses, counts: 87 when written
 }
+
+// A report cut short is a failure: written to a full disk (/dev/full), every program's help and
+// tables were lost and it exited 0, stdout being flushed only at exit. Now exit 1 and a line on
+// stderr; a run's results folder is still written whole (only the report was lost).
+TEST_F(CliBattery, AReportThatCannotBeWrittenIsAFailure) {
+  if (!fs::exists("/dev/full")) GTEST_SKIP() << "this system has no /dev/full";
+  const std::string to_full_disk = "sh -c 'exec \"$0\" \"$@\" >/dev/full'";
+  for (const auto& exe : executables()) {
+    const Outcome r = run(path(exe), "--help", to_full_disk);
+    EXPECT_EQ(r.code, 1) << exe << ": " << r.err;
+    EXPECT_NE(r.err.find(exe + ": cannot write its report to standard output"), std::string::npos)
+        << exe << ": " << r.err;
+  }
+  const Outcome run_to_full_disk = run(path("zeno"), "--t-end 1 --out results", to_full_disk);
+  EXPECT_EQ(run_to_full_disk.code, 1) << run_to_full_disk.err;
+  EXPECT_TRUE(fs::exists(dir_ / "results" / "meta.json"));
+  EXPECT_EQ(run(path("zeno"), "--t-end 1 --out results").code, 0);  // and without the full disk, 0
+}
