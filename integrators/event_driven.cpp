@@ -38,6 +38,34 @@ class Impacts {
 
   const ContactModes& modes() const { return modes_; }
   bool resting(std::size_t i) const { return modes_[i] == ContactMode::Resting; }
+  // A resting contact whose bodies part (driven apart by an impulse, or the gap opened past the
+  // flight's resolution) flies free again, from the surface: left sunk by the flight's error, a
+  // later approach would find its gap already closed and locate no impact.
+  void leave_rest(std::size_t i, VectorRef y) {
+    modes_[i] = ContactMode::Free;
+    const double before = rec_.energy(y);
+    model_.project(i, y);
+    rec_.add_dissipated(before - rec_.energy(y));
+  }
+  // A resting contact that the flight's error let sink into its support (a ball sliding over a
+  // dome: the support holds the gap's second derivative, not the gap) is put back on the surface,
+  // an approach removed and the change booked. Not a leaving rate: near where the support lets go
+  // the bodies part slowly, and removing it held the ball on the dome past that point.
+  void resettle(std::size_t i, VectorRef y) {
+    const double before = rec_.energy(y);
+    if (model_.gap_rate(i, y) < 0)
+      model_.settle(i, y);
+    else
+      model_.project(i, y);
+    rec_.add_dissipated(before - rec_.energy(y));
+  }
+  // How far a resting contact's gap may stray by the flight's error: 100 times what its positions
+  // resolve, atol + rtol |x|. A gap is a difference of positions, so at 1 m from the origin and
+  // rtol 1e-8 it is known to 1e-8 m, 100 atol: thresholds at that size fired on the error alone.
+  double held_resolution(ConstVectorRef y) const {
+    return 100 * (opt_.integrator.atol +
+                  opt_.integrator.rtol * velocities_.select(0.0, y.array().abs()).maxCoeff());
+  }
   long count() const { return count_; }
 
   // Contact i's gap closed at t: log it, project onto the surface, apply the impulse, and put
@@ -201,6 +229,12 @@ class Impacts {
         }
       }
     }
+    // An impulse that drives a resting contact apart (a ball at rest on the floor struck below its
+    // centre) lifts the body off its support. Left at rest, the support went on taking its weight:
+    // the ball rose at its lifted speed without slowing, and the ledger ended at 2.6 times the
+    // scene's energy.
+    for (std::size_t j = 0; j < model_.contact_count(); ++j)
+      if (resting(j) && model_.gap_rate(j, x) > opt_.rest_speed) leave_rest(j, y);
   }
 
  private:
@@ -283,32 +317,52 @@ RunResult run_event_driven(const MechanicalSystem& model, const EventOptions& op
 
   OdeSystem sys =
       mechanical_ode(model, [&](ConstVectorRef) -> const ContactModes& { return impacts.modes(); });
-  // Per contact: the gap (impact) and the gap rate (apex), both on falling zeros only. A
-  // resting contact's functions are held at 1 so they never fire.
+  // Per contact: the gap (impact) and the gap rate (apex), both on falling zeros only. A resting
+  // contact's are its gap against the flight's resolution (held_resolution): the first fires when
+  // a body its support holds has sunk half of it into the support, the second when the bodies
+  // have parted by all of it (a ball that a curved support lets go of). Both held at 1, such a
+  // ball flew on with the support still taking its weight, and one sliding on sank by the flight's
+  // error until the run ended. Parting is read off the gap, not its rate, which parts by the
+  // flight's error too. Moving bodies marked at rest are not held (holds_at_rest): pressing on,
+  // they end the run at a sample (below), as before.
   sys.root_count = 2 * nc;
   std::vector<double> gaps(nc), rates(nc);
   sys.roots = [&](double, ConstVectorRef y, VectorRef g) {
     model.gaps_and_rates(y, gaps, rates);
+    double resolution = -1;  // taken once, and only where a contact rests
     for (std::size_t i = 0; i < nc; ++i) {
-      const bool rest = impacts.resting(i);
-      // Touching but not yet approaching still counts as apart (see kTouchOffset).
-      g[static_cast<Eigen::Index>(2 * i)] = rest ? 1.0 : gaps[i] + kTouchOffset;
-      g[static_cast<Eigen::Index>(2 * i + 1)] = rest ? 1.0 : rates[i];
+      const auto at = static_cast<Eigen::Index>(2 * i);
+      if (impacts.resting(i)) {
+        if (resolution < 0) resolution = impacts.held_resolution(y);
+        g[at] = model.holds_at_rest(i) ? gaps[i] + resolution / 2 : 1.0;
+        g[at + 1] = resolution - gaps[i];
+        continue;
+      }
+      g[at] = gaps[i] + kTouchOffset;  // touching but not yet approaching still counts as apart
+      g[at + 1] = rates[i];
     }
   };
   EventHandling drive;
   drive.root_directions.assign(2 * nc, -1);
   drive.on_roots = [&](double t, Vector& y, const std::vector<int>& roots) {
-    bool impact = false;
+    bool impact = false, rest_changed = false;
     for (std::size_t k = 0; k < nc; ++k) {
       const std::size_t i = opt.reverse_order ? nc - 1 - k : k;
-      if (roots[2 * i + 1] != 0) rec.apex(i, t, model.gap(i, y), rec.energy(y));
-      if (roots[2 * i] != 0 && !impact) {
+      if (roots[2 * i + 1] != 0 && impacts.resting(i)) {
+        impacts.leave_rest(i, y);
+        rest_changed = true;
+      } else if (roots[2 * i + 1] != 0) {
+        rec.apex(i, t, model.gap(i, y), rec.energy(y));
+      }
+      if (roots[2 * i] != 0 && impacts.resting(i)) {
+        impacts.resettle(i, y);
+        rest_changed = true;
+      } else if (roots[2 * i] != 0 && !impact) {
         impacts.resolve_from(i, t, y);
         impact = true;
       }
     }
-    return impact;
+    return impact || rest_changed;
   };
   // Bodies that leave a plastic impact together and go on pressing into each other (a ball that
   // strikes a free cuboid off its centre, e = 0: the cuboid turns away under the contact point)
@@ -316,11 +370,14 @@ RunResult run_event_driven(const MechanicalSystem& model, const EventOptions& op
   // passed into the cuboid and the run ended 'success', its energy (the overlap's spring) 700 times
   // the initial (the contact had been put at rest: the cuboid's turn pushes the gap down, but
   // nothing holds a free body). Impulses do not model a sustained contact between free bodies; a
-  // sample that finds an overlap beyond the flight's resolution (100 atol) ends the run.
+  // sample that finds an overlap beyond the flight's resolution (100 atol; a resting contact's own,
+  // held_resolution) ends the run.
   const double overlap_limit = 100 * opt.integrator.atol;
   drive.sample = [&](double t, ConstVectorRef y) {
     for (std::size_t i = 0; i < nc; ++i) {
-      if (model.gap(i, y) >= -overlap_limit) continue;
+      const bool held = impacts.resting(i) && model.holds_at_rest(i);
+      const double limit = held ? impacts.held_resolution(y) : overlap_limit;
+      if (model.gap(i, y) >= -limit) continue;
       if (t == 0.0)  // a scene whose bodies start inside each other (a large radius)
         throw SolverFailure(Status::Unresolved, t,
                             fmt::format("contact {} overlaps by {:.3g} m at the start: impulses need the "

@@ -134,12 +134,21 @@ double RigidScene::dissipated_power(std::size_t i, ConstVectorRef y) const {
 void RigidScene::rhs(double, ConstVectorRef y, const ContactModes& modes, VectorRef ydot) const {
   const auto bodies = bodies_at(y);
   std::vector<Vec3> force(bodies.size(), Vec3::Zero()), torque(bodies.size(), Vec3::Zero());
-  std::vector<Vec3> held(bodies.size(), Vec3::Zero());  // resting normals of bodies on static ones
+  // Bodies resting on static ones: the direction into the support, and how fast it turns along the
+  // body's motion (h' . v).
+  std::vector<Vec3> held(bodies.size(), Vec3::Zero());
+  std::vector<double> turn(bodies.size(), 0.0);
   for (std::size_t i = 0; i < candidates_.size(); ++i) {
     if (modes[i] == ContactMode::Resting) {
       const RigidContact c = contact(i, bodies);
-      if (bodies[c.b].inverse_mass == 0) held[c.a] = c.normal;   // a rests on b: cannot move along +n
-      if (bodies[c.a].inverse_mass == 0) held[c.b] = -c.normal;  // b rests on a: cannot move along -n
+      if (bodies[c.b].inverse_mass == 0) {  // a rests on b: cannot move along +n
+        held[c.a] = c.normal;
+        turn[c.a] = support_turn(i, bodies, c.a);
+      }
+      if (bodies[c.a].inverse_mass == 0) {  // b rests on a: cannot move along -n
+        held[c.b] = -c.normal;
+        turn[c.b] = -support_turn(i, bodies, c.b);
+      }
     }
     if (modes[i] != ContactMode::Penalty) continue;
     const RigidContact c = contact(i, bodies);
@@ -157,9 +166,13 @@ void RigidScene::rhs(double, ConstVectorRef y, const ContactModes& modes, Vector
     auto d = ydot.segment(static_cast<Eigen::Index>(i) * kStride, kStride);
     d.segment<3>(0) = b.velocity;
     d.segment<3>(7) = gravity_ + b.inverse_mass * force[i];
-    // Resting on a static body (event-driven rest): the push into it is held by the support.
-    if (!held[i].isZero(0) && d.segment<3>(7).dot(held[i]) > 0)
-      d.segment<3>(7) -= d.segment<3>(7).dot(held[i]) * held[i];
+    // Resting on a static body (event-driven rest): the support holds the gap's second derivative,
+    // -(h . a + h' . v), at zero while that takes a push. On a flat support that removes the push
+    // into it; on a curved one the support also bends the path (a ball sliding over a dome), and
+    // lets go where gravity no longer supplies the bend (the dome's cos = 2/3 cos0). Without the
+    // turn a ball slid off the dome along its tangent, pushed away by a support it had left.
+    const double push = d.segment<3>(7).dot(held[i]) + turn[i];
+    if (!held[i].isZero(0) && push > 0) d.segment<3>(7) -= push * held[i];
     if (!b.rotates()) continue;
     // q' = (1/2) (0, w) q for the stored (possibly not quite unit) q.
     const auto s = y.segment(static_cast<Eigen::Index>(i) * kStride, kStride);
@@ -170,6 +183,24 @@ void RigidScene::rhs(double, ConstVectorRef y, const ContactModes& modes, Vector
     const Vec3 L = Iinv.inverse() * b.angular_velocity;
     d.segment<3>(10) = Iinv * (torque[i] - b.angular_velocity.cross(L));
   }
+}
+
+double RigidScene::support_turn(std::size_t i, const std::vector<RigidBody>& bodies, std::size_t j) const {
+  const Candidate& c = candidates_[i];
+  if (std::holds_alternative<Plane>(bodies[c.a == j ? c.b : c.a].shape)) return 0.0;  // a flat support
+  std::array<RigidBody, 2> pair{bodies[c.a], bodies[c.b]};
+  RigidBody& moving = pair[c.a == j ? 0 : 1];
+  const Vec3 x = moving.position, v = moving.velocity;
+  // A central difference along the path, a millionth of the body's reach to its contact point (a
+  // sphere's radius): the normal turns over the support's radius of curvature, which is no shorter.
+  const double reach = (x - contact_candidate(pair, 0, 1, c.k).point).norm();
+  if (v.isZero(0) || !(reach > 0)) return 0.0;
+  const double ds = 1e-6 * reach / v.norm();
+  const auto normal_at = [&](double s) {
+    moving.position = x + s * v;
+    return contact_candidate(pair, 0, 1, c.k).normal;
+  };
+  return (normal_at(ds) - normal_at(-ds)).dot(v) / (2 * ds);
 }
 
 void RigidScene::jacobian(double, ConstVectorRef, const ContactModes&, SparseMatrix&) const {
@@ -233,6 +264,10 @@ void RigidScene::apply_normal_displacement(std::size_t i, double dlambda, Vector
   Local l = local(i, y);
   rigid::apply_normal_displacement(l.bodies, l.contact, dlambda);
   store_local(i, l, y);
+}
+
+bool RigidScene::holds_at_rest(std::size_t i) const {
+  return bodies_[candidates_[i].a].inverse_mass == 0 || bodies_[candidates_[i].b].inverse_mass == 0;
 }
 
 void RigidScene::settle(std::size_t i, VectorRef y) const {

@@ -27,6 +27,11 @@
 // A contact that starts closed (gap <= 0), still (|gap rate| <= rest_speed) and pushed together by
 // the flight (the gap's acceleration < 0, with the contacts below it already held) starts at rest:
 // a ball released on the floor, a resting column.
+// A resting contact flies free again when an impulse drives it apart faster than rest_speed (a
+// ball at rest struck from below its centre) or its gap opens past the flight's resolution, 100
+// (atol + rtol |x|) (a ball that a curved support lets go of: the model holds a resting body as a
+// support would); one its support holds (holds_at_rest) that the flight's error sinks half of
+// that into the support is put back on its surface.
 // The rest guards cost at most 2 v_rest / (g (1 - e)) of Zeno time for a ball under gravity,
 // with v_rest the larger of rest_speed and sqrt(2 g rest_height).
 // A numerical flight resolves a bounce only if it rises well above its absolute tolerance, so its

@@ -63,6 +63,7 @@ class BallChain final : public OneLawSystem,
   void project(std::size_t i, VectorRef y) const override;
   double apply_impulse(std::size_t i, double e, VectorRef y) const override;
   void settle(std::size_t i, VectorRef y) const override;
+  bool holds_at_rest(std::size_t) const override { return false; }  // two moving balls (settle)
 
   // Ball i and i+1 take -lambda/m and +lambda/m: w = 2/m.
   double inverse_mass(std::size_t, ConstVectorRef) const override { return 2.0 / p_.m; }

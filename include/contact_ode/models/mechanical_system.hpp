@@ -144,6 +144,9 @@ class ImpulseMap {
   virtual double apply_impulse(std::size_t i, double e, VectorRef y) const = 0;
   // Put contact i at rest on its surface (gap 0, no normal velocity).
   virtual void settle(std::size_t i, VectorRef y) const = 0;
+  // Whether contact i at rest is held by the dynamics (a support: the floor, a static body), or
+  // only marked at rest while its bodies move as free (two moving bodies).
+  virtual bool holds_at_rest(std::size_t) const { return true; }
 };
 
 // A scene with unilateral contacts that every paradigm can run: dynamics, contact geometry and

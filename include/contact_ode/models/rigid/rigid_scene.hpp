@@ -9,9 +9,11 @@
 //   penalty: the contact law's force F(delta, delta_dot) pushes b along +n and a along -n at the
 //   contact point, with torques r x f on each.
 //   energy: kinetic + gravitational (-m g.x) + the springs' stored energy.
-//   resting (event-driven rest): a body resting on a static body loses the part of its
-//   acceleration that pushes into the support, as a support force would take it; resting between
-//   two moving bodies is not modelled (treated as free).
+//   resting (event-driven rest): a body resting on a static body is held on it as a support force
+//   would hold it: the gap's second derivative is held at zero while that takes a push (flat: the
+//   push into the support removed; curved: the path bent with it), and the support lets go where
+//   it would have to pull. Exact for a sphere; a resting cuboid's turn is not held. Resting
+//   between two moving bodies is not modelled (treated as free).
 // No analytic Jacobian (rotations make it long; implicit integrators use difference quotients,
 // which test_rigid_scene checks). The rotation uses q / |q|; normalize() restores unit
 // quaternions after fixed steps.
@@ -70,6 +72,7 @@ class RigidScene final : public MechanicalSystem, public NormalImpulses {
   void project(std::size_t i, VectorRef y) const override;
   double apply_impulse(std::size_t i, double e, VectorRef y) const override;
   void settle(std::size_t i, VectorRef y) const override;
+  bool holds_at_rest(std::size_t i) const override;
 
   double inverse_mass(std::size_t i, ConstVectorRef y) const override;
   void apply_normal_impulse(std::size_t i, double lambda, VectorRef y) const override;
@@ -95,6 +98,9 @@ class RigidScene final : public MechanicalSystem, public NormalImpulses {
   void store_local(std::size_t i, const Local& l, VectorRef y) const;
   RigidBody body_at(std::size_t j, ConstVectorRef y) const;
   void store_body(std::size_t j, const RigidBody& body, VectorRef y) const;
+  // How fast contact i's normal (from a to b) turns as body j moves along its velocity, n' . v:
+  // zero on a plane, |v_t|^2 / d for a sphere d from the centre of a static sphere.
+  double support_turn(std::size_t i, const std::vector<RigidBody>& bodies, std::size_t j) const;
 
   std::string name_;
   std::vector<RigidBody> bodies_;
