@@ -152,7 +152,8 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
     }
     for (std::size_t i = 0; i < nc; ++i) {
       report.push[i] = active[i] ? P[i] * normal.inverse_mass(i, y) : 0.0;
-      if (fresh[i]) report.dissipated += newton_loss(u0[i], law.restitution(i), normal.inverse_mass(i, y));
+      if (fresh[i])
+        report.dissipated += impact_loss(geo, normal, y, active, i, u0[i], law.restitution(i), P[i]);
     }
     // q+ = q + h ((1 - theta) v + theta v+): the positions advanced with the blended velocities.
     blended = (1 - m.theta) * v_old + m.theta * y;

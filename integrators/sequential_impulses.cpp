@@ -27,8 +27,8 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
   const std::size_t nc = scene.contact_count();
   // Without a threshold a resting contact bounces on gravity's g dt of every step.
   const double threshold = std::isnan(m.restitution_threshold) ? 0.2 : m.restitution_threshold;
-  std::vector<double> lambda(nc, 0.0), target(nc), bias(nc), push(nc), pseudo(nc), start(nc);
-  std::vector<bool> active(nc);
+  std::vector<double> lambda(nc, 0.0), target(nc), bias(nc), push(nc), pseudo(nc), start(nc), restitution(nc);
+  std::vector<bool> active(nc), fresh(nc);
   FreeMotion motion(scene);
   Vector ghost = Vector::Zero(static_cast<Eigen::Index>(scene.state_size()));
   auto step = [&](double t, double h, Vector& y, StepReport& report, SolverStats& stats) {
@@ -39,12 +39,12 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
     for (std::size_t i = 0; i < nc; ++i) {
       const bool was = active[i];
       active[i] = geo.gap(i, y) <= kContactMargin;
+      fresh[i] = active[i] && !was;
       if (!active[i] || !was || !m.warm_start) lambda[i] = 0;
       if (!active[i]) continue;
       const double approach = geo.gap_rate(i, y);
-      const double e = approach < -threshold ? law.restitution(i) : 0.0;
-      target[i] = -e * approach;
-      if (!was) report.dissipated += newton_loss(start[i], e, normal.inverse_mass(i, y));
+      restitution[i] = approach < -threshold ? law.restitution(i) : 0.0;
+      target[i] = -restitution[i] * approach;
       const double correction = m.erp / h * std::max(-geo.gap(i, y), 0.0);
       bias[i] = m.split_impulse ? 0.0 : correction;
       push[i] = m.split_impulse ? correction : 0.0;
@@ -57,7 +57,10 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
         accumulate_impulse(normal, i, (target[i] + bias[i] - geo.gap_rate(i, y)) / normal.inverse_mass(i, y),
                            lambda[i], y);
       }
-    stats.newton_iters += m.iterations;  // the solver's sweeps
+    stats.newton_iters += m.iterations;   // the solver's sweeps
+    for (std::size_t i = 0; i < nc; ++i)  // a fresh contact's impulse is all this step's (no warm start)
+      if (fresh[i])
+        report.dissipated += impact_loss(geo, normal, y, active, i, start[i], restitution[i], lambda[i]);
     for (std::size_t i = 0; i < nc; ++i)
       report.push[i] = active[i] ? lambda[i] * normal.inverse_mass(i, y) : 0.0;
     stats.rhs_evals += motion.advance_positions(t, h, y);

@@ -35,7 +35,7 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
   const ImpulseMap& law = impulse_map(scene, m.name);
   const std::size_t nc = scene.contact_count();
   const double threshold = std::isnan(m.restitution_threshold) ? 1.0 : m.restitution_threshold;
-  std::vector<double> lambda(nc, 0.0), max_lambda(nc), approach(nc);
+  std::vector<double> lambda(nc, 0.0), max_lambda(nc), approach(nc), total(nc);
   std::vector<bool> active(nc), fresh(nc);
   FreeMotion motion(scene);
   auto step = [&](double t, double dt, Vector& y, StepReport& report, SolverStats& stats) {
@@ -53,6 +53,7 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
       fresh[i] = active[i] && !was;
       approach[i] = u;
       max_lambda[i] = 0;
+      total[i] = 0;
     }
     // One velocity solve over the active contacts; with bias: soft push-out of overlaps; without:
     // rigid, only keeping contacts from approaching. Open gaps are allowed to close within h.
@@ -80,6 +81,7 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
       stats.rhs_evals += motion.advance_positions(t + k * h, h, y);
       solve(false);
       stats.newton_iters += 2;
+      for (std::size_t i = 0; i < nc; ++i) total[i] += lambda[i];  // the sub-step's impulse
     }
     // Restitution, and the ledger: Newton's loss for the approach the step began with, at e where
     // the pass bounces the contact and at 0 (inelastic) where it does not. What the soft push-out
@@ -88,13 +90,11 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
       report.push[i] = active[i] ? max_lambda[i] * normal.inverse_mass(i, y) : 0.0;
       if (!active[i] || max_lambda[i] == 0) continue;
       const bool bounce = approach[i] < -threshold;
-      if (fresh[i])
-        report.dissipated +=
-            newton_loss(approach[i], bounce ? law.restitution(i) : 0.0, normal.inverse_mass(i, y));
+      const double e = bounce ? law.restitution(i) : 0.0;
       if (bounce)
-        accumulate_impulse(
-            normal, i, -(geo.gap_rate(i, y) + law.restitution(i) * approach[i]) / normal.inverse_mass(i, y),
-            lambda[i], y);
+        total[i] += accumulate_impulse(
+            normal, i, -(geo.gap_rate(i, y) + e * approach[i]) / normal.inverse_mass(i, y), lambda[i], y);
+      if (fresh[i]) report.dissipated += impact_loss(geo, normal, y, active, i, approach[i], e, total[i]);
     }
   };
   return run_time_stepping(scene, m.name, m.dt, step, span, false);

@@ -36,6 +36,19 @@ void FreeMotion::copy_positions(const Vector& src, Vector& dst) const {
     if (positions_[j]) dst[j] = src[j];
 }
 
+double impact_loss(const ContactGeometry& geo, const NormalImpulses& normal, const Vector& y,
+                   const std::vector<bool>& active, std::size_t i, double u, double e, double P) {
+  if (!(u < 0)) return 0.0;
+  const double w = normal.inverse_mass(i, y);
+  // An impulse that moves contact i's rate by 1 m/s; the rates of contacts on other bodies do not
+  // move at all (their velocities are untouched).
+  Vector probe = y;
+  normal.apply_normal_impulse(i, 1.0 / w, probe);
+  for (std::size_t j = 0; j < active.size(); ++j)
+    if (j != i && active[j] && geo.gap_rate(j, probe) != geo.gap_rate(j, y)) return -0.5 * P * (1 - e) * u;
+  return newton_loss(u, e, w);
+}
+
 double accumulate_impulse(const NormalImpulses& normal, std::size_t i, double d, double& lambda, Vector& y) {
   const double updated = std::max(lambda + d, 0.0), change = updated - lambda;
   normal.apply_normal_impulse(i, change, y);

@@ -27,7 +27,7 @@ inline constexpr double kPushNoise = 1e-9;
 
 struct StepReport {
   // Energy the contact model removed during the step [J]: for impulses, Newton's loss
-  // (newton_loss) for the approach speed at the step's start; for springs, the dashpot's work.
+  // (impact_loss) for the approach speed at the step's start; for springs, the dashpot's work.
   double dissipated = 0;
   // How much each contact pushed during the step: the change of its gap rate its impulse made,
   // w lambda [m/s] (a spring method: 1 while its law acts). A contact is closed during a step in
@@ -43,6 +43,17 @@ struct StepReport {
 inline double newton_loss(double u, double e, double w) {
   return u < 0 ? 0.5 * (1 - e * e) * u * u / w : 0.0;
 }
+
+// Newton's loss at contact i, closed this step after approaching at u, under restitution e, its
+// impulse over the step P. Alone (no other active contact's gap rate moves under its impulse):
+// newton_loss, exactly. Sharing a body with other active contacts, their impulses end the approach
+// together and newton_loss, the contact's loss alone, is not theirs (a cradle's plastic strike
+// loses 80 % of the striker's energy, of which it counted 50 %): impulses that leave each contact
+// at -e u take -sum P_j (1 - e_j) u_j / 2 of kinetic energy, contact i's share -P (1 - e) u / 2 (a
+// resting neighbour, u = 0, adds none). P includes the support of the step's other forces over
+// the step, an error of g h / |u| in the loss.
+double impact_loss(const ContactGeometry& geo, const NormalImpulses& normal, const Vector& y,
+                   const std::vector<bool>& active, std::size_t i, double u, double e, double P);
 
 // Advances y by one step h; counts its work in stats; throws SolverFailure when it cannot.
 using StepFunction =
