@@ -99,7 +99,7 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
   const NormalImpulses& normal = normal_impulses(scene, m.name);
   const ImpulseMap& law = impulse_map(scene, m.name);
   const std::size_t nc = scene.contact_count();
-  std::vector<double> P(nc), u0(nc);
+  std::vector<double> P(nc), u0(nc), restitution(nc);
   std::vector<bool> active(nc), fresh(nc);
   FreeMotion motion(scene);
   Vector v_old, blended;
@@ -152,9 +152,9 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
     }
     for (std::size_t i = 0; i < nc; ++i) {
       report.push[i] = active[i] ? P[i] * normal.inverse_mass(i, y) : 0.0;
-      if (fresh[i])
-        report.dissipated += impact_loss(geo, normal, y, active, i, u0[i], law.restitution(i), P[i]);
+      restitution[i] = law.restitution(i);
     }
+    report.dissipated += impact_losses(geo, normal, y, active, fresh, u0, restitution, P);
     // q+ = q + h ((1 - theta) v + theta v+): the positions advanced with the blended velocities.
     blended = (1 - m.theta) * v_old + m.theta * y;
     stats.rhs_evals += motion.advance_positions(t, h, blended);

@@ -57,10 +57,9 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
         accumulate_impulse(normal, i, (target[i] + bias[i] - geo.gap_rate(i, y)) / normal.inverse_mass(i, y),
                            lambda[i], y);
       }
-    stats.newton_iters += m.iterations;   // the solver's sweeps
-    for (std::size_t i = 0; i < nc; ++i)  // a fresh contact's impulse is all this step's (no warm start)
-      if (fresh[i])
-        report.dissipated += impact_loss(geo, normal, y, active, i, start[i], restitution[i], lambda[i]);
+    stats.newton_iters += m.iterations;  // the solver's sweeps
+    // A fresh contact's accumulated impulse is all this step's (it had no warm start).
+    report.dissipated += impact_losses(geo, normal, y, active, fresh, start, restitution, lambda);
     for (std::size_t i = 0; i < nc; ++i)
       report.push[i] = active[i] ? lambda[i] * normal.inverse_mass(i, y) : 0.0;
     stats.rhs_evals += motion.advance_positions(t, h, y);

@@ -35,7 +35,7 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
   const ImpulseMap& law = impulse_map(scene, m.name);
   const std::size_t nc = scene.contact_count();
   const double threshold = std::isnan(m.restitution_threshold) ? 1.0 : m.restitution_threshold;
-  std::vector<double> lambda(nc, 0.0), max_lambda(nc), approach(nc), total(nc);
+  std::vector<double> lambda(nc, 0.0), max_lambda(nc), approach(nc), total(nc), restitution(nc);
   std::vector<bool> active(nc), fresh(nc);
   FreeMotion motion(scene);
   auto step = [&](double t, double dt, Vector& y, StepReport& report, SolverStats& stats) {
@@ -54,6 +54,7 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
       approach[i] = u;
       max_lambda[i] = 0;
       total[i] = 0;
+      restitution[i] = 0;
     }
     // One velocity solve over the active contacts; with bias: soft push-out of overlaps; without:
     // rigid, only keeping contacts from approaching. Open gaps are allowed to close within h.
@@ -88,14 +89,15 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
     // adds or removes besides is the method's drift.
     for (std::size_t i = 0; i < nc; ++i) {
       report.push[i] = active[i] ? max_lambda[i] * normal.inverse_mass(i, y) : 0.0;
+      fresh[i] = fresh[i] && max_lambda[i] > 0;  // a speculative contact that took no impulse did not close
       if (!active[i] || max_lambda[i] == 0) continue;
-      const bool bounce = approach[i] < -threshold;
-      const double e = bounce ? law.restitution(i) : 0.0;
-      if (bounce)
-        total[i] += accumulate_impulse(
-            normal, i, -(geo.gap_rate(i, y) + e * approach[i]) / normal.inverse_mass(i, y), lambda[i], y);
-      if (fresh[i]) report.dissipated += impact_loss(geo, normal, y, active, i, approach[i], e, total[i]);
+      if (approach[i] >= -threshold) continue;  // no bounce: inelastic
+      restitution[i] = law.restitution(i);
+      total[i] += accumulate_impulse(
+          normal, i, -(geo.gap_rate(i, y) + restitution[i] * approach[i]) / normal.inverse_mass(i, y),
+          lambda[i], y);
     }
+    report.dissipated += impact_losses(geo, normal, y, active, fresh, approach, restitution, total);
   };
   return run_time_stepping(scene, m.name, m.dt, step, span, false);
 }

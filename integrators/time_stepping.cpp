@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -36,17 +37,30 @@ void FreeMotion::copy_positions(const Vector& src, Vector& dst) const {
     if (positions_[j]) dst[j] = src[j];
 }
 
-double impact_loss(const ContactGeometry& geo, const NormalImpulses& normal, const Vector& y,
-                   const std::vector<bool>& active, std::size_t i, double u, double e, double P) {
-  if (!(u < 0)) return 0.0;
-  const double w = normal.inverse_mass(i, y);
-  // An impulse that moves contact i's rate by 1 m/s; the rates of contacts on other bodies do not
-  // move at all (their velocities are untouched).
-  Vector probe = y;
-  normal.apply_normal_impulse(i, 1.0 / w, probe);
-  for (std::size_t j = 0; j < active.size(); ++j)
-    if (j != i && active[j] && geo.gap_rate(j, probe) != geo.gap_rate(j, y)) return -0.5 * P * (1 - e) * u;
-  return newton_loss(u, e, w);
+double impact_losses(const ContactGeometry& geo, const NormalImpulses& normal, const Vector& y,
+                     const std::vector<bool>& active, const std::vector<bool>& fresh,
+                     std::span<const double> u, std::span<const double> e, std::span<const double> P) {
+  double loss = 0;
+  Vector probe;
+  std::vector<std::size_t> closed;
+  for (std::size_t i = 0; i < fresh.size(); ++i) {
+    if (!fresh[i] || !(u[i] < 0)) continue;
+    const double w = normal.inverse_mass(i, y);
+    if (closed.empty()) {  // once a step, and only in one where a contact approached as it closed
+      probe = y;
+      for (std::size_t j = 0; j < active.size(); ++j)
+        if (active[j]) closed.push_back(j);
+    }
+    // An impulse that moves contact i's rate by 1 m/s moves a contact that shares one of its bodies
+    // by as much, in general; one on other bodies by nothing but the probe's rounding.
+    normal.apply_normal_impulse(i, 1.0 / w, probe);
+    const bool shared = std::ranges::any_of(closed, [&](std::size_t j) {
+      return j != i && std::abs(geo.gap_rate(j, probe) - geo.gap_rate(j, y)) > 1e-9;
+    });
+    normal.apply_normal_impulse(i, -1.0 / w, probe);
+    loss += shared ? -0.5 * P[i] * (1 - e[i]) * u[i] : newton_loss(u[i], e[i], w);
+  }
+  return loss;
 }
 
 double accumulate_impulse(const NormalImpulses& normal, std::size_t i, double d, double& lambda, Vector& y) {
