@@ -1,8 +1,8 @@
 #pragma once
 // Rigid bodies for the 3D scenes, in the tutorial's terms: inverse mass (0: infinite mass, a body
-// that neither moves nor turns), inverse inertia tensor in the body frame (world: R I^-1 R^T), elasticity (a
-// pair's restitution is the product of the two), position, unit orientation quaternion, linear
-// and angular velocity (world frame).
+// that neither moves nor turns), inverse inertia tensor in the body frame (world: R I^-1 R^T),
+// elasticity (a pair's restitution is the product of the two), position, unit orientation
+// quaternion, linear and angular velocity (world frame).
 // Shapes: sphere, cuboid (an oriented box), axis-aligned box (never rotates: its inverse inertia
 // is zero and, as the tutorial does, its lever arms are taken as zero), static plane.
 #include <Eigen/Dense>
