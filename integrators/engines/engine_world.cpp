@@ -93,11 +93,36 @@ MethodInfo engine_method(std::string name, std::string description, bool springs
       refused = failure.what();
     }
     const ContactGeometry& geo = contact_geometry(scene);
+    const NormalImpulses& normal = normal_impulses(scene, "engine");
     const std::size_t nc = scene.contact_count();
-    std::vector<double> centre, velocity, impulse(nc, 0.0);
-    std::vector<bool> pushed = resting_at_start(scene);
+    std::vector<double> centre, velocity, impulse(nc, 0.0), approach(nc, 0.0);
+    std::vector<bool> pushed = resting_at_start(scene), closed(nc, false);
+    std::vector<std::size_t> fresh;  // contacts a time-stepping engine's step closed
+    Vector start, freed, at = scene.initial_state();  // at: the state at an impact
+    FreeMotion free(scene);
+    auto to_state = [&](const std::vector<double>& c, const std::vector<double>& v, Vector& y) {
+      for (std::size_t b = 0; b < c.size(); ++b) {
+        y[static_cast<Eigen::Index>(2 * b)] = c[b] - es.layout.rest_centre[b];
+        y[static_cast<Eigen::Index>(2 * b + 1)] = v[b];
+      }
+    };
+    // An event-driven engine's impacts, each booked as it happens: the contacts that take an
+    // impulse in it, at the rates they approached with.
+    double impacts_loss = 0;
+    const bool event_driven =
+        world && world->report_impacts([&](const std::vector<double>& c, const std::vector<double>& v,
+                                           const std::vector<double>& J) {
+          to_state(c, v, at);
+          for (std::size_t i = 0; i < nc; ++i) {
+            closed[i] = es.inverse_mass[i] * J[i] > kPushNoise;
+            approach[i] = geo.gap_rate(i, at);
+          }
+          impacts_loss += impact_losses(geo, normal, at, closed, closed, approach, es.restitution, J);
+        });
     auto step = [&](double t, double h, Vector& y, StepReport& report, SolverStats& stats) {
       if (!world) throw SolverFailure(Status::SolverError, t, refused);
+      start = y;
+      impacts_loss = 0;
       try {
         world->step(h);
       } catch (const EngineError& failure) {
@@ -105,10 +130,9 @@ MethodInfo engine_method(std::string name, std::string description, bool springs
       }
       world->read(centre, velocity);
       world->impulses(impulse);
-      for (std::size_t b = 0; b < centre.size(); ++b) {
-        y[static_cast<Eigen::Index>(2 * b)] = centre[b] - es.layout.rest_centre[b];
-        y[static_cast<Eigen::Index>(2 * b + 1)] = velocity[b];
-      }
+      to_state(centre, velocity, y);
+      report.dissipated += impacts_loss;
+      fresh.clear();
       for (std::size_t i = 0; i < nc; ++i) {
         report.push[i] = es.inverse_mass[i] * impulse[i];
         const bool pushes = report.push[i] > kPushNoise;
@@ -116,16 +140,26 @@ MethodInfo engine_method(std::string name, std::string description, bool springs
           // The scene's dashpot at the step's rate (the rectangle rule): its loss, not the engine's.
           const double rate = geo.gap_rate(i, y);
           report.dissipated += h * es.law[i].c * rate * rate;
-        } else if (!springs && pushes && !pushed[i]) {
-          // Newton's loss for the approach speed that the contact's first impulse J implies,
-          // J w / (1 + e): the speed at the impact itself for an event-driven engine, the
-          // step's for a time-stepping one.
-          const double e = es.restitution[i], w = es.inverse_mass[i];
-          report.dissipated += newton_loss(-impulse[i] * w / (1 + e), e, w);
+        } else if (!springs && !event_driven && pushes && !pushed[i]) {
+          fresh.push_back(i);
         }
+        closed[i] = pushes;
         pushed[i] = pushes;
       }
-      stats.rhs_evals += 1;  // one engine step
+      stats.rhs_evals += 1;  // one engine step (the ledger's work below is not the engine's)
+      if (fresh.empty()) return;
+      // A time-stepping engine's impacts: a contact alone loses Newton's loss for the approach
+      // speed its impulse J implies, J w / (1 + e) (the step's free motion included, as the engine
+      // saw it); contacts that share a body end the approach together, each losing its
+      // coupled_loss at the rate it would have had after the step's free motion.
+      SharedBodies shared(geo, normal, start, closed);
+      freed = start;
+      free.add_velocity(t, h, freed);
+      for (const std::size_t i : fresh) {
+        const double e = es.restitution[i], w = es.inverse_mass[i];
+        report.dissipated += shared(i) ? coupled_loss(geo.gap_rate(i, freed), e, impulse[i])
+                                       : newton_loss(-impulse[i] * w / (1 + e), e, w);
+      }
     };
     return run_time_stepping(scene, m.name, m.dt, step, span, springs);
   };

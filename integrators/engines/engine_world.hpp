@@ -47,6 +47,14 @@ class EngineWorld {
   virtual void read(std::vector<double>& centre, std::vector<double>& velocity) const = 0;
   // The normal impulse each contact applied during the last step [N s], >= 0.
   virtual void impulses(std::vector<double>& impulse) const = 0;
+  // An engine that resolves each impact at its instant (event-driven) hands `report` every impact of
+  // its later steps, with the spheres' centres and velocities just before it and each contact's
+  // impulse in it, and returns true: the impact's loss is booked from the impact itself. A
+  // time-stepping engine, whose step's impulses are its impacts, returns false.
+  using ImpactReport =
+      std::function<void(const std::vector<double>& centre, const std::vector<double>& velocity,
+                         const std::vector<double>& impulse)>;
+  virtual bool report_impacts(ImpactReport /*report*/) { return false; }
 };
 
 using EngineFactory = std::function<std::unique_ptr<EngineWorld>(const EngineScene&)>;

@@ -36,7 +36,8 @@ class SiconosWorld final : public EngineWorld {
 
   void step(double h) override {
     try {
-      line_.step(h, [](double t) { throw_if_stop_requested(t); });
+      line_.step(
+          h, [](double t) { throw_if_stop_requested(t); }, report_);
     } catch (const SolverFailure&) {
       throw;  // a stop request: the run ends interrupted
     } catch (const std::runtime_error& e) {
@@ -47,10 +48,15 @@ class SiconosWorld final : public EngineWorld {
     line_.read(centre, velocity);
   }
   void impulses(std::vector<double>& impulse) const override { line_.impulses(impulse); }
+  bool report_impacts(ImpactReport report) override {
+    report_ = std::move(report);
+    return true;
+  }
 
  private:
   std::lock_guard<std::mutex> one_world_at_a_time_{siconos_in_use()};  // first: held until line_ is gone
   SiconosLine line_;
+  ImpactReport report_;
 };
 
 }  // namespace

@@ -60,6 +60,7 @@ struct SiconosLine::State {
   SP::NonSmoothDynamicalSystem nsds;
   SP::EventDriven simulation;
   std::vector<double> impulse;
+  std::vector<double> centre_before, velocity_before, in_event;  // an event's, for the observer
 };
 
 SiconosLine::SiconosLine(const SiconosSpheres& sp) : s_(std::make_unique<State>()) {
@@ -135,6 +136,7 @@ SiconosLine::SiconosLine(const SiconosSpheres& sp) : s_(std::make_unique<State>(
     throw std::runtime_error("Siconos could not initialise the simulation: " + siconos_message());
   }
   s_->impulse.assign(sp.restitution.size(), 0.0);
+  s_->in_event.assign(sp.restitution.size(), 0.0);
 }
 
 // Siconos's topology graphs hold its systems, interactions and integrator in shared_ptr cycles:
@@ -147,7 +149,8 @@ SiconosLine::~SiconosLine() {
   }
 }
 
-void SiconosLine::step(double h, const std::function<void(double t)>& checkpoint) {
+void SiconosLine::step(double h, const std::function<void(double t)>& checkpoint,
+                       const ImpactObserver& at_impact) {
   EventDriven& sim = *s_->simulation;
   std::fill(s_->impulse.begin(), s_->impulse.end(), 0.0);
   const double start = sim.startingTime(), dt = s_->spheres.dt, target = start + h * (1 - 1e-9);
@@ -174,13 +177,18 @@ void SiconosLine::step(double h, const std::function<void(double t)>& checkpoint
                                  std::to_string(sim.startingTime()));
       const double t0 = sim.startingTime();
       sim.advanceToEvent();
+      if (at_impact) read(s_->centre_before, s_->velocity_before);  // an event changes no position
       sim.processEvents();
       const double held = sim.startingTime() - t0;
+      bool impact = false;
       for (std::size_t c = 0; c < s_->contacts.size(); ++c) {
         const Interaction& inter = *s_->contacts[c];
-        s_->impulse[c] += inter.lambda(1)->getValue(0);  // an impact's impulse, 0 otherwise
+        s_->in_event[c] = inter.lambda(1)->getValue(0);  // an impact's impulse, 0 otherwise
+        impact = impact || s_->in_event[c] > 0;
+        s_->impulse[c] += s_->in_event[c];
         if (inter.lambda(2)) s_->impulse[c] += inter.lambda(2)->getValue(0) * held;  // resting force
       }
+      if (impact && at_impact) at_impact(s_->centre_before, s_->velocity_before, s_->in_event);
       if (sim.startingTime() >= target) break;
       // A chatter Siconos does not end (a column of 1e-30 kg balls: an impact every 4e-11 s, 2.4e7
       // for a 1 ms step) ran into the bound above only after a minute, Ctrl-C unheard: judged at

@@ -36,7 +36,13 @@ class SiconosLine {
   // step); throws std::runtime_error with Siconos's message when it fails, or when more than a
   // million events fall in one step (judged after 1e4 of them by the time they covered).
   // `checkpoint` is called with the time reached every 1000 events; what it throws ends the step.
-  void step(double h, const std::function<void(double t)>& checkpoint = {});
+  // `at_impact` is called at each impact with the centres and velocities just before it and each
+  // contact's impulse in it [m], [m/s], [N s].
+  using ImpactObserver =
+      std::function<void(const std::vector<double>& centre, const std::vector<double>& velocity,
+                         const std::vector<double>& impulse)>;
+  void step(double h, const std::function<void(double t)>& checkpoint = {},
+            const ImpactObserver& at_impact = {});
   void read(std::vector<double>& centre, std::vector<double>& velocity) const;
   // Per contact over the last step: the impulses of its impacts plus its resting force times the
   // time it held [N s].
