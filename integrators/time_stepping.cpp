@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <optional>
 
 namespace contact {
 
@@ -38,35 +37,28 @@ void FreeMotion::copy_positions(const Vector& src, Vector& dst) const {
     if (positions_[j]) dst[j] = src[j];
 }
 
-SharedBodies::SharedBodies(const ContactGeometry& geo, const NormalImpulses& normal, const Vector& y,
-                           const std::vector<bool>& closed)
-    : geo_(geo), normal_(normal), y_(y), probe_(y) {
-  for (std::size_t j = 0; j < closed.size(); ++j)
-    if (closed[j]) closed_.push_back(j);
-}
-
-bool SharedBodies::operator()(std::size_t i) {
-  // An impulse that moves contact i's rate by 1 m/s moves a contact that shares one of its bodies
-  // by as much, in general; one on other bodies by nothing but the probe's rounding.
-  const double w = normal_.inverse_mass(i, y_);
-  normal_.apply_normal_impulse(i, 1.0 / w, probe_);
-  const bool shared = std::ranges::any_of(closed_, [&](std::size_t j) {
-    return j != i && std::abs(geo_.gap_rate(j, probe_) - geo_.gap_rate(j, y_)) > 1e-9;
-  });
-  normal_.apply_normal_impulse(i, -1.0 / w, probe_);
-  return shared;
-}
-
 double impact_losses(const ContactGeometry& geo, const NormalImpulses& normal, const Vector& y,
                      const std::vector<bool>& active, const std::vector<bool>& fresh,
                      std::span<const double> u, std::span<const double> e, std::span<const double> P) {
   double loss = 0;
-  std::optional<SharedBodies> shared;  // made once a step, and only in one where a contact approached
+  Vector probe;
+  std::vector<std::size_t> closed;
   for (std::size_t i = 0; i < fresh.size(); ++i) {
     if (!fresh[i] || !(u[i] < 0)) continue;
-    if (!shared) shared.emplace(geo, normal, y, active);
-    loss +=
-        (*shared)(i) ? coupled_loss(u[i], e[i], P[i]) : newton_loss(u[i], e[i], normal.inverse_mass(i, y));
+    const double w = normal.inverse_mass(i, y);
+    if (closed.empty()) {  // once a step, and only in one where a contact approached as it closed
+      probe = y;
+      for (std::size_t j = 0; j < active.size(); ++j)
+        if (active[j]) closed.push_back(j);
+    }
+    // An impulse that moves contact i's rate by 1 m/s moves a contact that shares one of its bodies
+    // by as much, in general; one on other bodies by nothing but the probe's rounding.
+    normal.apply_normal_impulse(i, 1.0 / w, probe);
+    const bool shared = std::ranges::any_of(closed, [&](std::size_t j) {
+      return j != i && std::abs(geo.gap_rate(j, probe) - geo.gap_rate(j, y)) > 1e-9;
+    });
+    normal.apply_normal_impulse(i, -1.0 / w, probe);
+    loss += shared ? -0.5 * P[i] * (1 - e[i]) * u[i] : newton_loss(u[i], e[i], w);
   }
   return loss;
 }

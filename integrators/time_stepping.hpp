@@ -45,34 +45,13 @@ inline double newton_loss(double u, double e, double w) {
   return u < 0 ? 0.5 * (1 - e * e) * u * u / w : 0.0;
 }
 
-// The share of a coupled impact's loss that falls to a contact that approached at u < 0 under
-// restitution e and took the impulse P: impulses that leave each contact of the impact at -e u
-// take -sum P_j (1 - e_j) u_j / 2 of kinetic energy (a resting neighbour, u = 0, adds none) [J].
-inline double coupled_loss(double u, double e, double P) { return u < 0 ? -0.5 * P * (1 - e) * u : 0.0; }
-
-// Which contacts share a body with another of the `closed` contacts at state y: an impulse on one
-// moves the other's gap rate. Holds a copy of y to probe with.
-class SharedBodies {
- public:
-  SharedBodies(const ContactGeometry& geo, const NormalImpulses& normal, const Vector& y,
-               const std::vector<bool>& closed);
-  // Whether contact i shares a body with another closed contact.
-  bool operator()(std::size_t i);
-
- private:
-  const ContactGeometry& geo_;
-  const NormalImpulses& normal_;
-  const Vector& y_;
-  Vector probe_;
-  std::vector<std::size_t> closed_;
-};
-
 // Newton's loss of the contacts that closed this step (`fresh`), contact i having approached at
 // u[i] under restitution e[i] and taken the impulse P[i] over the step. One alone (no other active
 // contact's gap rate moves under its impulse): newton_loss, exactly. Contacts that share a body end
 // the approach together, and newton_loss, a contact's loss alone, is not theirs (a plastic strike
-// on a row of touching balls loses 2/3 of the energy for three and counted 1/2): coupled_loss
-// each. P includes the support of the step's other forces, an error of
+// on a row of touching balls loses 2/3 of the energy for three and counted 1/2): impulses that
+// leave each contact at -e u take -sum P_j (1 - e_j) u_j / 2 of kinetic energy (a resting
+// neighbour, u = 0, adds none). P includes the support of the step's other forces, an error of
 // g h / |u| in the loss. Costs one copy of the state in a step where a contact closes.
 double impact_losses(const ContactGeometry& geo, const NormalImpulses& normal, const Vector& y,
                      const std::vector<bool>& active, const std::vector<bool>& fresh,

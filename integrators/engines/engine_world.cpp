@@ -96,10 +96,8 @@ MethodInfo engine_method(std::string name, std::string description, bool springs
     const NormalImpulses& normal = normal_impulses(scene, "engine");
     const std::size_t nc = scene.contact_count();
     std::vector<double> centre, velocity, impulse(nc, 0.0), approach(nc, 0.0);
-    std::vector<bool> pushed = resting_at_start(scene), closed(nc, false);
-    std::vector<std::size_t> fresh;  // contacts a time-stepping engine's step closed
-    Vector start, freed, at = scene.initial_state();  // at: the state at an impact
-    FreeMotion free(scene);
+    std::vector<bool> pushed = resting_at_start(scene), closed(nc, false), fresh(nc, false);
+    Vector start, at = scene.initial_state();  // at: the state at an impact
     auto to_state = [&](const std::vector<double>& c, const std::vector<double>& v, Vector& y) {
       for (std::size_t b = 0; b < c.size(); ++b) {
         y[static_cast<Eigen::Index>(2 * b)] = c[b] - es.layout.rest_centre[b];
@@ -132,7 +130,7 @@ MethodInfo engine_method(std::string name, std::string description, bool springs
       world->impulses(impulse);
       to_state(centre, velocity, y);
       report.dissipated += impacts_loss;
-      fresh.clear();
+      bool any_fresh = false;
       for (std::size_t i = 0; i < nc; ++i) {
         report.push[i] = es.inverse_mass[i] * impulse[i];
         const bool pushes = report.push[i] > kPushNoise;
@@ -140,26 +138,22 @@ MethodInfo engine_method(std::string name, std::string description, bool springs
           // The scene's dashpot at the step's rate (the rectangle rule): its loss, not the engine's.
           const double rate = geo.gap_rate(i, y);
           report.dissipated += h * es.law[i].c * rate * rate;
-        } else if (!springs && !event_driven && pushes && !pushed[i]) {
-          fresh.push_back(i);
         }
+        fresh[i] = !springs && !event_driven && pushes && !pushed[i];
+        any_fresh = any_fresh || fresh[i];
         closed[i] = pushes;
         pushed[i] = pushes;
       }
-      stats.rhs_evals += 1;  // one engine step (the ledger's work below is not the engine's)
-      if (fresh.empty()) return;
-      // A time-stepping engine's impacts: a contact alone loses Newton's loss for the approach
-      // speed its impulse J implies, J w / (1 + e) (the step's free motion included, as the engine
-      // saw it); contacts that share a body end the approach together, each losing its
-      // coupled_loss at the rate it would have had after the step's free motion.
-      SharedBodies shared(geo, normal, start, closed);
-      freed = start;
-      free.add_velocity(t, h, freed);
-      for (const std::size_t i : fresh) {
-        const double e = es.restitution[i], w = es.inverse_mass[i];
-        report.dissipated += shared(i) ? coupled_loss(geo.gap_rate(i, freed), e, impulse[i])
-                                       : newton_loss(-impulse[i] * w / (1 + e), e, w);
-      }
+      stats.rhs_evals += 1;  // one engine step
+      if (!any_fresh) return;
+      // A time-stepping engine's impacts, booked as the project's own time-stepping methods book
+      // theirs: Newton's loss at the gap rate the step began with, and the engine's impulses where
+      // contacts that share a body close together. Not at the speed an impulse J implies, J w /
+      // (1 + e): an engine's impulse also pushes out what its step let sink (ODE's ERP took the
+      // impulse of a plastic landing at 4.4 m/s to 5.3 N s, booking 14.5 J of a 9.8 J drop).
+      for (std::size_t i = 0; i < nc; ++i) approach[i] = geo.gap_rate(i, start);
+      report.dissipated +=
+          impact_losses(geo, normal, start, closed, fresh, approach, es.restitution, impulse);
     };
     return run_time_stepping(scene, m.name, m.dt, step, span, springs);
   };
