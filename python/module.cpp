@@ -189,10 +189,9 @@ RunResult run(const std::string& scene, const std::string& method, const std::st
   RunResult r;
   {
     // Other Python threads run meanwhile (a sweep over threads runs its solves side by side): the
-    // library keeps no shared state but the stop request. The engines keep the GIL: their own
-    // libraries' rules on threads are theirs (ODE's per-thread data, Siconos' globals).
-    std::optional<py::gil_scoped_release> others_run;
-    if (method_info(method).family != "engine") others_run.emplace();
+    // library keeps no shared state but the stop request, and the engines whose libraries keep
+    // process-wide state (ODE, Siconos) hold one world at a time themselves.
+    const py::gil_scoped_release others_run;
     r = solve(*model, m, span);
   }
   interruptible.hand_over();
