@@ -2,6 +2,7 @@
 
 #include "contact_ode/integrators/method_registry.hpp"
 
+#include "collision_list.hpp"
 #include "contact_ode/integrators/capabilities.hpp"
 #include "contact_ode/integrators/run_recorder.hpp"
 #include "time_stepping.hpp"
@@ -66,10 +67,7 @@ RunResult run_game(const Dynamics& model, const GameOptions& opt, const SolveOpt
     if (d_prev[i] > 0) rec.contact_begin(i, 0.0, geo.gap_rate(i, y));
   }
 
-  // The tutorial's collision list: frames left per listed contact, -1 when not listed.
-  std::vector<int> frames_left(nc, -1);
-  std::vector<bool> fresh(nc, false);
-  std::vector<CollisionEvent> batch;
+  CollisionList listed(nc, opt.persistence, opt.on_notifications);
   SolverStats stats;
   double t = 0.0;
   try {
@@ -124,8 +122,7 @@ RunResult run_game(const Dynamics& model, const GameOptions& opt, const SolveOpt
         }
         // 2. detect, 3. resolve
         if (d > 0) {
-          if (frames_left[i] < 0) fresh[i] = true;
-          frames_left[i] = opt.persistence;
+          listed.detected(i);
           // Detected again in the frame right after its record ended: the same contact goes on.
           if (!rec.contact_open(i) && !rec.reopen_contact(i, t0))
             rec.contact_begin(i, t0 + crossing(d_prev[i], d) * h, geo.gap_rate(i, y));
@@ -150,17 +147,7 @@ RunResult run_game(const Dynamics& model, const GameOptions& opt, const SolveOpt
         d_prev[i] = d_after;
       }
       // 4. notify: one batch, after the whole physics step.
-      batch.clear();
-      for (std::size_t i = 0; i < nc; ++i) {
-        if (frames_left[i] < 0) continue;
-        if (fresh[i]) batch.push_back({CollisionEvent::Kind::Begin, i, n, t});
-        fresh[i] = false;
-        if (--frames_left[i] < 0) batch.push_back({CollisionEvent::Kind::End, i, n, t});
-      }
-      if (!batch.empty()) {
-        rec.notify(batch);
-        if (opt.on_notifications) opt.on_notifications(batch);
-      }
+      listed.end_step(n, t, rec);
       if (t >= rec.next_sample_time() * (1 - 1e-12)) rec.sample(t, y);
     }
   } catch (const SolverFailure& failure) {

@@ -149,7 +149,7 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
         report.push[i] = 1.0;  // the law acts: the contact is engaged
       }
   };
-  return run_time_stepping(scene, m.name, m.dt, step, span, true);
+  return run_time_stepping(scene, m.name, m.dt, step, span, true, &m);
 }
 
 }  // namespace

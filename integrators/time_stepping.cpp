@@ -1,5 +1,7 @@
 #include "time_stepping.hpp"
 
+#include "collision_list.hpp"
+
 #include "contact_ode/integrators/capabilities.hpp"
 #include "contact_ode/integrators/status.hpp"
 
@@ -8,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace contact {
 
@@ -87,11 +90,14 @@ MethodInfo impulse_stepping_method(
 }
 
 RunResult run_time_stepping(const Dynamics& model, const std::string& method, double dt,
-                            const StepFunction& step, const SolveOptions& span, bool springs) {
+                            const StepFunction& step, const SolveOptions& span, bool springs,
+                            const Method* game) {
   const std::size_t nc = model.contact_count();
   const ContactGeometry& geo = contact_geometry(model);
   RunRecorder rec(model, method, span);
   if (!springs) rec.exclude_spring_energy();
+  std::optional<CollisionList> listed;
+  if (game) listed.emplace(nc, game->persistence, game->on_notifications);
   Vector y = model.initial_state(), y_prev = y;
   StepReport report{0.0, std::vector<double>(nc, 0.0)};
   SolverStats stats;
@@ -126,7 +132,9 @@ RunResult run_time_stepping(const Dynamics& model, const std::string& method, do
         if (touching && !rec.contact_open(i)) rec.contact_begin(i, t0, r0);
         if (touching) rec.observe_penetration(i, -geo.gap(i, y));
         if (!touching && rec.contact_open(i)) rec.contact_end(i, t0, r1);
+        if (touching && listed) listed->detected(i);
       }
+      if (listed) listed->end_step(n, t, rec);
       if (t >= rec.next_sample_time() * (1 - 1e-12)) rec.sample(t, y);
     }
   } catch (const SolverFailure& failure) {

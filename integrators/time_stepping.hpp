@@ -64,8 +64,11 @@ using StepFunction =
 // `springs`: whether the method's contacts are the scene's penalty springs (their elastic energy
 // counts); impulse methods pass false, and an overlap they leave holds no energy. The run's work
 // bound (steps times the method's MethodInfo::passes) solve() checks before it starts.
+// `game`: a game loop's method, whose persistence and on_notifications give the run the game
+// loops' notifications (collision_list.hpp), a contact detected in each step in which it is closed.
 RunResult run_time_stepping(const Dynamics& model, const std::string& method, double dt,
-                            const StepFunction& step, const SolveOptions& span, bool springs);
+                            const StepFunction& step, const SolveOptions& span, bool springs,
+                            const Method* game = nullptr);
 
 // Adds d to contact i's accumulated impulse `lambda`, clamped at >= 0 (a contact pushes, never
 // pulls), and applies what changed to the velocities. Returns the change [N s].

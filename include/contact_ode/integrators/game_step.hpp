@@ -7,12 +7,9 @@
 //                  (the seed's ImpulseResolveCollision), or nothing for the spring;
 //   4. notify      contact begin/end are decided after the step, in one batch.
 //
-// Gameplay notifications follow the tutorial's list: a pair detected in a step is listed with
-// `persistence` frames left; after each step, in one batch, newly listed pairs get Begin, every
-// listed pair loses a frame, and a pair whose frames run out gets End and leaves the list. A
-// callback, if given, is invoked only from that batch, never in the middle of the physics.
-// Unlike the tutorial (whose std::set::insert keeps an existing entry's counter), a pair detected
-// again has its frames refilled, so a long contact is one Begin and one End, not a flicker.
+// Gameplay notifications follow the tutorial's collision list (integrators/collision_list.hpp):
+// Begin when a pair is first detected, End `persistence` frames after its last detection, in one
+// batch after each step, a callback, if given, invoked only from that batch.
 //
 // The impulse is applied only when the contact approaches (gap rate < 0). The seed applies it
 // unconditionally; on a separating contact that would pull the bodies back together.
