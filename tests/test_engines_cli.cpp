@@ -56,6 +56,13 @@ TEST_F(EnginesCli, TheEnginesAsTheReadmeDescribesThem) {
   // the four contacts it has.
   EXPECT_GT(num(row("stack", "mujoco-spring")["contacts"]), 40);
   EXPECT_NEAR(num(row("stack", "mujoco-spring")["omega_dt"]), std::sqrt(1e5 * 20) * dt, 1e-9);
+  // The drift is how far an engine strays from Newton's law: MuJoCo's default contact keeps none of
+  // the e^2 E0 that law keeps at the first bounce, within the soft contact's sink m g d / E0 (its
+  // penetration d = 3.2 cm: 0.032).
+  EXPECT_NEAR(num(row("drop", "mujoco")["energy_drift_rel"]), e * e, 0.032);
+  // Bullet's defaults feed their Baumgarte push-out into a touching row struck at e = 1, tuned not.
+  EXPECT_GT(num(row("cradle-0", "bullet")["energy_drift_rel"]), 0.1);
+  EXPECT_LT(num(row("cradle-0", "bullet-tuned")["energy_drift_rel"]), 0.01);
   for (const char* f : {"engines.md", "orders.csv", "work_precision.png", "work_precision.pdf"})
     EXPECT_TRUE(fs::exists(dir_ / "eng" / f)) << f;
 }
