@@ -101,6 +101,7 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
   const std::size_t nc = scene.contact_count();
   std::vector<double> P(nc), u0(nc), restitution(nc);
   std::vector<bool> active(nc), fresh(nc);
+  for (std::size_t i = 0; i < nc; ++i) restitution[i] = law.restitution(i);
   FreeMotion motion(scene);
   Vector v_old, blended;
   auto step = [&](double t, double h, Vector& y, StepReport& report, SolverStats& stats) {
@@ -150,10 +151,7 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
                                           closed, kMaxExact)
                             : ""));
     }
-    for (std::size_t i = 0; i < nc; ++i) {
-      report.push[i] = active[i] ? P[i] * normal.inverse_mass(i, y) : 0.0;
-      restitution[i] = law.restitution(i);
-    }
+    for (std::size_t i = 0; i < nc; ++i) report.push[i] = active[i] ? P[i] * normal.inverse_mass(i, y) : 0.0;
     report.dissipated += impact_losses(geo, normal, y, active, fresh, u0, restitution, P);
     // q+ = q + h ((1 - theta) v + theta v+): the positions advanced with the blended velocities.
     blended = (1 - m.theta) * v_old + m.theta * y;

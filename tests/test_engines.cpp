@@ -185,6 +185,7 @@ TEST(Bullet, AtItsDefaultsATouchingRowStruckElasticallyGainsEnergy) {
   const RunResult r = solve(forty, {.name = "bullet", .dt = 1e-3}, {.t_end = 2.0, .sample_dt = 2.0});
   ASSERT_TRUE(r.ok()) << r.message;
   EXPECT_EQ(r.samples.back().dissipated, 0.0);
+  // Half the 83 times measured: the growth is an instability, whose rate rounding may shift.
   EXPECT_GT(r.samples.back().energy, 40 * r.energy0);
   const RunResult tuned =
       solve(forty, {.name = "bullet-tuned", .dt = 1e-3}, {.t_end = 2.0, .sample_dt = 2.0});
