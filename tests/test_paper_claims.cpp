@@ -182,3 +182,15 @@ TEST(PaperClaims, EventDrivenEnergyIsAsGoodAsTheFlightsTolerance) {
     EXPECT_LE(drift, 20 * std::stod(rtol)) << rtol;
   }
 }
+
+// Section 4.10: "Sequential impulses lose [a share] of the touching cradle's energy, which Moreau-Jean's
+// exact complementarity solve keeps". The loss is a rho^10 of ten sweeps, rho = cos^2(pi / 5) =
+// 0.65 on the cradle's five balls (its law: SequentialImpulses.ATouchingRowLosesWhatItsSweepsLeave-
+// Unconverged); a is not derived, so the claim is only that the loss shows (above 1 %, 2.3 %
+// measured) beside Moreau-Jean's drift, rounding (1e-12 measured) below 1e-9.
+TEST(PaperClaims, SequentialImpulsesLoseATouchingCradlesEnergyWhereMoreauJeanKeepsIt) {
+  const std::string engines = "engines/engines.csv";
+  EXPECT_GT(cell(engines, {{"scene", "cradle-0"}, {"method", "sequential-impulses"}}, "energy_drift_rel"),
+            0.01);
+  EXPECT_LT(cell(engines, {{"scene", "cradle-0"}, {"method", "moreau-jean"}}, "energy_drift_rel"), 1e-9);
+}
