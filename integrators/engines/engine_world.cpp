@@ -87,7 +87,11 @@ MethodInfo engine_method(std::string name, std::string description, bool springs
       }
     };
     // An event-driven engine's impacts, each booked as it happens: the contacts that take an
-    // impulse in it, at the rates they approached with.
+    // impulse in it, at the rates they approached with. Newton's law as an LCP (Siconos') can also
+    // give an impulse J to a contact that is parting at u > 0, where a neighbour's impulse would
+    // close it; complementarity leaves it at -e u, so it gains J (1 - e) u / 2 (the energy an
+    // impulse takes is -J (u- + u+) / 2), which impact_losses, booking approaches, leaves out: a
+    // gapped 8-ball chain at e = 0.1 gained 8e-4 of E0 unbooked so.
     double impacts_loss = 0;
     const bool event_driven =
         world && world->report_impacts([&](const std::vector<double>& c, const std::vector<double>& v,
@@ -98,6 +102,9 @@ MethodInfo engine_method(std::string name, std::string description, bool springs
             approach[i] = geo.gap_rate(i, at);
           }
           impacts_loss += impact_losses(geo, normal, at, closed, closed, approach, es.restitution, J);
+          for (std::size_t i = 0; i < nc; ++i)
+            if (closed[i] && approach[i] > 0)
+              impacts_loss -= 0.5 * J[i] * (1 - es.restitution[i]) * approach[i];
         });
     auto step = [&](double t, double h, Vector& y, StepReport& report, SolverStats& stats) {
       if (!world) throw SolverFailure(Status::SolverError, t, refused);
