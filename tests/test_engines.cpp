@@ -340,6 +340,23 @@ TEST(Ode, QuickStepMakesEnergyOnALongTouchingRowStruckElastically) {
   EXPECT_LT(ten.samples.back().energy, ten.energy0);
 }
 
+// Restitution only on approach (SequentialImpulses.ABounceThatMeetsAPartingContactLiftsItAndMakes-
+// Energy): a column of three dropped 0.1 m at e = 0.8, whose bottom ball lands while the two above
+// rise from it, gains energy in a step under tuned Bullet and QuickStep too (0.29 and 0.41 E0,
+// measured, against sequential impulses' 0.16); the README says they make more there.
+TEST(EngineRuns, TheEnginesBounceMakesEnergyWhereItMeetsAPartingContact) {
+  const BallStack column({.n = 3, .drop = 0.1, .e = 0.8});
+  for (const char* method : {"bullet-tuned", "ode-quick"}) {
+    REQUIRE_ENGINE(method);
+    const RunResult r = solve(column, {.name = method, .dt = 1e-3}, {.t_end = 1.0, .sample_dt = 1e-3});
+    ASSERT_TRUE(r.ok()) << method << ": " << r.message;
+    double rise = 0;
+    for (std::size_t k = 1; k < r.samples.size(); ++k)
+      rise = std::max(rise, r.samples[k].energy - r.samples[k - 1].energy);
+    EXPECT_GT(rise, 0.16 * r.energy0) << method;
+  }
+}
+
 // An assertion inside ODE's step (a 1e300 kg ball: its orientation quaternion cannot be
 // normalised) ends the run as a solver error carrying ODE's message; the half-stepped world is
 // not destroyed, since destroying it asserted again inside a destructor (std::terminate, the
