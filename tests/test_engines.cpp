@@ -146,6 +146,26 @@ TEST(BulletTunedAndOdeBounce, GiveNewtonsLawWithinTheirStep) {
   }
 }
 
+// ODE's contact asks for the larger of the bounce, -e u, and its ERP push-out, ERP times the
+// overlap per step (world ERP 0.2), and a landing leaves up to (V + g dt) dt of overlap: for
+// e < 0.2 the push-out can win, and a plastic landing (e = 0) bounces, as high as (0.2 (V + g dt))^2 /
+// 2g, 4 % of h0, and far outside the step's bound on Newton's law, V dt (3.4 cm at 1 ms and 2.7
+// mm at 0.1 ms, measured: the overlap the landing step leaves is the step's phase). The README's
+// ODE bullet says so.
+TEST(Ode, ItsPushOutBouncesAPlasticLanding) {
+  REQUIRE_ENGINE("ode");
+  const double h0 = 1.0, g = 9.81, V = std::sqrt(2 * g * h0);
+  for (double dt : {1e-3, 1e-4}) {
+    const BallDrop ball({.m = 1.0, .g = g, .h0 = h0, .v0 = 0.0, .e = 0.0, .law = Hooke{1e5}});
+    const RunResult r = solve(ball, {.name = "ode", .dt = dt}, {.t_end = 1.0, .sample_dt = 0.01});
+    ASSERT_TRUE(r.ok()) << r.message;
+    ASSERT_FALSE(r.apexes.empty()) << dt;
+    EXPECT_GT(r.apexes.front().gap, V * dt) << dt;
+    EXPECT_LE(r.apexes.front().gap, std::pow(0.2 * (V + g * dt), 2) / (2 * g)) << dt;
+    EXPECT_NEAR(r.apexes.front().gap, dt == 1e-3 ? 0.034 : 0.0027, dt == 1e-3 ? 5e-4 : 5e-5);  // the README's
+  }
+}
+
 // Bullet multiplies the two bodies' restitutions: spheres carry sqrt(e) and the floor e / sqrt(e),
 // which for e = 0 was 0 / 0, a NaN restitution and a NaN state a few steps after a column dropped
 // onto the floor landed. Perfectly inelastic, the bottom ball lands and stays on the floor (its
