@@ -123,11 +123,12 @@ SiconosLine::SiconosLine(const SiconosSpheres& sp) : s_(std::make_unique<State>(
   s_->simulation = std::make_shared<EventDriven>(nsds, std::make_shared<TimeDiscretisation>(0.0, sp.dt));
   s_->simulation->insertIntegrator(osi);
   // The gap below which Siconos counts a contact closed (its default 2.2e-12) has to exceed the
-  // flight's absolute tolerance: LSODAR locates a landing to atol, and a gap of -atol at the next
-  // bounce, shorter than the tolerance near the Zeno time, was "output of level 0 must be positive"
-  // and the end of the run (e = 0.3 and 0.606 at 1e-12). Ten times atol; a static of Siconos, the
-  // same for every simulation here.
-  s_->simulation->setToleranceED(10 * sp.atol);
+  // error of a located landing: a gap below minus it at the next bounce, shorter than the
+  // tolerance near the Zeno time, was "output of level 0 must be positive" and the end of the run
+  // (e = 0.3 and 0.606 at 1e-12). Ten times atol still failed 54 of 120 random drops (h0 1 mm to
+  // 100 m, g 0.1 to 50 m/s^2) near their Zeno times; a hundred times runs all of them and 200
+  // more, the apexes unchanged. A static of Siconos, the same for every simulation here.
+  s_->simulation->setToleranceED(100 * sp.atol);
   s_->simulation->insertNonSmoothProblem(std::make_shared<LCP>(), SICONOS_OSNSP_ED_IMPACT);
   s_->simulation->insertNonSmoothProblem(std::make_shared<LCP>(), SICONOS_OSNSP_ED_SMOOTH_ACC);
   try {
