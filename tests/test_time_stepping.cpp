@@ -107,9 +107,10 @@ TEST(SequentialImpulses, ABounceThatMeetsAPartingContactLiftsItAndMakesEnergy) {
   };
   const auto [si, k] = largest_rise("sequential-impulses");
   const Vector &before = si.samples[k - 1].y, &after = si.samples[k].y;
-  EXPECT_GT(si.samples[k].energy - si.samples[k - 1].energy, 0.1 * si.energy0);
-  ASSERT_LT(before[1], 0.0);  // the bottom ball lands...
-  ASSERT_GT(before[3], 0.0);  // ...while the ball above rises from it
+  EXPECT_NEAR(si.samples[k].energy - si.samples[k - 1].energy, 0.16 * si.energy0,
+              0.005 * si.energy0);  // README
+  ASSERT_LT(before[1], 0.0);        // the bottom ball lands...
+  ASSERT_GT(before[3], 0.0);        // ...while the ball above rises from it
   for (Eigen::Index b = 0; b < 3; ++b)
     EXPECT_NEAR(after[2 * b + 1], -e * (before[1] - kGravity * kDt), 0.01) << b;
   const auto [mj, j] = largest_rise("moreau-jean");
