@@ -523,6 +523,25 @@ TEST(Siconos, DropsUnderOtherGravitiesComeToRestAfterTheirZenoTimes) {
   }
 }
 
+// Siconos' LSODAR stops on an impact that falls within rounding of one of its steps' ends, after
+// two such: a 1 mm approach and 1 mm gaps struck at 1 m/s, stepped by 1 ms, put the impacts at 1, 2
+// and 3 ms, and the third ends the run, a typed failure with Siconos' message; 1e-15 m more
+// approach, and the run goes through. The README's Siconos bullet says so.
+TEST(Siconos, AnImpactOnItsStepsEndCanStopItsIntegrator) {
+  REQUIRE_ENGINE("siconos");
+  const auto run = [](double approach) {
+    const BallChain chain({.n = 4, .v0 = 1.0, .approach = approach, .spacing = 1e-3});
+    return solve(chain, {.name = "siconos", .dt = 1e-3}, {.t_end = 0.01, .sample_dt = 0.01});
+  };
+  const RunResult on = run(1e-3);
+  EXPECT_EQ(on.status, Status::SolverError);
+  EXPECT_NE(on.message.find("LsodarOSI, integration failed"), std::string::npos) << on.message;
+  EXPECT_NEAR(on.t_reached, 3e-3, 1e-12);
+  const RunResult off = run(1e-3 + 1e-15);
+  ASSERT_TRUE(off.ok()) << off.message;
+  EXPECT_NEAR(off.samples.back().y[7], 1.0, 1e-12);  // the striker's speed passed to the last ball
+}
+
 // Siconos on a cradle with 1 mm gaps, e = 1: each event-driven impact exchanges two balls'
 // velocities exactly, so only the last ball moves on, at v0, to rounding.
 TEST(Siconos, CradleWithGapsHandsTheStrikersSpeedToTheLastBall) {
