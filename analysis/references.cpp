@@ -268,6 +268,23 @@ double hunt_crossley_restitution(double a) {
   return -std::expm1(0.5 * (lo + hi)) / a;
 }
 
+double hunt_crossley_approach_factor(double a) {
+  require_in("hunt_crossley_approach_factor: chi V", a, kNonNegative);
+  // Small a: a - ln(1 + a) cancels to a^2 / 2, so the series 1/2 - a/3 + a^2/4 - a^3/5 (its error
+  // a^4 / 6, below 2e-13 at a = 1e-3); log1p above it.
+  if (a < 1e-3) return 0.5 + a * (-1.0 / 3.0 + a * (0.25 - a * 0.2));
+  return (a - std::log1p(a)) / (a * a);
+}
+
+double hunt_crossley_max_penetration(double m, double K, double n, double chi, double V) {
+  require_in("hunt_crossley_max_penetration: m", m, kPositive);
+  require_in("hunt_crossley_max_penetration: K", K, kPositive);
+  require_in("hunt_crossley_max_penetration: n", n, kPositive);
+  require_in("hunt_crossley_max_penetration: chi", chi, kNonNegative);
+  require_in("hunt_crossley_max_penetration: V", V, kPositive);
+  return std::pow((n + 1.0) * m * V * V * hunt_crossley_approach_factor(chi * V) / K, 1.0 / (n + 1.0));
+}
+
 double hooke_impact_time(double m, double k, double h0, double v0, double g, std::size_t n) {
   const RigidBounces rigid(h0, v0, g, 1.0);
   const double cycle = hooke_contact(m, k, rigid.V, g).duration + 2.0 * rigid.V / g;

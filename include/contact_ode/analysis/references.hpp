@@ -114,6 +114,12 @@ double hunt_crossley_small_damping_loss(double chi, double V);
 // is where the velocity stops changing, so 1 - a e > 0 and the clamp F >= 0 never acts). Solved by
 // bisection in ln(1 - a e), for every a >= 0 (e -> 1/a as a grows).
 double hunt_crossley_restitution(double chi_v);
+// Hunt–Crossley maximum penetration, exact (no gravity): the same first integral over the approach,
+// u from V to 0, gives K delta_max^(n+1) / (n+1) = m (a - ln(1 + a)) / chi^2 with a = chi V, i.e.
+// the undamped m V^2 / 2 times 2 (a - ln(1 + a)) / a^2, which damping lowers from 1 (a = 0).
+double hunt_crossley_max_penetration(double m, double K, double n, double chi, double V);
+// The factor (a - ln(1 + a)) / a^2 above: 1/2 at a = 0, falling as a grows.
+double hunt_crossley_approach_factor(double a);
 
 // Undamped penalty bounce sequence of the ball drop under Hooke (the exact penalty solution):
 // every contact lasts T_c and returns the impact speed, so T(n) = T1 + (n-1)(T_c + 2V/g).
