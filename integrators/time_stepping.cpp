@@ -123,6 +123,10 @@ RunResult run_time_stepping(const Dynamics& model, const std::string& method, do
       for (std::size_t i = 0; i < nc; ++i) {
         const bool touching = report.push[i] > kPushNoise || geo.gap(i, y) < -kContactMargin;
         const double r0 = geo.gap_rate(i, y_prev), r1 = geo.gap_rate(i, y);
+        // The record ends first: a flight whose top falls in the step its contact ends in (a short
+        // hop, or an event-driven engine's impact late in the step before) lost that top, and the
+        // next apex was reported as the first (Siconos, 1 um drop at a 0.2 ms step).
+        if (!touching && rec.contact_open(i)) rec.contact_end(i, t0, r1);
         // A flight's top, where the gap rate turns: only above the margin within which the step
         // holds a contact closed (a column's top balls lift by 1e-22 m and settle back).
         if (!touching && !rec.contact_open(i) && r0 > 0 && r1 <= 0) {
@@ -131,7 +135,6 @@ RunResult run_time_stepping(const Dynamics& model, const std::string& method, do
         }
         if (touching && !rec.contact_open(i)) rec.contact_begin(i, t0, r0);
         if (touching) rec.observe_penetration(i, -geo.gap(i, y));
-        if (!touching && rec.contact_open(i)) rec.contact_end(i, t0, r1);
         if (touching && listed) listed->detected(i);
       }
       if (listed) listed->end_step(n, t, rec);
