@@ -40,32 +40,49 @@ double total_energy(const std::vector<RigidBody>& bodies) {
 }
 
 // A spinning, moving cuboid whose corner touches a moving sphere: an off-centre, oblique contact.
-std::vector<RigidBody> corner_hit(std::mt19937& rng, double e_sphere, double e_box) {
-  std::uniform_real_distribution<double> u(-1, 1);
+// The sphere's centre lies off the corner's diagonal (anywhere in the corner's region, the octant
+// beyond it), so the normal misses the box's centre and the impulse's angular terms are not zero:
+// on the diagonal they were, and halving them went unnoticed here. The box is body `box_index`.
+std::vector<RigidBody> corner_hit(std::mt19937& rng, double e_sphere, double e_box,
+                                  std::size_t box_index = 0) {
+  std::uniform_real_distribution<double> u(-1, 1), positive(0.2, 1);
   RigidBody box = RigidBody::cuboid("box", 2.0, Vec3(0.3, 0.2, 0.1), e_box);
   box.orientation = Quat(Eigen::AngleAxisd(u(rng) * 3, Vec3(u(rng), u(rng), u(rng)).normalized()));
   box.velocity = Vec3(u(rng), u(rng), u(rng));
   box.angular_velocity = Vec3(u(rng), u(rng), u(rng)) * 5;
   const Vec3 corner = vertices(box)[5];
-  const Vec3 out = (corner - box.position).normalized();
+  const Vec3 sign = (box.orientation.inverse() * (corner - box.position)).cwiseSign();
+  const Vec3 out =
+      box.orientation * sign.cwiseProduct(Vec3(positive(rng), positive(rng), positive(rng))).normalized();
   RigidBody ball = RigidBody::sphere("ball", 0.7, 0.05, e_sphere);
   ball.position = corner + out * 0.0499;  // overlapping the corner by 0.1 mm
-  ball.velocity = -out * 2 + Vec3(u(rng), u(rng), u(rng)) * 0.1;
+  // Faster than the corner can move away (|v| <= sqrt 3, |w x r| <= 5 * 0.37): always approaching.
+  ball.velocity = -out * 5 + Vec3(u(rng), u(rng), u(rng)) * 0.1;
   ball.angular_velocity = Vec3(u(rng), u(rng), u(rng));
-  return {box, ball};
+  if (box_index == 0) return {box, ball};
+  return {ball, box};
+}
+
+// How far the contact's normal passes from the box's centre, relative to its lever arm.
+double off_centre(const RigidContact& c, std::size_t box_index) {
+  const Vec3& r = box_index == 0 ? c.r_a : c.r_b;
+  return r.cross(c.normal).norm() / r.norm();
 }
 
 }  // namespace
 
 TEST(RigidImpulse, ConservesMomentaAndFollowsTheEnergyLaw) {
   std::mt19937 rng(7);
-  for (int trial = 0; trial < 50; ++trial) {
+  double least_off_centre = 1;
+  for (int trial = 0; trial < 100; ++trial) {
     for (double e : {1.0, 0.6, 0.0}) {
-      auto bodies = corner_hit(rng, e, 1.0);
+      const std::size_t box_index = trial % 2;
+      auto bodies = corner_hit(rng, e, 1.0, box_index);
       const auto contacts = contact_candidates(bodies, 0, 1);
       ASSERT_EQ(contacts.size(), 1u);
       const auto& c = contacts[0];
       ASSERT_GT(c.penetration, 0.0);
+      least_off_centre = std::min(least_off_centre, off_centre(c, box_index));
       ASSERT_LT(normal_velocity(bodies, c), 0.0);
       const Vec3 p0 = total_momentum(bodies), L0 = total_angular_momentum(bodies, Vec3(1, -2, 3));
       const double E0 = total_energy(bodies);
@@ -80,6 +97,27 @@ TEST(RigidImpulse, ConservesMomentaAndFollowsTheEnergyLaw) {
       const double k = (1 + e) * std::abs(v) / J;
       EXPECT_NEAR(total_energy(bodies) - E0, -(1 - e * e) * v * v / (2 * k), kTol * 10 * E0);
     }
+  }
+  // Every hit off the box's centre line (by the sine of the angle between its lever arm and the
+  // normal), so that the angular terms count in each.
+  EXPECT_GT(least_off_centre, 0.02);
+}
+
+// XPBD's position step: a normal displacement d moves body b by w_b d n and turns it by
+// I_b^-1 (r_b x d n), body a the opposite way, so the contact's penetration falls by d times the
+// effective inverse mass the impulse divides by, to first order in d. The second order is the
+// turns' (|r| theta^2, theta ~ 1e-5 rad here) and the normal's tilt ((w d)^2 / radius): below 1e-4
+// of the 1 um moved. The box is body a in half the trials and body b in the other half: its turn
+// as body b had the wrong sign and nothing noticed (a sphere's turn moves no contact).
+TEST(RigidProjection, ANormalDisplacementClosesTheGapByTheEffectiveInverseMass) {
+  std::mt19937 rng(11);
+  for (int trial = 0; trial < 100; ++trial) {
+    auto bodies = corner_hit(rng, 1.0, 1.0, trial % 2);
+    const auto c = contact_candidates(bodies, 0, 1)[0];
+    const double w = normal_inverse_mass(bodies, c), moved = 1e-6;
+    apply_normal_displacement(bodies, c, moved / w);
+    EXPECT_NEAR(c.penetration - contact_candidates(bodies, 0, 1)[0].penetration, moved, 1e-4 * moved)
+        << trial;
   }
 }
 
