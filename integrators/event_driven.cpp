@@ -229,6 +229,7 @@ class Impacts {
         }
       }
     }
+    if (others) rest_unresolved_hops(t, y);
     // An impulse that drives a resting contact apart (a ball at rest on the floor struck below its
     // centre) lifts the body off its support. Left at rest, the support went on taking its weight:
     // the ball rose at its lifted speed without slowing, and the ledger ended at 2.6 times the
@@ -248,6 +249,39 @@ class Impacts {
       if (!resting(j) && model_.gap(j, x) <= closed_gap_ && model_.gap_rate(j, x) < -rate_floor_) return j;
     }
     return first;
+  }
+
+  // Rest is decided at each impulse, on the flight as it is then: a ball that leaves the one below
+  // it slowly while that one still flies is not pushed into it, and stays free; once a later
+  // impulse of the instant stops the one below on the floor, it is, and its hop (1e-5 m/s, 5e-12 m)
+  // is far below what the flight resolves: the run ended unresolved at the next root (12 of 795
+  // random dropped columns). So after the sweeps, every closed contact whose hop the flight
+  // could not resolve rests: one parting slower than the rest speed, or too slowly to rise above
+  // the rest height, that the flight pushes together. Settling it (no relative motion: the pair's
+  // mean velocity) lifts a held ball below it as slowly, a resting contact whose hop is as
+  // unresolvable: settled again, over and over, each settle taking energy, until none is left.
+  void rest_unresolved_hops(double t, VectorRef y) {
+    const ConstVectorView x(y);
+    for (bool again = true; again;) {
+      again = false;
+      for (std::size_t j = 0; j < model_.contact_count(); ++j) {
+        if (model_.gap(j, x) > closed_gap_) continue;
+        const double rate = model_.gap_rate(j, x);
+        const ContactMode mode = modes_[j];
+        if (!(rate > (mode == ContactMode::Resting ? rate_floor_ : -rate_floor_))) continue;
+        modes_[j] = ContactMode::Free;  // the hop is a free flight
+        const bool hop =
+            pushed_together(j, x) && (rate < opt_.rest_speed || bounce_height(j, x) < rest_height_);
+        modes_[j] = mode;
+        if (!hop) continue;
+        count_impulse(t);
+        const double before = rec_.energy(x);
+        model_.settle(j, y);
+        modes_[j] = ContactMode::Resting;
+        rec_.add_dissipated(before - rec_.energy(x));
+        again = true;
+      }
+    }
   }
 
   // Every impulse counts against the cap, whose message says how many came at one instant.
