@@ -68,6 +68,7 @@ RunResult run_game(const Dynamics& model, const GameOptions& opt, const SolveOpt
   }
 
   CollisionList listed(nc, opt.persistence, opt.on_notifications);
+  SpringSwitches switches(nc);
   SolverStats stats;
   double t = 0.0;
   try {
@@ -86,6 +87,7 @@ RunResult run_game(const Dynamics& model, const GameOptions& opt, const SolveOpt
       // 1. integrate
       if (spring) {
         geo.modes_from_state(nc, y, modes);
+        switches.before(geo, y);
         // The dashpot's loss over the step, by the rectangle rule the Euler step itself uses.
         double power = 0;
         for (std::size_t i = 0; i < nc; ++i)
@@ -94,18 +96,7 @@ RunResult run_game(const Dynamics& model, const GameOptions& opt, const SolveOpt
       }
       stats.rhs_evals += fixed_step(opt.scheme, f, positions, t0, h, y, work);
       model.normalize(y);
-      if (spring) {
-        // energy() counts a spring only while its law pushes: a clamped law that lets go while the
-        // bodies overlap releases its elastic energy (a physical loss), and one that takes hold at
-        // an overlap takes it back. Booked here, as the penalty method does at its roots, but only
-        // for a switch inside the overlap (at both ends of the step): where the overlap itself
-        // crosses zero the elastic energy is continuous, and what changes is the scheme's error.
-        for (std::size_t i = 0; i < nc; ++i) {
-          const bool was = modes[i] == ContactMode::Penalty, now = geo.switching(i, y) > 0;
-          if (was != now && geo.gap(i, y_prev) < 0 && geo.gap(i, y) < 0)
-            rec.add_dissipated((was ? 1.0 : -1.0) * geo.elastic_energy(i, y));
-        }
-      }
+      if (spring) rec.add_dissipated(switches.released(geo, y));
       stats.steps += 1;
       if (!y.allFinite())
         throw SolverFailure(Status::NonFiniteState, t,

@@ -95,7 +95,9 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
     stats.jac_evals += 1;
     stats.linear_setups += 1;
   };
+  SpringSwitches switches(nc);
   auto step = [&](double t, double h, Vector& y, StepReport& report, SolverStats& stats) {
+    switches.before(geo, y);
     z = y;
     frozen = false;
     if (lu_age >= 0) ++lu_age;
@@ -142,6 +144,7 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
     }
     scene.normalize(z);
     y = z;
+    report.dissipated += switches.released(geo, y);
     geo.modes_from_state(nc, y, modes);
     for (std::size_t i = 0; i < nc; ++i)
       if (modes[i] == ContactMode::Penalty) {

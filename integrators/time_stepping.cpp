@@ -73,6 +73,23 @@ double accumulate_impulse(const NormalImpulses& normal, std::size_t i, double d,
   return change;
 }
 
+void SpringSwitches::before(const ContactGeometry& geo, ConstVectorRef y) {
+  for (std::size_t i = 0; i < engaged_.size(); ++i) {
+    engaged_[i] = geo.switching(i, y) > 0;
+    overlapping_[i] = geo.gap(i, y) < 0;
+  }
+}
+
+double SpringSwitches::released(const ContactGeometry& geo, ConstVectorRef y) const {
+  double energy = 0;
+  for (std::size_t i = 0; i < engaged_.size(); ++i) {
+    const bool was = engaged_[i] != 0, now = geo.switching(i, y) > 0;
+    if (was != now && overlapping_[i] && geo.gap(i, y) < 0)
+      energy += (was ? 1.0 : -1.0) * geo.elastic_energy(i, y);
+  }
+  return energy;
+}
+
 MethodInfo impulse_stepping_method(
     std::string name, std::string description,
     std::function<RunResult(const Dynamics&, const Method&, const SolveOptions&)> run,

@@ -23,27 +23,45 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
   const ContactGeometry& geo = contact_geometry(scene);
   const NormalImpulses& normal = normal_impulses(scene, m.name);
   const std::size_t nc = scene.contact_count();
-  std::vector<double> gap_before(nc);
+  std::vector<double> gap_before(nc), spring_before(nc);
+  // The elastic energy energy() counts for contact i: its law's spring while it overlaps and the
+  // law pushes (ContactGeometry::engaged_elastic_energy).
+  auto counted = [&](std::size_t i, ConstVectorRef y) {
+    return geo.gap(i, y) < 0 && geo.switching(i, y) > 0 ? geo.elastic_energy(i, y) : 0.0;
+  };
   FreeMotion motion(scene);
   auto step = [&](double t, double dt, Vector& y, StepReport& report, SolverStats& stats) {
     const int n = m.substeps;  // >= 1: solve() checks it
     const double h = dt / n;
     for (int s = 0; s < n; ++s) {
-      for (std::size_t i = 0; i < nc; ++i) gap_before[i] = geo.gap(i, y);
+      for (std::size_t i = 0; i < nc; ++i) {
+        gap_before[i] = geo.gap(i, y);
+        spring_before[i] = counted(i, y);
+      }
       stats.rhs_evals += motion.add_velocity(t + s * h, h, y);
       stats.rhs_evals += motion.advance_positions(t + s * h, h, y);
       for (std::size_t i = 0; i < nc; ++i) {
         const double C = geo.gap(i, y);
-        if (C >= 0) continue;
-        const LinearLaw law = normal.linear_law(i);
-        const double w = normal.inverse_mass(i, y), alpha = 1 / (law.k * h * h), gamma = law.c / (law.k * h);
-        const double dlambda = std::max((-C - gamma * (C - gap_before[i])) / ((1 + gamma) * w + alpha), 0.0);
-        normal.apply_normal_displacement(i, dlambda, y);
-        normal.apply_normal_impulse(i, dlambda / h, y);
-        report.push[i] += w * dlambda / h;
-        // The dashpot's loss over the sub-step at the corrected rate (the rectangle rule of implicit Euler).
-        const double rate = geo.gap_rate(i, y);
-        report.dissipated += h * law.c * rate * rate;
+        double dlambda = 0;
+        if (C < 0) {
+          const LinearLaw law = normal.linear_law(i);
+          const double w = normal.inverse_mass(i, y), alpha = 1 / (law.k * h * h),
+                       gamma = law.c / (law.k * h);
+          dlambda = std::max((-C - gamma * (C - gap_before[i])) / ((1 + gamma) * w + alpha), 0.0);
+          normal.apply_normal_displacement(i, dlambda, y);
+          normal.apply_normal_impulse(i, dlambda / h, y);
+          report.push[i] += w * dlambda / h;
+          // The dashpot's loss over the sub-step at the corrected rate (the rectangle rule of
+          // implicit Euler), where it acted.
+          const double rate = geo.gap_rate(i, y);
+          if (dlambda > 0) report.dissipated += h * law.c * rate * rate;
+        }
+        // A contact that does not push (the clamp: it lets go while the bodies overlap) does no
+        // work, so the elastic energy energy() counts for it and loses is a loss: the clamped law's
+        // release, and an unclamped law's spring, counted until the overlap closes, which XPBD
+        // holds clamped. Booked wherever the bodies overlapped, the dashpot took 2.5 % of E0 too
+        // much from a ball bounced at e = 0.8, the release 1.3 % too little.
+        if (!(dlambda > 0)) report.dissipated += spring_before[i] - counted(i, y);
       }
       stats.newton_iters += 1;
     }
