@@ -28,7 +28,8 @@ inline constexpr double kPushNoise = 1e-9;
 
 struct StepReport {
   // Energy the contact model removed during the step [J]: for impulses, Newton's loss
-  // (impact_losses) for the approach speed at the step's start; for springs, the dashpot's work.
+  // (impact_losses) for the approach speed at the step's start; for springs, the dashpot's work
+  // and the elastic energy of laws that let go while the bodies overlap (SpringSwitches).
   double dissipated = 0;
   // How much each contact pushed during the step: the change of its gap rate its impulse made,
   // w lambda [m/s] (a spring method: 1 while its law acts). A contact is closed during a step in
