@@ -56,8 +56,9 @@ std::vector<RigidBody> corner_hit(std::mt19937& rng, double e_sphere, double e_b
       box.orientation * sign.cwiseProduct(Vec3(positive(rng), positive(rng), positive(rng))).normalized();
   RigidBody ball = RigidBody::sphere("ball", 0.7, 0.05, e_sphere);
   ball.position = corner + out * 0.0499;  // overlapping the corner by 0.1 mm
-  // Faster than the corner can move away (|v| <= sqrt 3, |w x r| <= 5 * 0.37): always approaching.
-  ball.velocity = -out * 5 + Vec3(u(rng), u(rng), u(rng)) * 0.1;
+  // Faster than the corner can move away (|v| <= sqrt 3, |w x r| <= 5 sqrt 3 * 0.37 = 3.2, the
+  // ball's own 0.17: 5.1 at most): always approaching.
+  ball.velocity = -out * 6 + Vec3(u(rng), u(rng), u(rng)) * 0.1;
   ball.angular_velocity = Vec3(u(rng), u(rng), u(rng));
   if (box_index == 0) return {box, ball};
   return {ball, box};
