@@ -138,7 +138,9 @@ class ImpulseMap {
   // Projection: move the bodies apart along the normal, by inverse-mass share, until gap = 0.
   virtual void project(std::size_t i, VectorRef y) const = 0;
   // Impulse J = -(1+e) v_r.n / (sum of inverse masses [+ angular terms]) along the normal; returns
-  // J [N s] (0 where the contact does not approach). The kinetic energy it takes is then
+  // J [N s]. Methods apply it where the contact approaches; where it does not, the rigid scenes
+  // return 0 and the line models (drop, chain, column) apply the formula as it stands, a pull
+  // (their settle stops a parting pair with it, at e = 0). The kinetic energy it takes is then
   // -J (u- + u+) / 2 exactly, u the gap rate before and after (the energy is quadratic in the
   // velocities, which J changes by M^-1 G^T J): a method books it without the whole scene's energy.
   virtual double apply_impulse(std::size_t i, double e, VectorRef y) const = 0;
