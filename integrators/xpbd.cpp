@@ -24,11 +24,6 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
   const NormalImpulses& normal = normal_impulses(scene, m.name);
   const std::size_t nc = scene.contact_count();
   std::vector<double> gap_before(nc), spring_before(nc);
-  // The elastic energy energy() counts for contact i: its law's spring while it overlaps and the
-  // law pushes (ContactGeometry::engaged_elastic_energy).
-  auto counted = [&](std::size_t i, ConstVectorRef y) {
-    return geo.gap(i, y) < 0 && geo.switching(i, y) > 0 ? geo.elastic_energy(i, y) : 0.0;
-  };
   FreeMotion motion(scene);
   auto step = [&](double t, double dt, Vector& y, StepReport& report, SolverStats& stats) {
     const int n = m.substeps;  // >= 1: solve() checks it
@@ -36,7 +31,7 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
     for (int s = 0; s < n; ++s) {
       for (std::size_t i = 0; i < nc; ++i) {
         gap_before[i] = geo.gap(i, y);
-        spring_before[i] = counted(i, y);
+        spring_before[i] = geo.counted_elastic_energy(i, y);
       }
       stats.rhs_evals += motion.add_velocity(t + s * h, h, y);
       stats.rhs_evals += motion.advance_positions(t + s * h, h, y);
@@ -61,7 +56,7 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
         // release, and an unclamped law's spring, counted until the overlap closes, which XPBD
         // holds clamped. Booked wherever the bodies overlapped, the dashpot took 2.5 % of E0 too
         // much from a ball bounced at e = 0.8, the release 1.3 % too little.
-        if (!(dlambda > 0)) report.dissipated += spring_before[i] - counted(i, y);
+        if (!(dlambda > 0)) report.dissipated += spring_before[i] - geo.counted_elastic_energy(i, y);
       }
       stats.newton_iters += 1;
     }

@@ -122,9 +122,13 @@ class ContactGeometry {
   // the release. Counting it until the overlap closes would book it as numerical drift instead.
   double engaged_elastic_energy(std::size_t count, ConstVectorRef y) const {
     double E = 0;
-    for (std::size_t i = 0; i < count; ++i)  // (every law's switching is at most the overlap -gap,
-      if (gap(i, y) < 0 && switching(i, y) > 0) E += elastic_energy(i, y);  // so open contacts skip it)
+    for (std::size_t i = 0; i < count; ++i) E += counted_elastic_energy(i, y);
     return E;
+  }
+  // Contact i's share of it: its spring's energy while it overlaps and its law pushes, else 0.
+  double counted_elastic_energy(std::size_t i, ConstVectorRef y) const {
+    // (Every law's switching is at most the overlap -gap, so open contacts skip it.)
+    return gap(i, y) < 0 && switching(i, y) > 0 ? elastic_energy(i, y) : 0.0;
   }
 };
 
