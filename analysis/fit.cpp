@@ -7,9 +7,19 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace contact {
+
+namespace {
+// The standard error from GSL's covariance, which scales the residual by 1 / (n - 2): two points
+// leave no residual to estimate it from, and GSL's 0 / 0 or rounding / 0 gave NaN or infinity
+// (both in one table): undefined, NaN.
+double standard_error(double variance, std::size_t points) {
+  return points > 2 ? std::sqrt(variance) : std::numeric_limits<double>::quiet_NaN();
+}
+}  // namespace
 
 PowerFit fit_power_law(const std::vector<double>& x, const std::vector<double>& y) {
   gsl::report_errors_by_return_code();
@@ -24,7 +34,7 @@ PowerFit fit_power_law(const std::vector<double>& x, const std::vector<double>& 
   double c0, c1, cov00, cov01, cov11, sumsq;
   gsl_fit_linear(lx.data(), 1, ly.data(), 1, lx.size(), &c0, &c1, &cov00, &cov01, &cov11, &sumsq);
   const double tss = gsl_stats_tss(ly.data(), 1, ly.size());
-  return {c1, std::exp(c0), std::sqrt(cov11), tss > 0 ? 1.0 - sumsq / tss : 1.0};
+  return {c1, std::exp(c0), standard_error(cov11, lx.size()), tss > 0 ? 1.0 - sumsq / tss : 1.0};
 }
 
 double observed_order(double h_prev, double err_prev, double h, double err) {
@@ -65,7 +75,7 @@ LineFit fit_line(const std::vector<double>& x, const std::vector<double>& y) {
       throw std::invalid_argument("fit_line: x and y must be finite");
   double c0, c1, cov00, cov01, cov11, sumsq;
   gsl_fit_linear(x.data(), 1, y.data(), 1, x.size(), &c0, &c1, &cov00, &cov01, &cov11, &sumsq);
-  return {c1, c0, std::sqrt(cov11)};
+  return {c1, c0, standard_error(cov11, x.size())};
 }
 
 }  // namespace contact

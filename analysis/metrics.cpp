@@ -50,13 +50,6 @@ std::vector<double> apex_energy_errors(const RunResult& run) {
   return out;
 }
 
-std::vector<double> restitutions(const RunResult& run) {
-  std::vector<double> out;
-  for (const auto& c : run.contacts)
-    if (c.closed()) out.push_back(c.restitution());
-  return out;
-}
-
 std::string EnergyGain::verdict(double tolerance) const {
   if (!std::isfinite(rate)) return "energy not finite";
   return std::abs(final_gain) < tolerance ? "conserves" : final_gain > 0 ? "gains" : "loses";

@@ -54,3 +54,22 @@ TEST(PowerFit, AnExactPowerLawIsFittedExactly) {
   EXPECT_NEAR(f.r_squared, 1.0, 1e-12);
   EXPECT_NEAR(observed_order(1e-2, y[1], 1e-3, y[0]), 1.5, 1e-12);
 }
+
+// Two points determine the line and leave no residual to estimate its error from (GSL divides by
+// n - 2): the standard error is NaN, a dash in the tables, where it came out infinite or NaN by
+// the rounding of a residual that is zero. Three points give the usual error.
+TEST(PowerFit, TwoPointsGiveTheExponentButNoStandardError) {
+  for (const std::vector<double>& y :
+       {std::vector<double>{1.0, 7.0}, std::vector<double>{3e-4, 2.9991e-4}, std::vector<double>{0.3, 0.1}}) {
+    const std::vector<double> x{1e5, 1.0001e5};
+    const PowerFit f = fit_power_law(x, y);
+    EXPECT_NEAR(f.exponent, observed_order(x[0], y[0], x[1], y[1]), 1e-9 * std::abs(f.exponent));
+    EXPECT_TRUE(std::isnan(f.exponent_sd)) << f.exponent_sd;
+    const LineFit l = fit_line(x, y);
+    EXPECT_NEAR(l.slope, (y[1] - y[0]) / (x[1] - x[0]), 1e-9 * std::abs(l.slope));
+    EXPECT_TRUE(std::isnan(l.slope_sd)) << l.slope_sd;
+  }
+  const PowerFit three = fit_power_law({1.0, 2.0, 4.0}, {1.0, 4.1, 15.9});
+  EXPECT_GT(three.exponent_sd, 0);
+  EXPECT_LT(three.exponent_sd, 0.05);
+}

@@ -9,7 +9,7 @@ namespace contact {
 struct PowerFit {
   double exponent;     // p
   double coefficient;  // C
-  double exponent_sd;  // standard error of p from the fit's covariance
+  double exponent_sd;  // standard error of p from the fit's covariance; NaN from two points
   double r_squared;
 };
 
@@ -46,7 +46,7 @@ std::vector<double> log_grid(double lo, double hi, long per_decade);
 struct LineFit {
   double slope;
   double intercept;
-  double slope_sd;  // standard error of the slope from the fit's covariance
+  double slope_sd;  // standard error of the slope from the fit's covariance; NaN from two points
 };
 // Requires at least two pairs of finite values; throws std::invalid_argument otherwise.
 LineFit fit_line(const std::vector<double>& x, const std::vector<double>& y);

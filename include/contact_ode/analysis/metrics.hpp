@@ -40,7 +40,5 @@ EnergyGain energy_gain(const RunResult& run);
 
 // Relative energy error at each apex, in order.
 std::vector<double> apex_energy_errors(const RunResult& run);
-// Effective restitution of each closed contact, in order.
-std::vector<double> restitutions(const RunResult& run);
 
 }  // namespace contact

@@ -6,6 +6,7 @@
 #include "contact_ode/models/linear_algebra.hpp"
 
 #include <cstddef>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -20,7 +21,8 @@ struct Sample {
 
 // One contact, from the moment the bodies start to interact to the moment they stop.
 // Velocities are the signed gap rate along the normal (< 0 approaching), so the effective
-// restitution is -v_out / v_in.
+// restitution is -v_out / v_in. A contact that began without approaching (bodies touching at rest,
+// as a resting column starts) has none: NaN, not the infinity or 0/0 of that ratio.
 struct ContactRecord {
   std::size_t contact = 0;       // which potential contact of the model
   double t_begin = 0.0;          // [s]
@@ -30,7 +32,7 @@ struct ContactRecord {
   double v_out = 0.0;            // gap rate when it ended [m/s]; NaN while open
   bool closed() const { return t_end == t_end; }
   double duration() const { return t_end - t_begin; }
-  double restitution() const { return -v_out / v_in; }
+  double restitution() const { return v_in < 0 ? -v_out / v_in : std::numeric_limits<double>::quiet_NaN(); }
 };
 
 // A local maximum of a contact's gap during free flight (the top of a bounce).
