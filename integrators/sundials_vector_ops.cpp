@@ -18,7 +18,7 @@ void linear_sum(sunrealtype a, N_Vector x, sunrealtype b, N_Vector y, N_Vector z
   const auto [n, xd] = view(x);
   sunrealtype* yd = NV_DATA_S(y);
   sunrealtype* zd = NV_DATA_S(z);
-  auto axpy = [n](sunrealtype c, const sunrealtype* u, sunrealtype* w) {  // w += c u
+  auto axpy = [n = n](sunrealtype c, const sunrealtype* u, sunrealtype* w) {  // w += c u
     if (c == 1.0)
       for (sunindextype i = 0; i < n; ++i) w[i] += u[i];
     else if (c == -1.0)

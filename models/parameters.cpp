@@ -39,7 +39,7 @@ ParameterValues resolve(const std::vector<ParameterInfo>& parameters, const Para
   for (const auto& p : parameters) values[p.name] = p.default_value;
   for (const auto& [name, value] : given) {
     const auto p = std::find_if(parameters.begin(), parameters.end(),
-                                [&](const ParameterInfo& info) { return info.name == name; });
+                                [&name = name](const ParameterInfo& info) { return info.name == name; });
     if (p == parameters.end()) {
       std::vector<std::string> names;
       for (const auto& info : parameters) names.push_back(info.name);
