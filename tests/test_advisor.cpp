@@ -78,6 +78,25 @@ TEST(Advisor, KelvinVoigtDesignMeetsPenetrationOrDurationAndRestitution) {
     }
 }
 
+// Hooke's spring, undamped, has the closed forms the mission states: a contact lasts pi sqrt(m / k)
+// and penetrates V sqrt(m / k), so a duration T asks k = m (pi / T)^2 and a penetration d asks
+// k = m (V / d)^2; the advisor's simulated contact meets either to its accuracy (1e-6, as above),
+// with restitution 1.
+TEST(Advisor, HookeDesignMeetsPenetrationOrDuration) {
+  ContactRequest r{.m = 0.5, .v = 3.0, .e = 1.0, .max_penetration = 1e-3, .law = "hooke"};
+  const ContactAdvice a = advise(r);
+  EXPECT_NEAR(a.k_lin / (0.5 * 9.0 / 1e-6), 1.0, 1e-14);
+  EXPECT_NEAR(a.achieved_penetration / 1e-3, 1.0, 1e-6);
+  EXPECT_NEAR(a.achieved_restitution, 1.0, 1e-6);
+  r.max_penetration.reset();
+  r.duration = 2e-3;
+  const ContactAdvice b = advise(r);
+  const double pi = std::numbers::pi;
+  EXPECT_NEAR(b.k_lin / (0.5 * (pi / 2e-3) * (pi / 2e-3)), 1.0, 1e-14);
+  EXPECT_NEAR(b.achieved_duration / 2e-3, 1.0, 1e-6);
+  EXPECT_NEAR(b.achieved_penetration / (3.0 * 2e-3 / pi), 1.0, 1e-6);
+}
+
 // The design does not depend on the mass's scale but through k and c: a 1e-300 kg body meets
 // the same restitution and penetration as a 1 kg one. c = 2 zeta sqrt(k m) formed k m, which
 // underflowed (1e-300 kg on 8e-295 N/m), and the advice was an undamped spring (c = 0, zeta NaN,
@@ -284,4 +303,23 @@ TEST(Advisor, RefusesNonPhysicalRequests) {
   bad.law = "kelvin-voigt-clamped";
   bad.e = 0.1;
   EXPECT_NE(message(bad).find("0.1353"), std::string::npos) << message(bad);
+  bad = r;
+  bad.e = 0.0;  // critical damping: the unclamped contact never ends
+  EXPECT_NE(message(bad).find("--e: value '0'"), std::string::npos) << message(bad);
+  bad = r;
+  bad.max_penetration.reset();
+  bad.duration = -1e-3;
+  EXPECT_NE(message(bad).find("--duration: value '-0.001'"), std::string::npos) << message(bad);
+  bad = r;
+  bad.energy_error = 1.0;
+  EXPECT_NE(message(bad).find("--energy-error: value '1'"), std::string::npos) << message(bad);
+  bad = r;
+  bad.max_penetration.reset();
+  bad.radius = 0.01;  // a material for a law it does not define
+  bad.young = 2e11;
+  bad.poisson = 0.3;
+  EXPECT_NE(message(bad).find("only the hertz law"), std::string::npos) << message(bad);
+  bad.law = "hertz";
+  bad.poisson.reset();
+  EXPECT_NE(message(bad).find("give all three"), std::string::npos) << message(bad);
 }
