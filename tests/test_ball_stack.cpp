@@ -58,12 +58,8 @@ TEST(BallStack, WarmStartedSequentialImpulsesHoldTheColumn) {
   for (const auto& s : r.samples) EXPECT_LE(s.y.cwiseAbs().maxCoeff(), 1e-6) << s.t;
 }
 
-// With Baumgarte's bias instead (split impulses off, erp 0.2), the overlap each step leaves is
-// pushed out through the velocities, erp overlap / dt, which is speed the column never had: it
-// keeps jittering (0.06 m/s, 0.2 mm, measured) and the ledger shows energy made every second
-// (0.4 % of E0 a second, measured): the drift E + D - E0 is positive and grows, where the split
-// push-out, which leaves the velocities alone, settles the same column to rest (above).
 namespace {
+// The 10-ball column under sequential impulses with Baumgarte's bias (below).
 RunResult baumgarte_column(const SolveOptions& span) {
   const BallStack stack({.n = 10, .m = kM});
   Method baumgarte{.name = "sequential-impulses", .dt = 1e-3};
@@ -72,6 +68,11 @@ RunResult baumgarte_column(const SolveOptions& span) {
 }
 }  // namespace
 
+// With Baumgarte's bias instead (split impulses off, erp 0.2), the overlap each step leaves is
+// pushed out through the velocities, erp overlap / dt, which is speed the column never had: it
+// keeps jittering (0.06 m/s, 0.2 mm, measured) and the ledger shows energy made every second
+// (0.4 % of E0 a second, measured): the drift E + D - E0 is positive and grows, where the split
+// push-out, which leaves the velocities alone, settles the same column to rest (above).
 TEST(BallStack, BaumgartesBiasKeepsTheColumnJitteringAndMakesEnergy) {
   const RunResult r = baumgarte_column({.t_end = 2.0, .sample_dt = 1.0});
   ASSERT_TRUE(r.ok()) << r.message;
