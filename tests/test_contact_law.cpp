@@ -189,15 +189,14 @@ TEST(ContactLaw, HuntCrossleyValuesDerivativesAndEnergy) {
 // about (1 + a) exp(-1 - a), is below e's resolution there) though the relation always has a root
 // (1 + chi u > 0 throughout the contact): solved in ln(1 - a e) now, with a series below 1e-3.
 // Reference values: the same relation solved by bisection in 60-digit arithmetic (mpmath); held
-// to 1e-12 (bisection to adjacent doubles; the series' error is ~2e-13 at a = 1e-3).
+// to 1e-12 (bisection to adjacent doubles; the series' error is ~2e-13 at a = 1e-3). The series
+// runs below a = 1e-3, bisection from there: 9.99e-4 holds the series' cubic term (3e-10 there).
 TEST(HuntCrossleyContact, ExactRestitutionHoldsForEveryChiV) {
-  const std::pair<double, double> reference[] = {{1e-6, 0.99999933333377777745},
-                                                 {1e-3, 0.99933377745210843051},
-                                                 {0.5, 0.74843493159743415812},
-                                                 {1.0, 0.59362426004004009232},
-                                                 {5.0, 0.19698024528051888505},
-                                                 {20.0, 0.049999999203831142392},
-                                                 {50.0, 0.02}};
+  const std::pair<double, double> reference[] = {
+      {1e-6, 0.99999933333377777745},  {9.99e-4, 0.99933444323130642850},
+      {1e-3, 0.99933377745210843051},  {0.5, 0.74843493159743415812},
+      {1.0, 0.59362426004004009232},   {5.0, 0.19698024528051888505},
+      {20.0, 0.049999999203831142392}, {50.0, 0.02}};
   for (const auto& [a, e] : reference) EXPECT_NEAR(hunt_crossley_restitution(a), e, 1e-12 * e) << a;
   // Heavy damping: e -> 1 / a, to rounding once (1 + a) exp(-1 - a) < 1e-16.
   for (double a : {50.0, 1e3, 1e9, 1e300}) EXPECT_NEAR(hunt_crossley_restitution(a) * a, 1.0, 4e-16) << a;

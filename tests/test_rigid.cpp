@@ -163,6 +163,33 @@ TEST(RigidImpulse, AxisAlignedBoxesNeverSpin) {
   EXPECT_GT(bodies[1].velocity.norm(), 0.0);
 }
 
+// The solid bodies' inertias: a sphere's 2/5 m r^2 about every axis, a box's m (b^2 + c^2) / 12 about
+// the axis of side a (sides a, b, c), in the body's frame whatever its orientation. No scene's
+// motion showed them: the spheres are struck through their centres, and the boxes turned about one
+// axis, so that a sphere's 1/2 or a box's sides swapped between two axes passed every other test.
+TEST(RigidBody, InertiasAreTheSolidBodiesOnes) {
+  const double m = 2.0, r = 0.5;
+  RigidBody ball = RigidBody::sphere("ball", m, r, 1.0);
+  ball.angular_velocity = Vec3(1, -2, 3);
+  const double I = 0.4 * m * r * r;
+  EXPECT_NEAR(ball.kinetic_energy(), 0.5 * I * 14.0, kTol * 7 * I);
+  EXPECT_NEAR((ball.angular_momentum(ball.position) - I * ball.angular_velocity).norm(), 0.0, kTol * 4 * I);
+
+  const Vec3 sides(0.2, 0.4, 0.6);
+  RigidBody box = RigidBody::cuboid("box", m, sides / 2, 1.0);
+  box.orientation = Quat(Eigen::AngleAxisd(0.7, Vec3(1, 2, -1).normalized()));
+  const Mat3 R = box.orientation.toRotationMatrix();
+  for (int axis = 0; axis < 3; ++axis) {
+    const int j = (axis + 1) % 3, k = (axis + 2) % 3;
+    const double I_axis = m * (sides[j] * sides[j] + sides[k] * sides[k]) / 12;
+    box.angular_velocity = 3.0 * R.col(axis);  // about the body's own axis
+    EXPECT_NEAR(box.kinetic_energy(), 0.5 * I_axis * 9.0, kTol * 5 * I_axis) << "axis " << axis;
+    EXPECT_NEAR((box.angular_momentum(box.position) - I_axis * box.angular_velocity).norm(), 0.0,
+                kTol * 3 * I_axis)
+        << "axis " << axis;
+  }
+}
+
 TEST(RigidImpulse, SpinningBoxKnocksARestingSphere) {
   // No linear velocity anywhere: only the box's spin drives the contact (the tutorial's example).
   RigidBody box = RigidBody::cuboid("box", 1.0, Vec3(0.5, 0.1, 0.1), 1.0);

@@ -374,3 +374,25 @@ TEST(RunBounds, RigidBallStateMatchesTheBounceSequence) {
     }
   }
 }
+
+// At an impact time, to rounding, the ball is on the floor arriving at e^(n-1) V or leaving at
+// e^n V: the leg's index, taken from a logarithm, can land one leg off there, and the state was
+// then read from a leg that had ended (a ball at rest in mid-cascade).
+TEST(RunBounds, RigidBallStateAtTheImpactsIsOnTheFloorAtTheImpactSpeed) {
+  for (double e : {0.3, 0.5, 0.8, 0.95}) {
+    const RigidBounces ref(1.0, 0.0, 9.81, e);
+    for (std::size_t n = 2; n <= 40; ++n) {
+      const double t_n = ref.impact_time(n);
+      const double in = std::pow(e, static_cast<double>(n - 1)) * ref.V, out = e * in;
+      for (double t : {std::nextafter(t_n, 0.0), t_n, std::nextafter(t_n, 10.0)}) {
+        const BallState s = rigid_ball_state(1.0, 0.0, 9.81, e, t);
+        // Within a few ulps of t of the impact: heights of V ulp(t), speeds within g ulp(t).
+        const double ulps = 8 * std::numeric_limits<double>::epsilon() * t_n;
+        EXPECT_LE(std::abs(s.x), ref.V * ulps) << "e = " << e << ", n = " << n << ", t - t_n = " << t - t_n;
+        const bool arriving = std::abs(s.v + in) <= 9.81 * ulps, leaving = std::abs(s.v - out) <= 9.81 * ulps;
+        EXPECT_TRUE(arriving || leaving) << "e = " << e << ", n = " << n << ", t - t_n = " << t - t_n
+                                         << ": v = " << s.v << " for -" << in << " or " << out;
+      }
+    }
+  }
+}
