@@ -316,12 +316,14 @@ class Impacts {
     return gap_acceleration(i, y) < 0;
   }
 
-  // How high the bounce leaving at y rises: v^2 / (2 |a|), a the gap's acceleration.
+  // How high the bounce leaving at y rises: v^2 / (2 |a|), a the gap's acceleration, formed as
+  // v (v / 2|a|): v^2 underflowed to 0 for a drop of 1e-165 m (speeds of 1e-165 m/s), whose first
+  // bounce then rose '0 m' and ended the run unresolved.
   double bounce_height(std::size_t i, ConstVectorRef y) {
     if (rest_height_ <= 0) return kInf;
     look_ahead(y);
     const double v = model_.gap_rate(i, y), a = gap_acceleration(i, y);
-    return a < 0 ? v * v / (-2 * a) : kInf;
+    return a < 0 ? v * (v / (-2 * a)) : kInf;
   }
 
   const MechanicalSystem& model_;
@@ -361,6 +363,7 @@ RunResult run_event_driven(const MechanicalSystem& model, const EventOptions& op
   // they end the run at a sample (below), as before.
   sys.root_count = 2 * nc;
   std::vector<double> gaps(nc), rates(nc);
+  const double touch_offset = contact::touch_offset(opt.integrator);
   sys.roots = [&](double, ConstVectorRef y, VectorRef g) {
     model.gaps_and_rates(y, gaps, rates);
     double resolution = -1;  // taken once, and only where a contact rests
@@ -372,7 +375,7 @@ RunResult run_event_driven(const MechanicalSystem& model, const EventOptions& op
         g[at + 1] = resolution - gaps[i];
         continue;
       }
-      g[at] = gaps[i] + kTouchOffset;  // touching but not yet approaching still counts as apart
+      g[at] = gaps[i] + touch_offset;  // touching but not yet approaching still counts as apart
       g[at + 1] = rates[i];
     }
   };

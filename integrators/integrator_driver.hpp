@@ -7,6 +7,7 @@
 #include "contact_ode/integrators/run_recorder.hpp"
 #include "contact_ode/models/mechanical_system.hpp"
 
+#include <algorithm>
 #include <functional>
 
 namespace contact {
@@ -37,8 +38,10 @@ inline double contact_threshold(const IntegratorOptions& options) { return 1e-3 
 // Event-driven impacts need no such threshold: they fire only on approach, and the projection
 // then moves the bodies by the overlap at the root, which must stay far below every resolved
 // length for impulses to keep angular momentum to rounding. The gap's root function is offset by
-// this much so that touching bodies (gap exactly 0 after a projection) count as apart.
-inline constexpr double kTouchOffset = 1e-150;
+// this much so that touching bodies (gap exactly 0 after a projection) count as apart: 1e-150 m,
+// or a millionth of atol where that is smaller (a drop of 1e-155 m, atol scaled to it, overlapped
+// by 1e-150 m before its impact fired, 1e5 times its height: 'unresolved').
+inline double touch_offset(const IntegratorOptions& options) { return std::min(1e-150, 1e-6 * options.atol); }
 
 RunResult drive(OdeSystem system, ConstVectorRef y0, const IntegratorOptions& options, RunRecorder& recorder,
                 const EventHandling& events);

@@ -14,6 +14,21 @@ namespace {
 
 CallbackData& data(void* user) { return *static_cast<CallbackData*>(user); }
 
+// CVODE's and ARKODE's root search sees a sign change where g_lo * g_hi < 0, a product that
+// underflows to 0 once both values are below about 1.6e-162: root functions of that size crossed
+// unseen (a ball dropped from 1e-165 m, gravity scaled alike, fell through the floor and the run
+// succeeded without a contact; from 1e-150 m, whose root offsets are a thousandth of an atol of
+// 1e-159 m, it ended 'diverged'). Values below 2^-400 are compressed into [2^-530, 2^-400),
+// linearly in their exponent and keeping their sign, so that the product of any two non-zero ones
+// is at least 2^-1060. The map is strictly increasing and keeps 0, so each function's roots are
+// where they were, and every value from 2^-400 up is passed on bitwise.
+double visible_to_the_sign_test(double g) {
+  constexpr double top = -400, bottom = -1074, to = -530;  // exponents: 2^-1074 is the least double
+  const double size = std::abs(g);
+  if (!(size < 0x1p-400) || size == 0) return g;
+  return std::copysign(std::exp2(top + (std::log2(size) - top) * ((to - top) / (bottom - top))), g);
+}
+
 // Calls f, `what` naming it, and checks its time and its output. A non-finite output is a
 // recoverable refusal (positive return): a trial state of an over-long step may leave the region
 // where the model is defined, and the solver then retries with a smaller step, failing only if the
@@ -146,7 +161,10 @@ int roots(sunrealtype t, N_Vector y, sunrealtype* gout, void* user) {
   // retry), which a non-finite value must. Unchecked, an accepted step whose state overflowed (ARKODE's
   // explicit first step of some 1e135 s, t_end 1e300 s) gave -inf and NaN root values, and ARKODE's
   // root search, whose loop ends only when its bracket narrows, ran forever.
-  return guarded(d, t, g, "root functions", [&] { d.sys.roots(t, d.map(y), g); });
+  return guarded(d, t, g, "root functions", [&] {
+    d.sys.roots(t, d.map(y), g);
+    for (double& value : g) value = visible_to_the_sign_test(value);
+  });
 }
 
 void error_handler(int code, const char* module, const char* function, char* msg, void* user) {

@@ -314,6 +314,56 @@ TEST(RunBounds, EventFlightWithAScaledToleranceResolvesATinyDrop) {
   for (const auto& s : r.samples) EXPECT_NEAR(s.energy, r.energy0, 1e-4 * r.energy0) << "t = " << s.t;
 }
 
+// A drop scaled in length by 2^-540 (h0 about 3e-163 m, gravity, atol and rest_speed alike) is the
+// metre drop in other units, and the methods whose thresholds scale with it must bounce it alike.
+// CVODE's and ARKODE's root search tests a sign change by the product of two values, which
+// underflows to 0 below about 1.6e-162: the penalty ball fell through the floor and the run
+// succeeded without a contact, and the event-driven flight's impacts fired only 1e-150 m deep
+// (its touch offset, now at most a millionth of atol), 'unresolved'; event-exact's impact time
+// from v^2 + 2 g x, subnormal or zero here, let its ball through too (and put its apexes 5e-6 off
+// at 1e-160 m). At 2^-700 as well, where every such product is zero. Held: the metre drop's
+// contacts, its first three apexes to 100 rtol of h0 (the two runs' tolerances' errors; the
+// flights' exact e^(2n) h0 for event-exact, to rounding).
+TEST(RunBounds, ADropScaledFarBelowTheMetreBouncesAsTheMetreDropDoes) {
+  const double e = 0.8, k = 1e5, rtol = 1e-8;
+  const auto drop = [&](double s) {
+    return BallDrop({.g = 9.81 * s, .h0 = s, .e = e, .law = kelvin_voigt_for_restitution(k, 1.0, e, false)});
+  };
+  const RigidBounces rigid(1.0, 0.0, 9.81, e);
+  const BallDrop metre = drop(1.0);
+  for (const double s : {0x1p-540, 0x1p-700}) {
+    const BallDrop tiny = drop(s);
+    const SolveOptions span{.t_end = 3.0, .sample_dt = 0.5};
+    for (const char* integrator : {"cvode-bdf", "arkode-erk"}) {
+      auto penalty = [&](double scale) {
+        PenaltyOptions o;
+        o.integrator.method = integrator;
+        o.integrator.rtol = rtol;
+        o.integrator.atol = 1e-10 * scale;
+        return run_penalty(scale == 1.0 ? metre : tiny, o, span);
+      };
+      const RunResult big = penalty(1.0), small = penalty(s);
+      ASSERT_TRUE(small.ok()) << integrator << " at " << s << ": " << small.message;
+      ASSERT_EQ(small.contacts.size(), big.contacts.size()) << integrator << " at " << s;
+      ASSERT_GE(small.apexes.size(), 3u) << integrator << " at " << s;
+      for (std::size_t j = 0; j < 3; ++j)
+        EXPECT_NEAR(small.apexes[j].gap / s, big.apexes[j].gap, 100 * rtol) << integrator << " at " << s;
+    }
+    EventOptions o;
+    o.integrator.rtol = rtol;
+    o.integrator.atol = 1e-10 * s;
+    o.rest_speed *= s;
+    const RunResult flown = run_event_driven(tiny, o, span), exact = run_event_driven(tiny, tiny, o, span);
+    for (const RunResult* r : {&flown, &exact}) {
+      ASSERT_TRUE(r->ok()) << r->method << " at " << s << ": " << r->message;
+      ASSERT_GE(r->apexes.size(), 3u) << r->method << " at " << s;
+      const double tolerance = r == &exact ? 1e-14 : 100 * rtol;
+      for (std::size_t j = 0; j < 3; ++j)
+        EXPECT_NEAR(r->apexes[j].gap / s, rigid.apex_height(j + 1), tolerance) << r->method << " at " << s;
+    }
+  }
+}
+
 // e = 0.9 and 0.99 used to stop short of t_inf (bounces below the tolerance were rested without
 // a word). The flight lands each impact early by its position error eps = K atol (CVODE restarts
 // at first order after every impact, which is not exact for the parabola): flight n is short by
