@@ -34,6 +34,15 @@ void require_frequency(const std::string& f, double m, double k, double g) {
         "{}: the static sag g m / k = {} (g = {}, m = {}, k = {}) overflows", f, g / w2, g, m, k));
 }
 
+// sqrt(v0^2 + 2 g h0), the first impact's speed. Where both terms are below 2^-800 (a drop of
+// 1e-165 m under gravity scaled alike) they are zero or subnormal: from square roots instead (the
+// speed came out 0, and with it every impact time, apex and Zeno time).
+double impact_speed(double h0, double v0, double g) {
+  if (std::abs(v0) < 0x1p-400 && 2.0 * g * h0 < 0x1p-800)
+    return std::hypot(v0, std::sqrt(2.0 * g) * std::sqrt(h0));
+  return std::sqrt(v0 * v0 + 2.0 * g * h0);
+}
+
 // The flights after the first impact, 2 e V / (g (1 - e)) for e < 1: the Zeno time's tail.
 double zeno_tail(const RigidBounces& b) { return 2.0 * b.e * b.V / (b.g * (1.0 - b.e)); }
 }  // namespace
@@ -41,7 +50,7 @@ double zeno_tail(const RigidBounces& b) { return 2.0 * b.e * b.V / (b.g * (1.0 -
 RigidBounces::RigidBounces(double h0, double v0, double g_, double e_)
     // A ball thrown down fast under weak gravity: v0 + V cancelled (T1 = 0.0142 s for 0.01 s at
     // h0 = 1 m, v0 = -100 m/s, g = 1e-12 m/s^2), where 2 h0 / (V - v0), the same root, does not.
-    : g(g_), e(e_), V(std::sqrt(v0 * v0 + 2.0 * g_ * h0)), T1(v0 < 0 ? 2.0 * h0 / (V - v0) : (v0 + V) / g_) {
+    : g(g_), e(e_), V(impact_speed(h0, v0, g_)), T1(v0 < 0 ? 2.0 * h0 / (V - v0) : (v0 + V) / g_) {
   require_in("rigid bounces: h0", h0, kNonNegative);
   require_in("rigid bounces: v0", v0, kAnyFinite);
   require_in("rigid bounces: g", g, kPositive);
@@ -67,7 +76,7 @@ double RigidBounces::impact_time(std::size_t n) const {
 
 double RigidBounces::apex_height(std::size_t n) const {
   const double vn = std::pow(e, static_cast<double>(n)) * V;
-  return vn * vn / (2.0 * g);
+  return vn * (vn / (2.0 * g));  // not vn^2 / 2g: vn^2 underflows for speeds below 1e-162 m/s
 }
 
 double RigidBounces::apex_time(std::size_t n) const {

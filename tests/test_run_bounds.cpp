@@ -321,9 +321,11 @@ TEST(RunBounds, EventFlightWithAScaledToleranceResolvesATinyDrop) {
 // succeeded without a contact, and the event-driven flight's impacts fired only 1e-150 m deep
 // (its touch offset, now at most a millionth of atol), 'unresolved'; event-exact's impact time
 // from v^2 + 2 g x, subnormal or zero here, let its ball through too (and put its apexes 5e-6 off
-// at 1e-160 m). At 2^-700 as well, where every such product is zero. Held: the metre drop's
-// contacts, its first three apexes to 100 rtol of h0 (the two runs' tolerances' errors; the
-// flights' exact e^(2n) h0 for event-exact, to rounding).
+// at 1e-160 m), and the closed form's impact speed sqrt(v0^2 + 2 g h0) came out 0 (and with it
+// every impact time, apex and Zeno time ball_drop printed). At 2^-700 as well, where every such
+// product is zero. Held: the metre drop's contacts, its first three apexes to 100 rtol of h0 (the
+// two runs' tolerances' errors; the flights' exact e^(2n) h0 for event-exact, to rounding), and
+// the closed form's times and apexes, to rounding.
 TEST(RunBounds, ADropScaledFarBelowTheMetreBouncesAsTheMetreDropDoes) {
   const double e = 0.8, k = 1e5, rtol = 1e-8;
   const auto drop = [&](double s) {
@@ -333,6 +335,10 @@ TEST(RunBounds, ADropScaledFarBelowTheMetreBouncesAsTheMetreDropDoes) {
   const BallDrop metre = drop(1.0);
   for (const double s : {0x1p-540, 0x1p-700}) {
     const BallDrop tiny = drop(s);
+    const RigidBounces scaled(s, 0.0, 9.81 * s, e);
+    EXPECT_NEAR(scaled.T1, rigid.T1, 1e-15 * rigid.T1) << s;
+    EXPECT_NEAR(scaled.zeno_time(), rigid.zeno_time(), 1e-15 * rigid.zeno_time()) << s;
+    EXPECT_NEAR(scaled.apex_height(1) / s, rigid.apex_height(1), 1e-15) << s;
     const SolveOptions span{.t_end = 3.0, .sample_dt = 0.5};
     for (const char* integrator : {"cvode-bdf", "arkode-erk"}) {
       auto penalty = [&](double scale) {
