@@ -1,5 +1,6 @@
 #include "contact_ode/analysis/references.hpp"
 
+#include "contact_ode/models/ball_drop.hpp"
 #include "contact_ode/models/contact_law.hpp"
 #include "contact_ode/models/parameters.hpp"
 
@@ -32,15 +33,6 @@ void require_frequency(const std::string& f, double m, double k, double g) {
   if (!std::isfinite(g / w2))
     throw std::invalid_argument(fmt::format(
         "{}: the static sag g m / k = {} (g = {}, m = {}, k = {}) overflows", f, g / w2, g, m, k));
-}
-
-// sqrt(v0^2 + 2 g h0), the first impact's speed. Where both terms are below 2^-800 (a drop of
-// 1e-165 m under gravity scaled alike) they are zero or subnormal: from square roots instead (the
-// speed came out 0, and with it every impact time, apex and Zeno time).
-double impact_speed(double h0, double v0, double g) {
-  if (std::abs(v0) < 0x1p-400 && 2.0 * g * h0 < 0x1p-800)
-    return std::hypot(v0, std::sqrt(2.0 * g) * std::sqrt(h0));
-  return std::sqrt(v0 * v0 + 2.0 * g * h0);
 }
 
 // The flights after the first impact, 2 e V / (g (1 - e)) for e < 1: the Zeno time's tail.

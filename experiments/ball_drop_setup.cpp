@@ -15,7 +15,7 @@ double scaled_atol(const BallDropOptions& o) {
   return 1e-10 * (o.h0 + (o.g > 0 ? o.v0 * o.v0 / (2 * o.g) : 0.0));
 }
 
-double impact_speed(const BallDropOptions& o) { return std::sqrt(o.v0 * o.v0 + 2 * o.g * o.h0); }
+double impact_speed(const BallDropOptions& o) { return contact::impact_speed(o.h0, o.v0, o.g); }
 
 void check_scales(const BallDropOptions& o) {
   if (!std::isfinite(scaled_atol(o)) || !std::isfinite(impact_speed(o)))

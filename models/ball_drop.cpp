@@ -89,6 +89,13 @@ double BallDrop::time_to_impact(std::size_t, ConstVectorRef y0) const {
   return v >= 0 ? (v + s) / g : 2.0 * x / (s - v);
 }
 
+double impact_speed(double h0, double v0, double g) {
+  // Where both terms are below 2^-800 they are zero or subnormal: from square roots instead.
+  if (std::abs(v0) < 0x1p-400 && 2.0 * g * h0 < 0x1p-800)
+    return std::hypot(v0, std::sqrt(2.0 * g) * std::sqrt(h0));
+  return std::sqrt(v0 * v0 + 2.0 * g * h0);
+}
+
 double BallDrop::time_to_apex(std::size_t, ConstVectorRef y0) const {
   return (y0[1] > 0 && p_.g > 0) ? y0[1] / p_.g : std::numeric_limits<double>::infinity();
 }
@@ -112,7 +119,7 @@ SceneEntry ball_drop_scene() {
           "event-driven: apexes e^(2n) h0, Zeno time; penalty: hooke_contact with gravity",
           3.0,
           [](const ParameterValues& v, const std::string& law) -> std::unique_ptr<Dynamics> {
-            const double V = std::sqrt(v.at("v0") * v.at("v0") + 2 * v.at("g") * v.at("h0"));
+            const double V = impact_speed(v.at("h0"), v.at("v0"), v.at("g"));
             const LawSpec spec{.k = v.at("k"), .m = v.at("m"), .e = v.at("e"), .v = V > 0 ? V : 1.0};
             return std::make_unique<BallDrop>(
                 BallDropParams{v.at("m"), v.at("g"), v.at("h0"), v.at("v0"), v.at("e"), make_law(law, spec)});
