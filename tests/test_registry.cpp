@@ -146,6 +146,25 @@ TEST(Solve, ByNameGivesTheClosedForms) {
   for (const auto& smp : s.samples) EXPECT_NEAR(smp.y[0], 0.1 * std::cos(10.0 * smp.t), 1e-8) << smp.t;
 }
 
+// A scene tunes its damped law to the drop's impact speed: for a drop of 2^-560 m (1e-169; g
+// alike, Hertz's K by 2^280 for the same contact in those units) that speed's terms underflow,
+// and the law was tuned at V = 0 (chi = 0.27 s/m for 6e168): its contact bounced elastically.
+// Its first restitution is the metre drop's, to 100 rtol.
+TEST(Solve, AScaledDropsLawIsTunedAtItsOwnImpactSpeed) {
+  const auto first_restitution = [](double s) {
+    const auto ball =
+        make_scene("ball-drop", {{"h0", s}, {"g", 9.81 * s}, {"k", 1e5 / std::sqrt(s)}}, "hertz");
+    Method penalty{.name = "penalty"};
+    penalty.integrator.rtol = 1e-8;
+    penalty.integrator.atol = 1e-10 * s;
+    const RunResult r = solve(*ball, penalty, {.t_end = 1.0, .sample_dt = 1.0});
+    EXPECT_TRUE(r.ok()) << s << ": " << r.message;
+    return r.contacts.empty() ? std::nan("") : r.contacts.front().restitution();
+  };
+  const double metre = first_restitution(1.0);
+  EXPECT_NEAR(first_restitution(0x1p-560), metre, 1e-6);
+}
+
 TEST(Registries, MethodsForASceneAreThoseThatCanRunIt) {
   const auto ball = make_scene("ball-drop");
   const auto spring = make_scene("spring-mass");
