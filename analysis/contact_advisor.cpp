@@ -77,7 +77,8 @@ Designed design(const ContactRequest& r) {
     return {KelvinVoigt{k, c, clamped}, k, c};
   }
   if (r.law == "hooke") {
-    const double k = r.max_penetration ? m * V * V / (*r.max_penetration * *r.max_penetration)
+    // m (V / delta)^2, not m V^2 / delta^2: each square underflowed for a contact at 1e-165 m.
+    const double k = r.max_penetration ? m * (V / *r.max_penetration) * (V / *r.max_penetration)
                                        : m * (pi / *r.duration) * (pi / *r.duration);
     return {Hooke{k}, k, 0.0};
   }
@@ -94,16 +95,19 @@ Designed design(const ContactRequest& r) {
   if (r.radius) {
     K = hertz_stiffness(*r.radius, effective_modulus(*r.young, *r.poisson, INFINITY, 0.0));
   } else if (r.max_penetration) {
-    K = (n + 1) * m * V * V * hunt_crossley_approach_factor(chi * V) / std::pow(*r.max_penetration, n + 1);
+    // (n + 1) m f V^2 / delta^(n+1) as (V / delta)^2 delta^(1-n): V^2 underflowed at 1e-165 m/s.
+    const double d = *r.max_penetration;
+    K = (n + 1) * m * hunt_crossley_approach_factor(chi * V) * (V / d) * (V / d) * std::pow(d, 1 - n);
   } else {
     // The trial: the undamped contact that lasts as asked.
     const double dmax = *r.duration * V / (2 * power_law_time_factor(n));
-    const double trial = (n + 1) * m * V * V / (2 * std::pow(dmax, n + 1));
+    const double trial = (n + 1) * m * (V / dmax) * (V / dmax) * std::pow(dmax, 1 - n) / 2;
     const double lasted = measure_isolated_contact(HuntCrossley{trial, n, chi}, m, V).duration;
     K = trial * std::pow(lasted / *r.duration, n + 1);
   }
   const double dmax = hunt_crossley_max_penetration(m, K, n, chi, V);
-  return {HuntCrossley{K, n, chi}, n * K * std::pow(dmax, n - 1), K * chi * std::pow(dmax, n)};
+  return {HuntCrossley{K, n, chi}, n * K * std::pow(dmax, n - 1),
+          K * std::pow(dmax, n) * chi};  // K chi overflowed for a heavy, slow body
 }
 
 // The semi-implicit game loop on the isolated contact, with the spring: the worst energy drift
@@ -188,22 +192,21 @@ void validate(const ContactRequest& r) {
   const double K = stiffness(d.law), nan = std::nan("");
   const SpringContact undamped = std::isfinite(K) && K > 0 ? power_law_contact(r.m, K, exponent(d.law), r.v)
                                                            : SpringContact{nan, nan, nan};
-  const double scales[] = {d.k_lin,
-                           std::sqrt(d.k_lin / r.m),
-                           undamped.duration,
-                           undamped.max_penetration,
-                           1e-13 * undamped.max_penetration,
-                           r.v * undamped.duration};
+  const double scales[] = {d.k_lin, std::sqrt(d.k_lin / r.m), undamped.duration, undamped.max_penetration,
+                           1e-13 * undamped.max_penetration, r.v * undamped.duration,
+                           // The game step's energy budget is measured in joules, to 1e-4 of the
+                           // contact's energy: at 1e-165 m/s the energies underflowed and game_dt
+                           // came out 1.8 times too long.
+                           1e4 * 0.5 * r.m * r.v * r.v};
   if (!std::all_of(std::begin(scales), std::end(scales),
                    [](double x) { return std::isfinite(x) && x > 1e-300; }) ||
       !std::isfinite(d.c_lin) || !(undamped.duration < 1e12))
     throw std::invalid_argument(
-        fmt::format("--m, --v, --max-penetration/--duration: m = {:g} kg, v = {:g} m/s give k = {:g} N/m and "
-                    "a contact of {:g} s "
-                    "and {:g} m, outside what double precision resolves; accepted: inputs giving a finite, "
-                    "positive stiffness, "
-                    "duration and penetration",
-                    r.m, r.v, d.k_lin, undamped.duration, undamped.max_penetration));
+        fmt::format("--m, --v, --max-penetration/--duration: m = {:g} kg, v = {:g} m/s give k = {:g} N/m, "
+                    "a contact of {:g} s and {:g} m and an energy m v^2 / 2 of {:g} J, outside what double "
+                    "precision resolves; accepted: inputs giving a finite, positive stiffness, duration, "
+                    "penetration and 1e4 times the energy above 1e-300",
+                    r.m, r.v, d.k_lin, undamped.duration, undamped.max_penetration, 0.5 * r.m * r.v * r.v));
 }
 
 ContactAdvice advise(const ContactRequest& r) {

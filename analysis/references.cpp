@@ -241,7 +241,9 @@ SpringContact power_law_contact(double m, double K, double n, double V) {
   require_in("power_law_contact: K", K, kPositive);
   require_in("power_law_contact: n", n, kPositive);
   require_in("power_law_contact: V", V, kPositive);
-  const double dmax = std::pow((n + 1.0) * m * V * V / (2.0 * K), 1.0 / (n + 1.0));
+  // ((n + 1) m V^2 / 2K)^(1 / (n + 1)) with V's power apart: V^2 underflowed to 0 for a contact at
+  // 1e-165 m/s (a drop scaled by 2^-540), whose penetration and duration came out 0.
+  const double dmax = std::pow(V, 2.0 / (n + 1.0)) * std::pow((n + 1.0) * m / (2.0 * K), 1.0 / (n + 1.0));
   return {2.0 * dmax / V * power_law_time_factor(n), dmax, V};
 }
 
@@ -283,7 +285,8 @@ double hunt_crossley_max_penetration(double m, double K, double n, double chi, d
   require_in("hunt_crossley_max_penetration: n", n, kPositive);
   require_in("hunt_crossley_max_penetration: chi", chi, kNonNegative);
   require_in("hunt_crossley_max_penetration: V", V, kPositive);
-  return std::pow((n + 1.0) * m * V * V * hunt_crossley_approach_factor(chi * V) / K, 1.0 / (n + 1.0));
+  return std::pow(V, 2.0 / (n + 1.0)) *  // apart, as in power_law_contact
+         std::pow((n + 1.0) * m * hunt_crossley_approach_factor(chi * V) / K, 1.0 / (n + 1.0));
 }
 
 double hooke_impact_time(double m, double k, double h0, double v0, double g, std::size_t n) {

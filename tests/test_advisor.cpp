@@ -323,3 +323,51 @@ TEST(Advisor, RefusesNonPhysicalRequests) {
   bad.poisson.reset();
   EXPECT_NE(message(bad).find("give all three"), std::string::npos) << message(bad);
 }
+
+// A heavy, slow body: m = 2^700 kg at 5 2^-540 m/s into 1e-3 2^-540 m is the 1 kg body at 5 m/s into
+// 1 mm in other units of length and mass (time unchanged), so the contact's frequency, damping ratio,
+// duration, restitution and game step are the same numbers. Its speed's square underflows: the
+// designs formed m v^2 / delta^2 (k = 0, refused as beyond double precision), the power law's
+// penetration ((n + 1) m v^2 / 2K)^(1 / (n + 1)) came out 0, and K chi, formed first in the
+// Hunt-Crossley law's damping terms, overflowed (1e300 times 1e161). Closed forms to 1e-12, the simulated
+// contacts to 1e-6 (rtol 1e-8 over ~100 steps), the game step to 1e-6 (its search's own tolerance).
+// A contact whose energy m v^2 / 2 is not a normal double (1 kg at that speed) has no game step to
+// measure: refused, naming it.
+TEST(Advisor, AHeavySlowBodyAtTheDoublesEdgeGetsTheMetreBodysDesign) {
+  const double s = 0x1p-540, M = 0x1p700;
+  struct Case {
+    const char* law;
+    double e;
+    std::optional<DampingRule> rule;
+    bool by_duration;
+  };
+  for (const Case& c : {Case{"kelvin-voigt", 0.8, {}, false}, Case{"hooke", 1.0, {}, false},
+                        Case{"hertz", 0.8, DampingRule::Flores, false},
+                        Case{"hunt-crossley-linear", 0.8, DampingRule::Gonthier, true}}) {
+    const auto request = [&](double mass, double length) {
+      ContactRequest r{
+          .m = mass, .v = 5.0 * length, .e = c.e, .law = c.law, .rule = c.rule, .g = 9.81 * length};
+      if (c.by_duration)
+        r.duration = 1e-3;
+      else
+        r.max_penetration = 1e-3 * length;
+      return r;
+    };
+    const ContactAdvice metre = advise(request(1.0, 1.0)), tiny = advise(request(M, s));
+    // (A design for a duration measures a trial contact: simulated, 1e-6.)
+    const double closed = c.by_duration ? 1e-6 : 1e-12;
+    EXPECT_NEAR(tiny.omega / metre.omega, 1.0, closed) << c.law;
+    EXPECT_NEAR(tiny.zeta, metre.zeta, closed) << c.law;
+    EXPECT_NEAR(tiny.achieved_duration / metre.achieved_duration, 1.0, 1e-6) << c.law;
+    EXPECT_NEAR(tiny.achieved_penetration / s / metre.achieved_penetration, 1.0, 1e-6) << c.law;
+    EXPECT_NEAR(tiny.achieved_restitution, metre.achieved_restitution, 1e-6) << c.law;
+    EXPECT_NEAR(tiny.game_dt / metre.game_dt, 1.0, 1e-6) << c.law;
+    std::string why;
+    try {
+      advise(request(1.0, s));
+    } catch (const std::invalid_argument& refused) {
+      why = refused.what();
+    }
+    EXPECT_NE(why.find("an energy m v^2 / 2 of 0 J"), std::string::npos) << c.law << ": " << why;
+  }
+}

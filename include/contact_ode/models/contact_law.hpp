@@ -75,13 +75,14 @@ struct HuntCrossley {
   double dforce_ddelta(double d, double dd) const {
     return k * n * std::pow(std::abs(d), n - 1.0) * (1.0 + chi * dd);
   }
-  double dforce_drate(double d, double) const { return k * chi * pow_n(d); }
+  // K delta^n first, the force's scale: K chi overflowed for a heavy, slow body (K 1e300, chi 1e161).
+  double dforce_drate(double d, double) const { return k * pow_n(d) * chi; }
   // On while overlapping and 1 + chi delta_dot > 0. The second factor is dimensionless; it is
   // scaled by 1 mm only to read as a length (a root's location does not depend on the scale).
   double switching(double d, double dd) const { return std::min(d, 1e-3 * (1.0 + chi * dd)); }
   bool releases_while_overlapping() const { return chi != 0.0; }
   double stored_energy(double d) const { return d > 0 ? k * std::pow(d, n + 1.0) / (n + 1.0) : 0.0; }
-  double dissipated_power(double d, double dd) const { return d > 0 ? k * chi * pow_n(d) * dd * dd : 0.0; }
+  double dissipated_power(double d, double dd) const { return d > 0 ? k * pow_n(d) * (chi * dd) * dd : 0.0; }
 
  private:
   double pow_n(double d) const { return std::copysign(std::pow(std::abs(d), n), d); }
