@@ -73,27 +73,30 @@ double BallDrop::time_to_impact(std::size_t, ConstVectorRef y0) const {
   constexpr double inf = std::numeric_limits<double>::infinity();
   const double x = y0[0], v = y0[1], g = p_.g;
   if (g == 0.0) return v < 0 && x >= 0 ? -x / v : inf;
-  // Larger root of x + v t - g t^2/2 = 0, written without cancellation for either sign of v.
-  const double disc = v * v + 2.0 * g * x;
-  double s = 0;  // sqrt(disc)
-  if (std::abs(v) < 0x1p-400 && std::abs(disc) < 0x1p-800) {
-    // Terms this small are subnormal or zero: a drop of 1e-160 m (gravity scaled alike) bounced 5e-6
-    // off its apexes, and one of 1e-165 m fell through the floor. The root from square roots instead.
-    const double w = std::sqrt(2.0 * g) * std::sqrt(std::abs(x)), u = std::abs(v);
-    if (x < 0 && u < w) return inf;
-    s = x >= 0 ? std::hypot(v, w) : std::sqrt(u - w) * std::sqrt(u + w);
-  } else {
+  // Larger root of x + v t - g t^2/2 = 0, written without cancellation for either sign of v. s is
+  // sqrt(v^2 + 2 g x), the speed at the floor: impact_speed above it; below it (an overlap of
+  // rounding's size) from square roots where v^2 + 2 g x is subnormal, zero or past the doubles.
+  double s = 0;
+  if (x >= 0) {
+    s = impact_speed(x, v, g);
+  } else if (const double disc = v * v + 2.0 * g * x;
+             std::abs(disc) >= 0x1p-800 && std::abs(disc) <= 0x1p800) {
     if (disc < 0) return inf;
     s = std::sqrt(disc);
+  } else {
+    const double w = std::sqrt(2.0) * std::sqrt(g) * std::sqrt(-x), u = std::abs(v);
+    if (u < w) return inf;
+    s = std::sqrt(u - w) * std::sqrt(u + w);
   }
   return v >= 0 ? (v + s) / g : 2.0 * x / (s - v);
 }
 
 double impact_speed(double h0, double v0, double g) {
-  // Where both terms are below 2^-800 they are zero or subnormal: from square roots instead.
-  if (std::abs(v0) < 0x1p-400 && 2.0 * g * h0 < 0x1p-800)
-    return std::hypot(v0, std::sqrt(2.0 * g) * std::sqrt(h0));
-  return std::sqrt(v0 * v0 + 2.0 * g * h0);
+  // Where the square is subnormal, zero or past the doubles (a drop of 1e-165 m, or of 1e157 m, under
+  // gravity scaled alike), from square roots instead: its terms are never formed.
+  const double square = v0 * v0 + 2.0 * g * h0;
+  if (square >= 0x1p-800 && square <= 0x1p800) return std::sqrt(square);
+  return std::hypot(v0, std::sqrt(2.0) * std::sqrt(g) * std::sqrt(h0));
 }
 
 double BallDrop::time_to_apex(std::size_t, ConstVectorRef y0) const {

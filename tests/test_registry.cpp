@@ -215,13 +215,14 @@ TEST(Registries, ClosedFormsRefuseArgumentsOutsideTheirDomain) {
 // never returned, from Python too) and passed the Zeno time by rounding (n = 1e6: 4 ulps past it).
 // The closed form agrees with the sum in long double to a few ulps of the tail (log and expm1 are
 // correct to an ulp; the fraction 1 - e^(n-1) is formed without cancellation), and never passes
-// zeno_time(). A first impact beyond the doubles' range (g = 1e308: 2 g h0 overflows) is refused;
-// every apex was NaN.
+// zeno_time(). A first impact beyond the doubles' range (g = h0 = 1.5e308: V = 2.1e308) is refused;
+// every apex was NaN. (g = 1e308 at h0 = 1 m, whose 2 g h0 overflows, has V = 1.4e154 m/s.)
 TEST(Registries, RigidImpactTimesAreAClosedFormBoundedByTheZenoTime) {
-  const std::string why = refusal([] { RigidBounces(1.0, 0.0, 1e308, 0.8); });
+  const std::string why = refusal([] { RigidBounces(1.5e308, 0.0, 1.5e308, 0.8); });
   EXPECT_NE(why.find("rigid bounces: the first impact (speed sqrt(v0^2 + 2 g h0) = inf"), std::string::npos)
       << why;
-  EXPECT_NE(why.find("h0 = 1, v0 = 0, g = 1e+308"), std::string::npos) << why;
+  EXPECT_NE(why.find("h0 = 1.5e+308, v0 = 0, g = 1.5e+308"), std::string::npos) << why;
+  EXPECT_NEAR(RigidBounces(1.0, 0.0, 1e308, 0.8).V / (std::sqrt(2.0) * 1e154), 1.0, 1e-15);
   const std::vector<double> restitutions{0.0, 0.5, 0.8, 0.999999, 1.0};
   for (const double e : restitutions) {
     const RigidBounces ref(1.0, 0.5, 9.81, e);

@@ -26,8 +26,8 @@ struct BallDropParams {
 };
 
 // The speed at the floor of a ball released at height h0 with vertical speed v0 under gravity g,
-// sqrt(v0^2 + 2 g h0), without underflow (a drop of 1e-165 m under gravity scaled alike: its
-// terms are zero, and the speed came out 0) [m/s].
+// sqrt(v0^2 + 2 g h0), without underflow or overflow (a drop of 1e-165 m under gravity scaled
+// alike: its terms are zero, and the speed came out 0; of 1e157 m: they overflow) [m/s].
 double impact_speed(double h0, double v0, double g);
 
 class BallDrop final : public MechanicalSystem,
