@@ -44,10 +44,6 @@ struct Apex {
   double dissipated = 0.0;  // [J], as in Sample
 };
 
-// The energy ledger: E0 = E(t) + dissipated(t) + drift(t). Penalty runs integrate the laws'
-// dissipated power as an extra state; impulsive methods add the kinetic energy each impulse
-// removes. What is left, the drift, is numerical: integration error, and for game methods the
-// energy that projection adds or removes.
 // A gameplay notification of the game loop, delivered in one batch after a physics step.
 struct CollisionEvent {
   enum class Kind { Begin, End };
@@ -57,6 +53,10 @@ struct CollisionEvent {
   double t;             // that step's end time [s]
 };
 
+// A run's records and how it ended. Its energy ledger: E0 = E(t) + dissipated(t) + drift(t). Penalty
+// runs integrate the laws' dissipated power as an extra state; impulsive methods add the kinetic
+// energy each impulse removes. What is left, the drift, is numerical: integration error, and for
+// game methods the energy that projection adds or removes.
 struct RunResult {
   std::string method;
   std::vector<std::string> state_labels;
