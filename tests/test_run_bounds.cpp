@@ -323,11 +323,11 @@ TEST(RunBounds, EventFlightWithAScaledToleranceResolvesATinyDrop) {
 // from v^2 + 2 g x, subnormal or zero here, let its ball through too (and put its apexes 5e-6 off
 // at 1e-160 m), and the closed form's impact speed sqrt(v0^2 + 2 g h0) came out 0 (and with it
 // every impact time, apex and Zeno time ball_drop printed). At 2^-700 as well, where every such
-// product is zero; and at 2^520 (3e156 m), where v^2 + 2 g x overflows and event-exact's ball
-// fell through the floor as well (its energies overflow: only its flight and closed form are held). Held: the
-// metre drop's contacts, its first three apexes to 100 rtol of h0 (the two runs' tolerances' errors; the
-// flights' exact e^(2n) h0 for event-exact, to rounding), and the closed form's times and apexes, to
-// rounding.
+// product is zero; and at 2^520 (3e156 m), where v^2 + 2 g x overflows and event-exact's ball fell
+// through the floor as well (its energies overflow: only its flight and closed form are held).
+// Held: the metre drop's contacts, its first three apexes to 100 rtol of h0 (the two runs'
+// tolerances' errors; the flights' exact e^(2n) h0 for event-exact, to rounding), and the closed
+// form's times and apexes, to rounding.
 TEST(RunBounds, ADropScaledFarFromTheMetreBouncesAsTheMetreDropDoes) {
   const double e = 0.8, k = 1e5, rtol = 1e-8;
   const auto drop = [&](double s) {
