@@ -47,7 +47,7 @@ RigidBounces::RigidBounces(double h0, double v0, double g_, double e_)
   require_in("rigid bounces: v0", v0, kAnyFinite);
   require_in("rigid bounces: g", g, kPositive);
   require_in("rigid bounces: e", e, kUnitInterval);
-  // Each argument finite, their impact still may not be (g = 1e308: 2 g h0 overflows, and every
+  // Each argument finite, their impact still may not be (g = h0 = 1.5e308: V = 2.1e308, and every
   // apex was NaN); refused, naming the three, as the ball_drop program refuses --g, --h0, --v0.
   if (!std::isfinite(V) || !std::isfinite(T1))
     throw std::invalid_argument(fmt::format(

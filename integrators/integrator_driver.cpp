@@ -27,7 +27,8 @@ RunResult drive(OdeSystem system, ConstVectorRef y0, const IntegratorOptions& op
   };
   double t = 0.0;
   // Progress guard: CVODE can return a root without flagging any (its sign test glo * ghi < 0
-  // underflows for root functions of ~1e-160); calling it again returns the same root forever.
+  // underflowed for root functions of ~1e-160, which the root callback now compresses out of that
+  // range: sundials_callbacks.cpp); calling it again returns the same root forever.
   // Such a return restarts the integrator, which clears its root memory and steps past; a run
   // that still returns at the same time, whatever the reason, ends with Status::NoProgress.
   // Simultaneous roots are reported in one return, so a bound of a few returns per root

@@ -1,7 +1,8 @@
 // The metrics every table reports (analysis/metrics.hpp), read off a run built by hand so that each
 // quantity's source is known: which contact is the first, which records a maximum runs over, what
 // the drift leaves out. (Every other test reads them off simulated runs, where the first contact
-// is often the only one and the samples' energy error the largest.)
+// is often the only one and the samples' energy error the largest.) Tolerances: the few roundings
+// of numbers of order one that each metric takes (1e-15; 1e-14 where ten joules are subtracted).
 #include "contact_ode/analysis/metrics.hpp"
 
 #include <gtest/gtest.h>
