@@ -50,8 +50,8 @@ RunRecords::RunRecords(const std::vector<std::string>& state_columns)
       apexes({"method", "t_s", "height_m", "energy_J", "energy_change_rel"}),
       samples(sample_columns(state_columns)),
       stats({"method", "status", "t_reached_s", "steps", "failed_steps", "rhs_evals", "jac_evals",
-             "newton_iters", "linear_setups", "root_evals", "events", "restarts", "wall_time_s", "message"}) {
-}
+             "newton_iters", "linear_setups", "root_evals", "events", "restarts", "wall_time_s",
+             "setup_cpu_s", "message"}) {}
 
 void RunRecords::add(const RunResult& r) {
   for (const auto& c : r.contacts)
@@ -69,7 +69,7 @@ void RunRecords::add(const RunResult& r) {
   const auto& st = r.stats;
   stats.add_row({r.method, std::string(to_string(r.status)), r.t_reached, st.steps, st.failed_steps,
                  st.rhs_evals, st.jac_evals, st.newton_iters, st.linear_setups, st.root_evals, st.events,
-                 st.restarts, st.wall_time_s, r.message});
+                 st.restarts, st.wall_time_s, st.setup_cpu_s, r.message});
 }
 
 }  // namespace contact

@@ -367,7 +367,7 @@ PYBIND11_MODULE(contact_ode, mod) {
                         py::arg("newton_iters") = s.newton_iters, py::arg("linear_setups") = s.linear_setups,
                         py::arg("linear_iters") = s.linear_iters, py::arg("root_evals") = s.root_evals,
                         py::arg("events") = s.events, py::arg("restarts") = s.restarts,
-                        py::arg("wall_time_s") = s.wall_time_s);
+                        py::arg("wall_time_s") = s.wall_time_s, py::arg("setup_cpu_s") = s.setup_cpu_s);
       });
 
   static const std::string solve_doc = fmt::format(

@@ -99,7 +99,7 @@ TEST_F(BallDropCli, SuccessfulRunWritesEveryDeclaredFileWithItsColumns) {
       {"samples.csv", "method,t_s,y_m,v_mps,energy_J,dissipated_J"},
       {"stats.csv",
        "method,status,t_reached_s,steps,failed_steps,rhs_evals,jac_evals,newton_iters,"
-       "linear_setups,root_evals,events,restarts,wall_time_s,message"},
+       "linear_setups,root_evals,events,restarts,wall_time_s,setup_cpu_s,message"},
       {"comparison.csv", "method,status,contacts,first_penetration_m"},
   };
   for (const auto& [name, header] : files) {

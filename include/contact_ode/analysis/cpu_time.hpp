@@ -12,6 +12,7 @@ struct CpuTiming {
   double median;  // [s]
   double min, max;
   int repeats;
+  double left_out = 0;  // time_cpu_excluding: the median of what the calls left out [s]
 };
 // Runs f `repeats` (>= 1) times and times each call.
 CpuTiming time_cpu(const std::function<void()>& f, int repeats);
@@ -19,5 +20,8 @@ CpuTiming time_cpu(const std::function<void()>& f, int repeats);
 // have used `budget_s` of CPU time: ten repeats of a solve of a millisecond, three of a slow one
 // (whose timer noise is relatively small), so that a sweep's timing costs a bounded multiple.
 CpuTiming time_cpu_within(const std::function<void()>& f, int min_repeats, int max_repeats, double budget_s);
+// time_cpu for a call f that returns the CPU seconds of itself to leave out: each call's time is
+// what remains (an engine's world construction, paid once per world, left out of a rate per step).
+CpuTiming time_cpu_excluding(const std::function<double()>& f, int repeats);
 
 }  // namespace contact
