@@ -32,9 +32,6 @@ namespace contact {
 
 namespace {
 
-// MuJoCo 2.2.2's buffer sizes when the XML gives none.
-constexpr std::size_t kMujocoContacts = 100, kMujocoRows = 500;
-
 // MuJoCo's warnings are read from mjData after each step (below); its default handler would also
 // print them and append them to MUJOCO_LOG.TXT in the working directory.
 void quiet_warning(const char*) {}
@@ -61,10 +58,12 @@ std::string scene_xml(const EngineScene& s, bool spring) {
   std::string xml =
       fmt::format(R"(<mujoco model="contact-ode"><option timestep="{:.17g}" gravity="0 0 {:.17g}"/>)", s.dt,
                   l.vertical ? -l.g : 0.0);
-  // Every contact the scene can close, each at most 4 rows (condim 3's pyramid; 1 for condim 1),
-  // where MuJoCo's own sizes do not suffice (they do for every scene of the study).
-  if (const std::size_t contacts = s.law.size(); contacts > kMujocoContacts)
-    xml += fmt::format(R"(<size nconmax="{}" njmax="{}"/>)", contacts, std::max(kMujocoRows, 4 * contacts));
+  // Buffers for every contact the scene can close, each at most 4 rows (condim 3's pyramid; 1 for
+  // condim 1): memory, not physics (a full buffer is a warning, so a failed run, below). MuJoCo's
+  // own sizes, 100 contacts and 500 rows, made each world's construction take six times as long
+  // (its stack is sized from them), and they do not suffice for a long chain.
+  const std::size_t contacts = std::max<std::size_t>(s.law.size(), 1);
+  xml += fmt::format(R"(<size nconmax="{}" njmax="{}"/>)", contacts, 4 * contacts);
   const char* own_collision = spring ? R"( contype="0" conaffinity="0")" : "";
   xml += "<worldbody>";
   if (l.floor) xml += fmt::format(R"(<geom name="floor" type="plane" size="10 10 0.1"{}/>)", own_collision);
