@@ -483,6 +483,31 @@ TEST(Mujoco, AColumnTallerThanItsDefaultContactBufferKeepsEveryContact) {
   EXPECT_GT(r.samples.back().y[static_cast<Eigen::Index>(2 * (n - 1))], -0.8 * free_fall);
 }
 
+// MuJoCo's buffers are sized to the scene (its own sizes made a small world six times as long to
+// build), but at its defaults it collides every pair of geoms, and its soft contacts let a column
+// of small spheres sink until spheres that are not neighbours overlap: 40 spheres of 2 mm, where
+// spheres i and i + 2 come closer than 2 r. Buffers for the neighbours' contacts alone filled at
+// 0.078 s ("Pre-allocated contact buffer is full"); there is room for every pair, up to MuJoCo's own.
+// Bullet's pools, sized to the scene's pairs too (82 here), take from the heap when they run out:
+// its broad phase pairs each sphere with every one within 2 cm (its contact breaking threshold),
+// 814 pairs in this column.
+TEST(Mujoco, AtItsDefaultsASinkingColumnsContactsBetweenNonNeighboursFitItsBuffers) {
+  REQUIRE_ENGINE("mujoco");
+  REQUIRE_ENGINE("bullet");
+  const double r0 = 0.002;
+  const BallStack column({.n = 40, .radius = r0});
+  const SolveOptions span{.t_end = 0.1, .sample_dt = 1e-3};
+  const RunResult bullet = solve(column, {.name = "bullet", .dt = 1e-3}, span);
+  EXPECT_TRUE(bullet.ok()) << bullet.message;
+  const RunResult r = solve(column, {.name = "mujoco", .dt = 1e-3}, span);
+  ASSERT_TRUE(r.ok()) << r.message;
+  double closest = 4 * r0;  // of spheres i and i + 2, at rest 4 r apart (y: displacements)
+  for (const auto& s : r.samples)
+    for (Eigen::Index i = 0; i + 2 < 40; ++i)
+      closest = std::min(closest, 4 * r0 + s.y[2 * (i + 2)] - s.y[2 * i]);
+  EXPECT_LT(closest, 2 * r0);
+}
+
 // A bad number in MuJoCo's state (NaN, or past 1e10, in qacc here: the ball-drop spring at
 // k = 1e14 with a 1 ms step) makes MuJoCo reset the simulation to its initial state and go on, and
 // the run 'succeeded' with a ball back at its drop height. It is a typed failure, with MuJoCo's

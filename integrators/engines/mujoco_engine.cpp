@@ -32,6 +32,9 @@ namespace contact {
 
 namespace {
 
+// MuJoCo 2.2.2's buffer sizes when the XML gives none.
+constexpr std::size_t kMujocoContacts = 100, kMujocoRows = 500;
+
 // MuJoCo's warnings are read from mjData after each step (below); its default handler would also
 // print them and append them to MUJOCO_LOG.TXT in the working directory.
 void quiet_warning(const char*) {}
@@ -49,6 +52,24 @@ struct VfsDeleter {
   }
 };
 
+// MuJoCo's buffers, memory not physics (a full one is a warning, so a failed run, below): its own
+// sizes, 100 contacts and 500 rows, made a small scene's world take six times as long to build (its
+// stack is sized from them), and they do not suffice for a long chain. The spring setting's
+// contacts are the scene's pairs, one row each (condim 1). At the defaults MuJoCo collides every
+// pair of geoms, and its soft contacts let a column sink until spheres that are not neighbours
+// overlap (40 spheres of 2 mm did): room for every pair, up to MuJoCo's own sizes, and at least
+// the scene's pairs, each at most 4 rows (condim 3's pyramid).
+std::string buffer_sizes(const EngineScene& s, bool spring) {
+  const std::size_t pairs = std::max<std::size_t>(s.law.size(), 1), spheres = s.layout.mass.size();
+  const std::size_t geom_pairs = spheres * (spheres - 1) / 2 + (s.layout.floor ? spheres : 0);
+  std::size_t contacts = pairs, rows = pairs;  // the spring setting's
+  if (!spring) {
+    contacts = std::max(pairs, std::min(geom_pairs, kMujocoContacts));
+    rows = std::max(4 * contacts, contacts == kMujocoContacts ? kMujocoRows : 0);
+  }
+  return fmt::format(R"(<size nconmax="{}" njmax="{}"/>)", contacts, rows);
+}
+
 // Geoms are named g<b> for sphere b and "floor". At the defaults MuJoCo finds contacts itself;
 // the spring setting lists each contact as an explicit pair with its own solref (one per contact:
 // a pair of spheres has half the constraint mass of a sphere on the floor) and turns the geoms'
@@ -58,12 +79,7 @@ std::string scene_xml(const EngineScene& s, bool spring) {
   std::string xml =
       fmt::format(R"(<mujoco model="contact-ode"><option timestep="{:.17g}" gravity="0 0 {:.17g}"/>)", s.dt,
                   l.vertical ? -l.g : 0.0);
-  // Buffers for every contact the scene can close, each at most 4 rows (condim 3's pyramid; 1 for
-  // condim 1): memory, not physics (a full buffer is a warning, so a failed run, below). MuJoCo's
-  // own sizes, 100 contacts and 500 rows, made each world's construction take six times as long
-  // (its stack is sized from them), and they do not suffice for a long chain.
-  const std::size_t contacts = std::max<std::size_t>(s.law.size(), 1);
-  xml += fmt::format(R"(<size nconmax="{}" njmax="{}"/>)", contacts, 4 * contacts);
+  xml += buffer_sizes(s, spring);
   const char* own_collision = spring ? R"( contype="0" conaffinity="0")" : "";
   xml += "<worldbody>";
   if (l.floor) xml += fmt::format(R"(<geom name="floor" type="plane" size="10 10 0.1"{}/>)", own_collision);
