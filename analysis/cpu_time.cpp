@@ -21,8 +21,10 @@ double median_of(std::vector<double>& t) {  // t not empty; sorts it
   return n % 2 ? t[n / 2] : 0.5 * (t[n / 2 - 1] + t[n / 2]);
 }
 
-// Each call's CPU time less what f says to leave out; the budget counts whole calls.
-CpuTiming timed(const std::function<double()>& f, int min_repeats, int max_repeats, double budget_s) {
+}  // namespace
+
+CpuTiming time_cpu_excluding(const std::function<double()>& f, int min_repeats, int max_repeats,
+                             double budget_s) {
   if (min_repeats < 1 || max_repeats < min_repeats)
     throw std::invalid_argument("time_cpu: repeats must satisfy 1 <= min_repeats <= max_repeats");
   std::vector<double> t, left_out;
@@ -40,23 +42,17 @@ CpuTiming timed(const std::function<double()>& f, int min_repeats, int max_repea
   return {median, t.front(), t.back(), static_cast<int>(t.size()), median_of(left_out)};
 }
 
-}  // namespace
-
 CpuTiming time_cpu(const std::function<void()>& f, int repeats) {
   return time_cpu_within(f, repeats, repeats, 0.0);
 }
 
 CpuTiming time_cpu_within(const std::function<void()>& f, int min_repeats, int max_repeats, double budget_s) {
-  return timed(
+  return time_cpu_excluding(
       [&] {
         f();
         return 0.0;
       },
       min_repeats, max_repeats, budget_s);
-}
-
-CpuTiming time_cpu_excluding(const std::function<double()>& f, int repeats) {
-  return timed(f, repeats, repeats, 0.0);
 }
 
 }  // namespace contact

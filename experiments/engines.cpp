@@ -49,7 +49,7 @@ std::string setting(const std::string& method) {
 CpuTiming time_solves(const Dynamics& scene, const Method& m, const SolveOptions& span, long repeats,
                       RunResult& r) {
   const auto run = [&] { return (r = solve(scene, m, span)).stats.setup_cpu_s; };
-  return time_cpu_excluding(run, static_cast<int>(repeats));
+  return time_cpu_excluding(run, static_cast<int>(repeats), static_cast<int>(repeats), 0.0);
 }
 
 }  // namespace

@@ -29,7 +29,7 @@ TEST(CpuTime, WhatACallSaysToLeaveOutIsNotCountedButReported) {
         burn(0.01);
         return setup;
       },
-      3);
+      3, 3, 0.0);
   EXPECT_EQ(t.repeats, 3);
   EXPECT_GE(t.min, 0.01);
   EXPECT_LT(t.max, 0.015);

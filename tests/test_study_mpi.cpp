@@ -17,7 +17,7 @@ constexpr const char* kMpirun =
 std::map<std::string, std::vector<contact::CsvRecord>> tables(const fs::path& root) {
   std::map<std::string, std::vector<contact::CsvRecord>> out;
   for (const auto& entry : fs::recursive_directory_iterator(root)) {
-    // Timing figures (stack's cost: wall time against n) differ between any two runs.
+    // Timing figures (stack's cost: CPU time against n) differ between any two runs.
     if (entry.path().extension() != ".csv" || entry.path().filename() == "cost-data.csv") continue;
     auto rows = contact::read_csv(entry.path());
     for (auto& row : rows)

@@ -20,8 +20,10 @@ CpuTiming time_cpu(const std::function<void()>& f, int repeats);
 // have used `budget_s` of CPU time: ten repeats of a solve of a millisecond, three of a slow one
 // (whose timer noise is relatively small), so that a sweep's timing costs a bounded multiple.
 CpuTiming time_cpu_within(const std::function<void()>& f, int min_repeats, int max_repeats, double budget_s);
-// time_cpu for a call f that returns the CPU seconds of itself to leave out: each call's time is
-// what remains (an engine's world construction, paid once per world, left out of a rate per step).
-CpuTiming time_cpu_excluding(const std::function<double()>& f, int repeats);
+// time_cpu_within for a call f that returns the CPU seconds of itself to leave out: each call's
+// time is what remains (an engine's world construction, paid once per world, left out of a rate
+// per simulated second); the budget counts whole calls.
+CpuTiming time_cpu_excluding(const std::function<double()>& f, int min_repeats, int max_repeats,
+                             double budget_s);
 
 }  // namespace contact
