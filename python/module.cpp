@@ -292,7 +292,8 @@ PYBIND11_MODULE(contact_ode, mod) {
       "arrays; contacts (contact, t_begin, t_end, max_penetration, v_in, v_out), apexes "
       "(contact, t, gap, energy, dissipated) and notifications (the batched begin / end "
       "events of the game loops: contact, begin, step, t) as dicts of arrays; stats (steps, "
-      "right-hand sides, Jacobians, Newton and linear iterations, ...); status, t_reached "
+      "right-hand sides, Jacobians, Newton and linear iterations, ..., the run's wall time and "
+      "the CPU time of an engine's world construction before it); status, t_reached "
       "and message.")
       .def_readonly("method", &RunResult::method)
       .def_readonly("state_labels", &RunResult::state_labels)
