@@ -6,9 +6,9 @@
 // 0 for impulses), the largest overlap, the jitter (RMS of all ball velocities over the second
 // half of the run), the energy drift (the ledger's numerical part) and the cost per simulated
 // second (right-hand sides; CPU time, the median of 1 to 5 solves, as many as fit in 5 ms, an
-// engine's world construction left out: a single wall time, the table's until it was a CPU time,
-// counted what the study's other job took from it). A run that fails is a row with its status, and said
-// on stderr: event-driven impulses cannot hold a column that rests from the start.
+// engine's world construction left out: one solve's wall time, the column until it was CPU time,
+// counted what the study's other job took from the core). A run that fails is a row with its
+// status, and said on stderr: event-driven impulses cannot hold a column that rests from the start.
 // Outputs in --out (default results/stack): stack.{csv,md,tex}, cost.{png,pdf,gp} (CPU time per
 // simulated second against n), sink.{png,pdf,gp}, meta.json; under mpirun the (n, method) runs are
 // dealt over the ranks. Exit codes: 0, 1, 2 bad input.
@@ -33,7 +33,7 @@ using namespace contact;
 namespace {
 
 constexpr double kM = 0.1, kG = 9.81, kFloor = 1e-12;  // kFloor: zero drawn here on log axes
-constexpr double kBudget = 0.005;                      // CPU s of timed solves per run (1 to 5)
+constexpr double kBudget = 0.005;                      // CPU s of timed solves a row (1 to 5 solves)
 
 std::vector<std::string> stack_methods() { return methods_for(*make_scene("ball-stack")); }
 

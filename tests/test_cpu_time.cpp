@@ -1,6 +1,6 @@
 // The study's CPU timings (analysis/cpu_time.hpp): what a timing counts and what it leaves out.
 // Calls burn the process's CPU clock for set times, so each count is known to within the
-// overhead of a few clock reads (microseconds; the tolerances are 5 ms, a quarter of a burn).
+// overhead of a few clock reads (microseconds; the tolerances, 5 ms, are half the shortest burn).
 #include "contact_ode/analysis/cpu_time.hpp"
 
 #include <gtest/gtest.h>

@@ -41,14 +41,14 @@ std::vector<std::size_t> bit_reversed_order(std::size_t n) {
 }
 
 // Bullet's pools of contact manifolds and collision algorithms, sized to the scene: one of each a
-// contact pair, twice over. Its default, 4096 of each, is memory it writes through as it builds
-// them (a millisecond of every world's construction, 80 times what the rest took); a pool that
+// contact pair, twice over, up to its default of 4096, memory it writes through as it builds them
+// (a millisecond of every small world's construction, 80 times what the rest took). A pool that
 // runs out takes more from the heap (btCollisionDispatcher), so the size bounds no scene.
 btDefaultCollisionConstructionInfo pools_for(const EngineScene& s) {
   btDefaultCollisionConstructionInfo info;
-  const int pairs = static_cast<int>(std::min<std::size_t>(s.law.size(), 1u << 20));
-  info.m_defaultMaxPersistentManifoldPoolSize = 2 * pairs + 2;
-  info.m_defaultMaxCollisionAlgorithmPoolSize = 2 * pairs + 2;
+  const int size = static_cast<int>(std::min<std::size_t>(2 * s.law.size() + 2, 4096));
+  info.m_defaultMaxPersistentManifoldPoolSize = size;
+  info.m_defaultMaxCollisionAlgorithmPoolSize = size;
   return info;
 }
 
