@@ -1,7 +1,10 @@
 #!/usr/bin/python3
 """The SciPy peer: the penalty ball drop under scipy.integrate.solve_ivp, as a numerical analyst
 would set it up -- one smooth piece at a time, restarted at every contact switch located by an
-event, with the analytic Jacobian -- for the project's work-precision study and benchmarks.
+event, with the analytic Jacobian (--setups tuned, the default) -- and as a user gets it at its
+defaults -- one solve over the whole span, stepping across the switches, the Jacobian (BDF,
+Radau, LSODA) by differences (--setups defaults) -- for the project's work-precision study and
+benchmarks.
 
 Ball of mass m dropped from h0 onto the floor y = 0; while y < 0 the linear law
 F = -k y - c v pushes (unclamped, as the project's "kelvin-voigt"; c = 0 is Hooke).
@@ -59,9 +62,26 @@ def drop(method, rtol, atol, m, g, k, c, h0, v0, t_end):
     return y, apexes, nfev, njev
 
 
+def drop_at_defaults(method, rtol, atol, m, g, k, c, h0, v0, t_end):
+    """One solve over [0, t_end] with the force switched inside the right-hand side; the apexes by a
+    non-terminal event, which SciPy locates in each step's dense output after taking it (the steps
+    are those of the solve without it)."""
+    def rhs(t, y):
+        force = -(k * y[0] + c * y[1]) if y[0] < 0 else 0.0
+        return np.array([y[1], -g + force / m])
+    apex = lambda t, y: y[1]
+    apex.direction = -1
+    sol = solve_ivp(rhs, (0.0, t_end), np.array([h0, v0]), method=method, rtol=rtol, atol=atol, events=[apex])
+    if sol.status < 0:
+        raise RuntimeError(f"{method} failed at t = {sol.t[-1]}: {sol.message}")
+    apexes = [float(e[0]) for te, e in zip(sol.t_events[0], sol.y_events[0]) if te > 0]
+    return sol.y[:, -1], apexes, int(sol.nfev), int(sol.njev)
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--methods", default="BDF,Radau,LSODA,RK45")
+    p.add_argument("--setups", default="tuned", help="tuned, defaults or both, comma-separated")
     p.add_argument("--rtols", default="1e-6")
     p.add_argument("--atol-ratio", type=float, default=1e-2, help="atol = rtol times this")
     p.add_argument("--atol", type=float, default=None, help="a fixed atol instead")
@@ -82,18 +102,24 @@ def main():
         sys.exit(f"scipy_peer: --repeats: value '{a.repeats}' is out of range; accepted range [1, inf)")
     if not a.budget >= 0:
         sys.exit(f"scipy_peer: --budget: value '{a.budget}' is out of range; accepted range [0, inf)")
-    for method in a.methods.split(","):
-        for rtol in (float(r) for r in a.rtols.split(",")):
-            atol = a.atol if a.atol is not None else rtol * a.atol_ratio
-            times = []
-            while len(times) < a.repeats and (a.budget == 0 or len(times) < 3 or sum(times) < a.budget):
-                start = time.process_time()
-                y, apexes, nfev, njev = drop(method, rtol, atol, a.m, a.g, a.k, a.c, a.h0, a.v0, a.t_end)
-                times.append(time.process_time() - start)
-            print(json.dumps({"method": method, "rtol": rtol, "atol": atol, "y": float(y[0]), "v": float(y[1]),
-                              "apexes": apexes, "nfev": nfev, "njev": njev,
-                              "cpu_s": statistics.median(times), "cpu_min_s": min(times),
-                              "cpu_max_s": max(times), "repeats": len(times)}))
+    setups = {"tuned": drop, "defaults": drop_at_defaults}
+    for setup in a.setups.split(","):
+        if setup not in setups:
+            sys.exit(f"scipy_peer: --setups: value '{setup}' is out of range; accepted: tuned, defaults")
+    for setup in a.setups.split(","):
+        for method in a.methods.split(","):
+            for rtol in (float(r) for r in a.rtols.split(",")):
+                atol = a.atol if a.atol is not None else rtol * a.atol_ratio
+                times = []
+                while len(times) < a.repeats and (a.budget == 0 or len(times) < 3 or sum(times) < a.budget):
+                    start = time.process_time()
+                    y, apexes, nfev, njev = setups[setup](method, rtol, atol, a.m, a.g, a.k, a.c, a.h0, a.v0,
+                                                          a.t_end)
+                    times.append(time.process_time() - start)
+                print(json.dumps({"method": method, "setup": setup, "rtol": rtol, "atol": atol, "y": float(y[0]),
+                                  "v": float(y[1]), "apexes": apexes, "nfev": nfev, "njev": njev,
+                                  "cpu_s": statistics.median(times), "cpu_min_s": min(times),
+                                  "cpu_max_s": max(times), "repeats": len(times)}))
 
 
 if __name__ == "__main__":

@@ -37,9 +37,9 @@ ours() {  # round $1: P1 and the exact bounces
   build/benchmarks/bench_integrators --benchmark_filter='^(P1/|ExactBounces)' --benchmark_min_time=0.1 \
     --benchmark_out="$out/p1_round$1.json" --benchmark_out_format=json >/dev/null
 }
-scipy() {  # round $1: SciPy's four methods on P1
+scipy() {  # round $1: SciPy's four methods on P1, tuned (the target's peers) and at their defaults
   /usr/bin/python3 python/scipy_peer.py --k 1e5 --c "$c" --h0 1 --t-end 3 --rtols 1e-6 --atol 1e-9 \
-    --repeats 9 >"$out/scipy_p1_round$1.jsonl"
+    --repeats 9 --setups tuned,defaults >"$out/scipy_p1_round$1.jsonl"
 }
 scipy_args=() p1_runs=()
 for round in 1 2 3 4 5; do

@@ -83,6 +83,34 @@ TEST_F(BenchReportCli, P1IsMetOnlyAgainstAllFourPeers) {
   EXPECT_NE(r.out.find("all four SciPy methods: none"), std::string::npos) << r.out;
 }
 
+// The SciPy peer at its defaults too (one solve across the switches, its lines' setup "defaults"):
+// the target is judged against the tuned peer alone, and the defaults get their own line. A
+// defaults peer at 30 ms and 1e-5 m off (300x, twice what the tuned one shows) leaves the verdict
+// as it was; with none, no such line.
+TEST_F(BenchReportCli, TheScipyPeerAtItsDefaultsIsReportedApartFromTheTarget) {
+  write_inputs({"BDF", "Radau", "LSODA", "RK45"});
+  EXPECT_EQ(report().out.find("at its defaults"), std::string::npos);
+  {
+    std::ofstream scipy(dir_ / "scipy.jsonl", std::ios::app);
+    const double ref[5] = {0.6, 0.4, 0.25, 0.16, 0.1};
+    for (const char* method : {"BDF", "Radau", "LSODA", "RK45"}) {
+      scipy << "{\"method\": \"" << method << "\", \"setup\": \"defaults\", \"cpu_s\": 0.03, \"apexes\": [";
+      for (int n = 0; n < 5; ++n) scipy << (n ? ", " : "") << ref[n] + 1e-5;
+      scipy << "]}\n";
+    }
+  }
+  const Outcome r = report();
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("LSODA 100x (apex error 1.0e-08 m against 1.0e-06 m)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("all four SciPy methods: cvode-bdf (0.1 ms)"), std::string::npos) << r.out;
+  EXPECT_NE(
+      r.out.find("- P1 against SciPy at its defaults (one solve_ivp across the switches, the Jacobian by "
+                 "differences; not a target), CVODE BDF: BDF 300x (apex error 1.0e-08 m against 1.0e-05 m); "
+                 "Radau 300x"),
+      std::string::npos)
+      << r.out;
+}
+
 TEST_F(BenchReportCli, AFailedChainSizeFailsTheLinearTarget) {
   // The failed N = 1e5 case has no time: the power-law fit used to throw on it, and the whole
   // report ended with exit 2.
