@@ -44,8 +44,8 @@ std::string setting(const std::string& method) {
   return method.find('-') == std::string::npos || method == "ode-quick" ? "defaults" : "tuned";
 }
 
-// CPU time per solve less an engine's world construction, paid once per world (MuJoCo's took 20
-// times its 50 steps of a cradle), reported apart as setup_cpu_s. r: the last run.
+// CPU time per solve less an engine's world construction, paid once per world (MuJoCo's at its
+// default sizes: 7 times its 50 steps of the head-on pair), apart as setup_cpu_s. r: the last run.
 CpuTiming time_solves(const Dynamics& scene, const Method& m, const SolveOptions& span, long repeats,
                       RunResult& r) {
   const auto run = [&] { return (r = solve(scene, m, span)).stats.setup_cpu_s; };

@@ -65,7 +65,8 @@ std::string buffer_sizes(const EngineScene& s, bool spring) {
   std::size_t contacts = pairs, rows = pairs;  // the spring setting's
   if (!spring) {
     contacts = std::max(pairs, std::min(geom_pairs, kMujocoContacts));
-    rows = std::max(4 * contacts, contacts == kMujocoContacts ? kMujocoRows : 0);
+    // From MuJoCo's own 100 contacts on, at least its own 500 rows.
+    rows = contacts < kMujocoContacts ? 4 * contacts : std::max(kMujocoRows, 4 * contacts);
   }
   return fmt::format(R"(<size nconmax="{}" njmax="{}"/>)", contacts, rows);
 }
