@@ -1,5 +1,7 @@
 # Installs contact-ode from BUILD_DIR into WORK/prefix, then configures, builds and runs the
-# downstream project in SOURCE against that prefix. Any failing step fails the test.
+# downstream project in SOURCE against that prefix, twice: with the default flags and with
+# -march=native, so that one of the two is built with other SIMD flags than the library (whichever
+# it was built with), as a user's program may be. Any failing step fails the test.
 foreach(var BUILD_DIR SOURCE WORK)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "downstream_find_package.cmake: -D${var}=... is required")
@@ -14,6 +16,13 @@ function(step)
   message(STATUS "${out}")
 endfunction()
 step(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${WORK}/prefix)
-step(${CMAKE_COMMAND} -S ${SOURCE} -B ${WORK}/build -DCMAKE_PREFIX_PATH=${WORK}/prefix -DCMAKE_BUILD_TYPE=Release)
-step(${CMAKE_COMMAND} --build ${WORK}/build)
-step(${WORK}/build/downstream)
+foreach(flags default -march=native)
+  set(build ${WORK}/build${flags})
+  if(flags STREQUAL "default")
+    set(flags "")
+  endif()
+  step(${CMAKE_COMMAND} -S ${SOURCE} -B ${build} -DCMAKE_PREFIX_PATH=${WORK}/prefix -DCMAKE_BUILD_TYPE=Release
+       -DCMAKE_CXX_FLAGS=${flags})
+  step(${CMAKE_COMMAND} --build ${build})
+  step(${build}/downstream)
+endforeach()
