@@ -156,14 +156,19 @@ TEST(PaperClaims, EventDrivenImpulsesHoldTheRestingColumnExactly) {
 }
 
 // "Without location the error of every adaptive code but one still falls with its tolerance (fitted
-// exponents above one half) ... The exception is ARKODE's DIRK method": every other code's exponent
-// unlocated is above 0.5 (0.6 to 1.1 measured), DIRK's below 0.2 (0.04 measured), and DIRK's with
-// location above 0.8 (1.1 measured).
+// exponents above one half; GSL's bsimp's only on the whole, its error at rtol 1e-4 above that at
+// 1e-3) ... The exception is ARKODE's DIRK method": every other code's exponent unlocated is above
+// 0.5 (0.7 to 1.1 measured; bsimp's 0.71, whose erratic errors gave 0.41 when built with FMA
+// contraction), DIRK's below 0.2 (0.04 measured), and DIRK's with location above 0.8 (1.1 measured).
 TEST(PaperClaims, OnlyArkodeDirkLosesItsToleranceAcrossUnlocatedKinks) {
   const std::string orders = "convergence_dt/orders.csv";
   for (const char* name : {"cvode-bdf", "cvode-adams", "arkode-erk", "arkode-imex", "gsl-rk8pd", "gsl-rkf45",
                            "gsl-msbdf", "gsl-bsimp"})
     EXPECT_GT(cell(orders, {{"integrator", name}}, "tol_exponent_unlocated"), 0.5) << name;
+  const std::string adaptive = "convergence_dt/adaptive.csv";
+  EXPECT_GT(
+      cell(adaptive, {{"integrator", "gsl-bsimp"}, {"events", "unlocated"}, {"rtol", "1e-4"}}, "error_max"),
+      cell(adaptive, {{"integrator", "gsl-bsimp"}, {"events", "unlocated"}, {"rtol", "1e-3"}}, "error_max"));
   EXPECT_LT(cell(orders, {{"integrator", "arkode-dirk"}}, "tol_exponent_unlocated"), 0.2);
   EXPECT_GT(cell(orders, {{"integrator", "arkode-dirk"}}, "tol_exponent_located"), 0.8);
 }
