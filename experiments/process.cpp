@@ -187,8 +187,9 @@ int report_written(const char* name) {
 int run_body(const char* name, int argc, char** argv, int (*body)(int, char**)) {
   try {
     return body(argc, argv);
-  } catch (const Interrupted&) {
-    fmt::print(stderr, "{}: interrupted; nothing written\n", name);
+  } catch (const Interrupted& stop) {
+    fmt::print(stderr, "{}: interrupted; {}\n", name,
+               stop.outcome.empty() ? "nothing written" : stop.outcome);
     return 128 + (g_signal != 0 ? static_cast<int>(g_signal) : SIGINT);
   } catch (const std::exception& e) {
     // A run the interrupt ended (Status::Interrupted) may surface as the experiment's own failure.

@@ -18,8 +18,11 @@
 namespace contact {
 
 // Not a std::exception on purpose: the handlers experiments keep for their own failures
-// (catch (const std::exception&)) must not swallow an interrupt.
-struct Interrupted {};
+// (catch (const std::exception&)) must not swallow an interrupt. `outcome` says what the run
+// leaves behind (empty: nothing written), for a program, like the study, that keeps some of it.
+struct Interrupted {
+  std::string outcome;
+};
 
 // Installs the SIGINT/SIGTERM flag handlers (once per process).
 void install_interrupt_handlers();

@@ -88,47 +88,44 @@ int program(int argc, char** argv) {
   // Each experiment is one process on one core: OpenBLAS's worker threads, which spin between calls
   // (sched_yield), would take CPU from the other jobs. A user's own setting stands.
   setenv("OPENBLAS_NUM_THREADS", "1", 0);
-  run_parallel(queue.size(), jobs, [&](std::size_t q) {
-    const std::size_t index = queue[q];
-    const auto& e = manifest.experiments[index];
-    // The experiment replaces its folder only if it succeeds: earlier results stay until then.
-    const fs::path dir = fs::path(out) / e.name, log = quiet ? logs / (e.name + ".log") : fs::path();
-    std::vector<std::string> cmd{(bin / e.exe).string()};
-    for (const auto& a : tiny ? e.tiny : e.args) cmd.push_back(a);
-    cmd.insert(cmd.end(), {"--out", dir.string()});
-    if (!quiet) fmt::print("\n== {} ==\n", e.name);
-    std::fflush(stdout);
-    const auto t0 = std::chrono::steady_clock::now();
-    const int code = run_process(cmd, {}, log);  // throws Interrupted after a Ctrl-C: the study stops
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    std::vector<std::string> problems =
-        code == 0 ? check_outputs(e, dir) : std::vector<std::string>{fmt::format("exit code {}", code)};
-    const std::lock_guard<std::mutex> hold(lock);
-    if (quiet) fmt::print("\n== {} ({:.1f} s) ==\n{}", e.name, seconds, read_text(log));
-    std::fflush(stdout);
-    for (const auto& p : problems) std::cerr << fmt::format("study: {}: {}\n", e.name, p);
-    mine.push_back({{"index", index},
-                    {"record",
-                     {{"name", e.name},
-                      {"command", fmt::format("{}", fmt::join(cmd, " "))},
-                      {"wall_time_s", seconds},
-                      {"ok", problems.empty()}}}});
-  });
+  try {
+    run_parallel(queue.size(), jobs, [&](std::size_t q) {
+      const std::size_t index = queue[q];
+      const auto& e = manifest.experiments[index];
+      // The experiment replaces its folder only if it succeeds: earlier results stay until then.
+      const fs::path dir = fs::path(out) / e.name, log = quiet ? logs / (e.name + ".log") : fs::path();
+      std::vector<std::string> cmd{(bin / e.exe).string()};
+      for (const auto& a : tiny ? e.tiny : e.args) cmd.push_back(a);
+      cmd.insert(cmd.end(), {"--out", dir.string()});
+      if (!quiet) fmt::print("\n== {} ==\n", e.name);
+      std::fflush(stdout);
+      const auto t0 = std::chrono::steady_clock::now();
+      const int code = run_process(cmd, {}, log);  // throws Interrupted after a Ctrl-C: the study stops
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      std::vector<std::string> problems =
+          code == 0 ? check_outputs(e, dir) : std::vector<std::string>{fmt::format("exit code {}", code)};
+      const std::lock_guard<std::mutex> hold(lock);
+      if (quiet) fmt::print("\n== {} ({:.1f} s) ==\n{}", e.name, seconds, read_text(log));
+      std::fflush(stdout);
+      for (const auto& p : problems) std::cerr << fmt::format("study: {}: {}\n", e.name, p);
+      mine.push_back({{"index", index},
+                      {"record",
+                       {{"name", e.name},
+                        {"command", fmt::format("{}", fmt::join(cmd, " "))},
+                        {"wall_time_s", seconds},
+                        {"ok", problems.empty()}}}});
+    });
+  } catch (const Interrupted&) {
+    throw Interrupted{interrupted_outcome(mine)};  // say which experiments finished before it
+  }
   // Rank 0 gathers every rank's runs and lists them in the manifest's order.
   const auto gathered = ranks.gather(mine.dump());
   if (ranks.rank() != 0) return 0;
-  std::vector<nlohmann::json> runs;
-  for (const auto& part : gathered)
-    for (auto& run : nlohmann::json::parse(part)) runs.push_back(std::move(run));
-  std::sort(runs.begin(), runs.end(), [](const auto& a, const auto& b) { return a["index"] < b["index"]; });
-  int failures = 0;
-  for (const auto& run : runs) {
-    failures += run["record"]["ok"].get<bool>() ? 0 : 1;
-    record["experiments"].push_back(run["record"]);
-  }
+  const int failures = add_runs(record, gathered);
+  const std::size_t ran = record["experiments"].size();
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   record["wall_time_s"] = total;
-  if (runs.size() == manifest.experiments.size()) record["complete_wall_time_s"] = total;
+  if (ran == manifest.experiments.size()) record["complete_wall_time_s"] = total;
   record["cores"] = std::thread::hardware_concurrency();
   record["ranks"] = ranks.size();
   record["jobs"] = jobs;
@@ -136,12 +133,12 @@ int program(int argc, char** argv) {
     std::cerr << fmt::format("study: {} experiment(s) failed; index.md not written\n", failures);
     return cli::kExitFailure;
   }
-  if (runs.size() < manifest.experiments.size()) keep_earlier_runs(manifest, record, out);
+  if (ran < manifest.experiments.size()) keep_earlier_runs(manifest, record, out);
   OutputSet files;
   files.add("index.md", study_index(manifest, record, out));
   files.add("study.json", record.dump(2) + "\n");
   files.write_into(out);
-  fmt::print("\nstudy: {} experiment(s) in {:.1f} s; index in {}\n", runs.size(), total,
+  fmt::print("\nstudy: {} experiment(s) in {:.1f} s; index in {}\n", ran, total,
              (fs::path(out) / "index.md").string());
   return 0;
 }

@@ -92,6 +92,29 @@ std::vector<std::string> check_outputs(const StudyExperiment& e, const fs::path&
   return problems;
 }
 
+int add_runs(nlohmann::json& record, const std::vector<std::string>& gathered) {
+  std::vector<nlohmann::json> runs;
+  for (const auto& part : gathered)
+    for (auto& run : nlohmann::json::parse(part)) runs.push_back(std::move(run));
+  std::sort(runs.begin(), runs.end(), [](const auto& a, const auto& b) { return a["index"] < b["index"]; });
+  int failures = 0;
+  for (const auto& run : runs) {
+    failures += run["record"]["ok"].get<bool>() ? 0 : 1;
+    record["experiments"].push_back(run["record"]);
+  }
+  return failures;
+}
+
+std::string interrupted_outcome(const nlohmann::json& runs) {
+  std::vector<std::string> finished;
+  for (const auto& run : runs)
+    if (run["record"]["ok"].get<bool>()) finished.push_back(run["record"]["name"].get<std::string>());
+  return fmt::format("{}; the others keep their earlier results; index.md not written",
+                     finished.empty() ? std::string("no experiment had finished")
+                                      : fmt::format("finished before it, their folders replaced: {}",
+                                                    fmt::join(finished, ", ")));
+}
+
 namespace {
 
 // The record of experiment `name` in a study.json's list, or null.

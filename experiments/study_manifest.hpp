@@ -40,6 +40,14 @@ StudyManifest load_study_manifest(const std::filesystem::path& path);
 // signature, a meta.json that does not parse. Empty when all is well.
 std::vector<std::string> check_outputs(const StudyExperiment& experiment, const std::filesystem::path& dir);
 
+// The runs' records {"index", "record": {"name", ..., "ok"}}, from every rank, appended to
+// record["experiments"] in the manifest's order. Returns how many failed.
+int add_runs(nlohmann::json& record, const std::vector<std::string>& gathered);
+
+// What a study interrupted after `runs` (its records, as above) leaves behind: the experiments
+// that finished before the signal have replaced their folders, the others keep earlier results.
+std::string interrupted_outcome(const nlohmann::json& runs);
+
 // A run of some experiments (study --only) keeps, from the folder's earlier study.json of the same
 // settings, the record of every other experiment whose outputs are still complete (marked
 // "earlier"), so that index.md and study.json describe the whole folder, not the last few runs;

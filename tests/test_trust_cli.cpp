@@ -157,11 +157,36 @@ TEST_F(TrustCli, InterruptsLeaveNothingBehindAndKeepEarlierResults) {
   r = run(exe("study"), "--jobs 1 --only convergence_dt,newton_cradle --out res",
           "timeout --preserve-status -s INT 1");
   EXPECT_EQ(r.code, 130) << r.err;
+  EXPECT_NE(r.err.find("study: interrupted; no experiment had finished; the others keep their earlier "
+                       "results; index.md not written"),
+            std::string::npos)
+      << r.err;
   EXPECT_EQ(slurp(dir_ / "res" / "newton_cradle" / "meta.json"), before)
       << "the earlier results were touched";
   EXPECT_FALSE(fs::exists(dir_ / "res" / "convergence_dt")) << "an interrupted experiment left a folder";
   for (const auto& e : fs::directory_iterator(dir_ / "res"))
     EXPECT_EQ(e.path().filename().string().find(".staging"), std::string::npos) << e.path();
+}
+
+// A study interrupted after some experiments finished says which have replaced their folders (it
+// said "nothing written"). Two jobs: contact_laws (0.1 s) finishes while work_precision (4 s) runs,
+// and the signal is sent once contact_laws's folder is there (a bounded wait of 60 s).
+TEST_F(TrustCli, AnInterruptedStudySaysWhichExperimentsFinished) {
+  const std::string cmd = fmt::format(
+      "cd '{}' && ('{}' --jobs 2 --only work_precision,contact_laws --out res >stdout.txt 2>stderr.txt & "
+      "pid=$!; for i in $(seq 600); do [ -f res/contact_laws/meta.json ] && break; sleep 0.1; done; "
+      "kill -INT $pid; wait $pid)",
+      dir_.string(), exe("study"));
+  const int status = std::system(cmd.c_str());
+  const std::string err = slurp(dir_ / "stderr.txt");
+  EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 130) << err;
+  EXPECT_NE(err.find("study: interrupted; finished before it, their folders replaced: contact_laws; the "
+                     "others keep their earlier results; index.md not written"),
+            std::string::npos)
+      << err;
+  EXPECT_TRUE(fs::exists(dir_ / "res" / "contact_laws" / "meta.json"));
+  EXPECT_FALSE(fs::exists(dir_ / "res" / "work_precision")) << "an interrupted experiment left a folder";
+  EXPECT_FALSE(fs::exists(dir_ / "res" / "index.md"));
 }
 
 // An interrupt ends the solve in progress, not only the experiment between two solves: a
