@@ -23,8 +23,8 @@ SoftConstraint soft_constraint(double hertz, double zeta, double h) {
   return {w / a1, a2 * a3, a3};
 }
 
-double soft_impulse(const SoftConstraint& c, double w_n, double u, double s, double L) {
-  return -c.mass_scale / w_n * (u + c.bias_rate * s) - c.impulse_scale * L;
+double soft_impulse(const SoftConstraint& c, double w_n, double u, double s, double L, double push_max) {
+  return -c.mass_scale / w_n * (u + std::max(c.bias_rate * s, -push_max)) - c.impulse_scale * L;
 }
 
 namespace {
@@ -65,9 +65,8 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
         double d;
         if (s > 0)
           d = -(u + s / h) / w;  // speculative: approach no faster than the gap closes in h
-        else if (use_bias)       // the push-out velocity bias_rate s capped at push_max, as Box2D does
-          d = soft_impulse(soft, w, u, soft.bias_rate > 0 ? std::max(s, -m.push_max / soft.bias_rate) : s,
-                           lambda[i]);
+        else if (use_bias)       // soft push-out, no faster than push_max
+          d = soft_impulse(soft, w, u, s, lambda[i], m.push_max);
         else
           d = soft_impulse(rigid, w, u, 0.0, lambda[i]);
         accumulate_impulse(normal, i, d, lambda[i], y);

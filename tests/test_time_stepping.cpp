@@ -117,6 +117,47 @@ TEST(SequentialImpulses, ABounceThatMeetsAPartingContactLiftsItAndMakesEnergy) {
   EXPECT_LT(mj.samples[j].energy - mj.samples[j - 1].energy, 1e-12 * mj.energy0);
 }
 
+// Bullet's restitution threshold (btContactSolverInfo's m_restitutionVelocityThreshold, 0.2 m/s,
+// the default): a pair struck at exactly it is plastic (both leave at v0 / 2), 1e-12 m/s faster it
+// leaves with Newton's velocities (1 -+ e) v0 / 2; a threshold set to 1 m/s makes 0.5 m/s plastic.
+TEST(SequentialImpulses, BouncesOnlyApproachesFasterThanItsThreshold) {
+  const auto last_velocities = [](double v0, double threshold) {
+    const auto scene = make_scene(
+        "ball-chain", {{"n", 2}, {"e", 0.8}, {"v0", v0}, {"approach", 1e-3}, {"spacing", 0}, {"k", 1e5}});
+    const RunResult r =
+        solve(*scene, Method{.name = "sequential-impulses", .restitution_threshold = threshold},
+              {.t_end = 0.05, .sample_dt = 0.01});
+    EXPECT_TRUE(r.ok()) << r.message;
+    return std::pair{r.samples.back().y[1] / v0, r.samples.back().y[3] / v0};
+  };
+  const double unset = std::nan("");  // the method's default
+  EXPECT_NEAR(last_velocities(0.2, unset).first, 0.5, 1e-15);
+  EXPECT_NEAR(last_velocities(0.2, unset).second, 0.5, 1e-15);
+  EXPECT_NEAR(last_velocities(0.2 + 1e-12, unset).first, 0.1, 1e-15);
+  EXPECT_NEAR(last_velocities(0.2 + 1e-12, unset).second, 0.9, 1e-15);
+  EXPECT_NEAR(last_velocities(0.5, 1.0).first, 0.5, 1e-15);
+  EXPECT_NEAR(last_velocities(1.0 + 1e-12, 1.0).first, 0.1, 1e-15);
+}
+
+// Moreau-Jean's positions advance with the theta blend of the step's velocities,
+// q+ = q + h ((1 - theta) v + theta v+): in free fall from rest, q_n = q0 - g h^2 (n^2 / 2 +
+// (theta - 1/2) n), to rounding (the default theta = 1/2 is the only one symmetric in the two).
+TEST(MoreauJean, FreeFlightAdvancesByTheThetaBlendOfTheVelocities) {
+  const BallDrop ball({.m = 2.0, .g = kGravity, .h0 = 1.0, .v0 = 0.0, .e = 0.8, .law = Hooke{1e4}});
+  for (const double theta : {0.0, 0.5, 1.0}) {
+    const RunResult r =
+        solve(ball, {.name = "moreau-jean", .dt = kDt, .theta = theta}, {.t_end = 0.1, .sample_dt = kDt});
+    ASSERT_TRUE(r.ok()) << r.message;
+    ASSERT_EQ(r.samples.size(), 101u);
+    for (std::size_t n = 0; n < r.samples.size(); ++n) {
+      const double steps = static_cast<double>(n);
+      EXPECT_NEAR(r.samples[n].y[0], 1.0 - kGravity * kDt * kDt * (steps * steps / 2 + (theta - 0.5) * steps),
+                  1e-14)
+          << theta << " " << n;
+    }
+  }
+}
+
 // Newton's law is imposed on the step's velocities: u+ = -e u, with u the gap rate before the
 // step (gravity's increment taken up by the impulse), for any step.
 TEST(MoreauJean, ImpactLawHoldsExactlyAtTheStep) {
@@ -165,6 +206,29 @@ TEST(SoftStep, SoftConstraintIsImplicitEulerOnASpringDamper) {
   EXPECT_NEAR(u_plus * (1 + 2 * zeta * w * h + w * w * h * h), u - h * w * w * s, 1e-13);
   // And with the impulse so far L it solves for the total: the increment removes impulse_scale L.
   EXPECT_NEAR(soft_impulse(c, w_n, u, s, 1.0) - soft_impulse(c, w_n, u, s, 0.0), -c.impulse_scale, 1e-15);
+}
+
+// The push-out is capped at push_max (Box2D's contactPushMaxVelocity): from rest, a deep overlap
+// leaves the soft solve at mass_scale push_max, a shallow one at mass_scale bias_rate |s|. On a
+// ball resting on the floor with the cap below what holds it up, each sub-step then ends the same
+// way, whatever impulse it carries: gravity's -g h, the warm start's and the soft solve's impulses
+// leave u = mass_scale push_max - impulse_scale g h, the positions move by h u, and the relax pass
+// stops the ball. It sinks at exactly that speed, to rounding.
+TEST(SoftStep, ThePushOutIsCappedAtPushMax) {
+  const double h = 1.0 / 240, push_max = 1e-3, w_n = 0.5;
+  const SoftConstraint c = soft_constraint(30, 10, h);
+  EXPECT_NEAR(w_n * soft_impulse(c, w_n, 0.0, -1.0, 0.0, push_max), c.mass_scale * push_max, 1e-18);
+  EXPECT_NEAR(w_n * soft_impulse(c, w_n, 0.0, -1e-5, 0.0, push_max), c.mass_scale * c.bias_rate * 1e-5,
+              1e-18);
+  const BallDrop ball({.m = 2.0, .g = kGravity, .h0 = 0.0, .v0 = 0.0, .e = 0.8, .law = Hooke{1e4}});
+  const double dt = 4 * h;  // the default 4 sub-steps; 30 Hz is below the cap of 0.25 / h
+  const RunResult r =
+      solve(ball, {.name = "soft-step", .dt = dt, .push_max = push_max}, {.t_end = 1.0, .sample_dt = dt});
+  ASSERT_TRUE(r.ok()) << r.message;
+  const double sink = c.mass_scale * push_max - c.impulse_scale * kGravity * h;
+  ASSERT_LT(r.samples.back().y[0], -push_max / c.bias_rate);  // the cap binds
+  for (std::size_t n = 30; n < r.samples.size(); ++n)
+    EXPECT_NEAR((r.samples[n].y[0] - r.samples[n - 1].y[0]) / dt, sink, 1e-14) << n;
 }
 
 // Box2D's restitution pass: an impact faster than the threshold leaves at -e times the approach
