@@ -228,6 +228,75 @@ TEST_F(BenchReportCli, P1TimedInRoundsIsJudgedByTheMedianOfTheRoundsRatios) {
       << r.err;
 }
 
+// Each target's verdict turns where the issue puts it: every measurement exactly at its target is
+// met (P1 50x with an apex error equal to the peers', 500 rhs at the default's loosest tolerance
+// that reaches 1e-8, 1e7 impacts/s, band 100x dense, study + paper 10 s, a build of 240 s; the
+// chain's exponent, a strict bound, at 1.19 below its 1.2), and each just past it is not.
+TEST_F(BenchReportCli, EachVerdictTurnsAtItsTarget) {
+  struct Measured {
+    double p1_ratio = 50, p1_err = 1e-6, rhs = 500, impacts = 1e7, exponent = 1.19, speedup = 100, study = 9,
+           build = 240;
+  };
+  const auto lines = [&](const Measured& m) {
+    const double ref[5] = {0.6, 0.4, 0.25, 0.16, 0.1};
+    auto apexes = [&](double off) {
+      std::string s;
+      for (int n = 0; n < 5; ++n) s += fmt::format(", \"apex_{}\": {}", n + 1, ref[n] + off);
+      return s;
+    };
+    auto bench = [](const std::string& name, const std::string& fields) {
+      return fmt::format("{{\"name\": \"{}\", \"time_unit\": \"ms\", \"cpu_time\": 1{}}}", name, fields);
+    };
+    std::vector<std::string> cases = {
+        bench("P1Reference/iterations:1", apexes(0)),
+        bench("P1/cvode-bdf/repeats:9_median", apexes(m.p1_err)),
+        // The default is judged at its loosest tolerance within 1e-8 m, not at a tighter one.
+        bench("ApexTarget/cvode-bdf/8/iterations:1",
+              fmt::format(", \"apex_error_m\": 2e-8, \"rhs_evals\": 300")),
+        bench("ApexTarget/cvode-bdf/10/iterations:1",
+              fmt::format(", \"apex_error_m\": 1e-8, \"rhs_evals\": {}", m.rhs)),
+        bench("ApexTarget/cvode-bdf/12/iterations:1", ", \"apex_error_m\": 1e-10, \"rhs_evals\": 900"),
+        bench("ExactBounces/repeats:9_median", fmt::format(", \"impacts_per_s\": {}", m.impacts)),
+        bench("Chain/dense/1000/repeats:5_median", fmt::format(", \"time_per_sim_s\": {}", m.speedup))};
+    for (const int p : {3, 4, 5})
+      cases.push_back(bench(fmt::format("Chain/band/{}/repeats:5_median", std::pow(10, p)),
+                            fmt::format(", \"time_per_sim_s\": {}", std::pow(10.0, m.exponent * (p - 3)))));
+    std::ofstream(dir_ / "bench.json") << "{\"context\": {\"num_cpus\": 2}, \"benchmarks\": [\n"
+                                       << fmt::format("{}", fmt::join(cases, ",\n")) << "]}\n";
+    std::ofstream scipy(dir_ / "scipy.jsonl");
+    for (const char* method : {"BDF", "Radau", "LSODA", "RK45"}) {
+      scipy << "{\"method\": \"" << method << "\", \"cpu_s\": " << 1e-3 * m.p1_ratio << ", \"apexes\": [";
+      for (int n = 0; n < 5; ++n) scipy << (n ? ", " : "") << fmt::format("{}", ref[n] + 1e-6);  // as ours
+      scipy << "]}\n";
+    }
+    scipy.close();  // before the report reads it
+    std::ofstream(dir_ / "timing.json")
+        << fmt::format(R"({{"study_s": {}, "paper_s": 1, "fresh_build_s": {}}})", m.study, m.build);
+    const Outcome r = run(BENCH_REPORT_EXE,
+                          "--build-type Release --load 0 --scipy scipy.jsonl --timing "
+                          "timing.json bench.json");
+    EXPECT_EQ(r.code, 0) << r.err;
+    std::map<std::string, std::string> verdicts;  // a target's line's first words -> its verdict
+    std::istringstream in(r.out);
+    for (std::string line; std::getline(in, line);)
+      for (const char* target : {"- P1 (rtol", "- k = 1e6", "- event-driven", "- chain, band: CPU",
+                                 "- chain, N = 1e3: band", "- the study", "- a fresh"})
+        if (line.rfind(target, 0) == 0) verdicts[target] = line.substr(line.rfind(": ") + 2);
+    EXPECT_EQ(verdicts.size(), 7u) << r.out;
+    return verdicts;
+  };
+  for (const auto& [target, verdict] : lines({})) EXPECT_EQ(verdict, "**met**") << target;
+  const std::vector<std::pair<std::string, Measured>> past = {{"- P1 (rtol", {.p1_ratio = 49.9}},
+                                                              {"- P1 (rtol", {.p1_err = 1.01e-6}},
+                                                              {"- k = 1e6", {.rhs = 501}},
+                                                              {"- event-driven", {.impacts = 0.999e7}},
+                                                              {"- chain, band: CPU", {.exponent = 1.21}},
+                                                              {"- chain, N = 1e3: band", {.speedup = 99.9}},
+                                                              {"- the study", {.study = 9.01}},
+                                                              {"- a fresh", {.build = 240.5}}};
+  for (const auto& [target, measured] : past) EXPECT_EQ(lines(measured)[target], "**not met**") << target;
+}
+
 TEST_F(BenchReportCli, UnknownOptionsAreRefused) {
   const Outcome r = run(BENCH_REPORT_EXE, "--bogus bench.json");
   EXPECT_EQ(r.code, 2);
