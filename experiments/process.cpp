@@ -130,7 +130,10 @@ int run_process(const std::vector<std::string>& args, const std::filesystem::pat
       if (errno != EINTR)
         throw std::runtime_error(fmt::format("waiting for {}: {}", args[0], std::strerror(errno)));
   }
-  throw_if_interrupted();
+  // A child that finished (exit 0) before or despite the signal did its work (an experiment has
+  // replaced its folder): that is reported; the caller's next check stops. Any other end after an
+  // interrupt is the interrupt's.
+  if (interrupted() && !(WIFEXITED(status) && WEXITSTATUS(status) == 0)) throw Interrupted();
   if (WIFEXITED(status)) return WEXITSTATUS(status);
   if (WIFSIGNALED(status)) return 128 + WTERMSIG(status);
   return 1;

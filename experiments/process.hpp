@@ -32,7 +32,8 @@ void throw_if_interrupted();
 // Runs `argv` (argv[0] looked up on PATH if it has no slash) in `cwd` (empty: this one), with
 // stdout and stderr sent to `log` (empty: inherited). Returns the exit code, 128 + N if killed by
 // signal N, or throws std::runtime_error if it cannot be started; throws Interrupted if this
-// process was interrupted meanwhile.
+// process was interrupted before it started or meanwhile, unless the child exited 0 (its work is
+// done, and the caller's next check stops).
 int run_process(const std::vector<std::string>& argv, const std::filesystem::path& cwd = {},
                 const std::filesystem::path& log = {});
 
