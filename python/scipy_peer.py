@@ -27,12 +27,18 @@ except ImportError as missing:  # the caller says what to install (exit 3: the p
     sys.exit(3)
 
 
-def drop(method, rtol, atol, m, g, k, c, h0, v0, t_end):
-    """One solve: returns (final state, apex heights, nfev, njev)."""
+def smooth_pieces(m, g, k, c):
+    """The two smooth pieces, flight and contact: their right-hand sides and analytic Jacobians."""
     free = lambda t, y: np.array([y[1], -g])
     spring = lambda t, y: np.array([y[1], -g - (k * y[0] + c * y[1]) / m])
     jac_free = lambda t, y: np.array([[0.0, 1.0], [0.0, 0.0]])
     jac_spring = lambda t, y: np.array([[0.0, 1.0], [-k / m, -c / m]])
+    return free, spring, jac_free, jac_spring
+
+
+def drop(method, rtol, atol, m, g, k, c, h0, v0, t_end):
+    """One solve: returns (final state, apex heights, nfev, njev)."""
+    free, spring, jac_free, jac_spring = smooth_pieces(m, g, k, c)
     touch = lambda t, y: y[0]
     touch.terminal = True
     apex = lambda t, y: y[1]

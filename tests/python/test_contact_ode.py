@@ -566,3 +566,27 @@ def test_the_scipy_peer_runs_tuned_and_at_its_defaults():
         np.testing.assert_allclose(defaults, tuned, atol=1e-3, err_msg=method)
     refused = subprocess.run(args + ["--setups", "fast"], capture_output=True, text=True)
     assert refused.returncode != 0 and "--setups: value 'fast'" in refused.stderr
+
+
+def test_the_scipy_peer_solves_the_projects_ball_drop():
+    """The peer's pieces are the project's law (the fairness of the benchmarks' ratios rests on it):
+    each analytic Jacobian is its right-hand side's derivative (both linear, so a difference
+    quotient of step 1 is exact to rounding), and tuned at rtol 1e-9 every method's five apexes are
+    the closed form's -- each contact's exit speed from references.kelvin_voigt_contact with gravity,
+    each flight's apex v^2 / 2g -- to 1e-6 m (the error the tolerance allows is 1e-9 of the metre)."""
+    peer = runpy.run_path(str(pathlib.Path(__file__).resolve().parents[2] / "python" / "scipy_peer.py"))
+    m, g, k, e = 1.0, 9.81, 1e5, 0.8
+    zeta = co.references.damping_ratio_for_restitution(e)
+    c = 2 * zeta * math.sqrt(k * m)
+    free, spring, jac_free, jac_spring = peer["smooth_pieces"](m, g, k, c)
+    y = np.array([-0.01, -3.0])
+    for f, jac in ((free, jac_free), (spring, jac_spring)):
+        quotient = np.column_stack([f(0.0, y + step) - f(0.0, y) for step in np.eye(2)])
+        np.testing.assert_allclose(jac(0.0, y), quotient, rtol=1e-9, atol=1e-9)
+    speed, exact = math.sqrt(2 * g), []
+    for _ in range(5):
+        speed = co.references.kelvin_voigt_contact(m, k, zeta, speed, g)["exit_speed"]
+        exact.append(speed**2 / (2 * g))
+    for method in ("BDF", "Radau", "LSODA", "RK45"):
+        _, apexes, _, _ = peer["drop"](method, 1e-9, 1e-12, m, g, k, c, 1.0, 0.0, 3.0)
+        np.testing.assert_allclose(apexes[:5], exact, rtol=0, atol=1e-6, err_msg=method)
