@@ -98,6 +98,26 @@ TEST(EventDriven, ZenoCascadeStopsAtTheZenoTimeAndTheBallRests) {
   }
 }
 
+// A numerical flight rests a bounce that would rise less than 100 atol (the default rest height;
+// below it the flight cannot resolve the bounce). At e = 0.5 from 1 m the n-th bounce rises 0.25^n m:
+// with atol 1e-9 the 11th (2.4e-7 m) flies and the 12th (6.0e-8 m) rests, so there are 11 apexes;
+// a rest height of 5e-8 m lets the 12th fly too.
+TEST(EventDriven, ByDefaultABounceRisingLessThan100AtolRests) {
+  EventOptions o = options();
+  o.integrator.atol = 1e-9;
+  const auto apexes = [&](double rest_height) {
+    o.rest_height = rest_height;
+    const RunResult r = run_event_driven(ball(0.5), o, span(3.0));
+    EXPECT_TRUE(r.ok()) << r.message;
+    return r.apexes;
+  };
+  const auto by_default = apexes(-1);
+  ASSERT_EQ(by_default.size(), 11u);
+  EXPECT_NEAR(by_default.back().gap, std::pow(0.25, 11), 10 * o.integrator.atol);  // 22 flights' error
+  EXPECT_EQ(apexes(1e-7).size(), 11u);
+  EXPECT_EQ(apexes(5e-8).size(), 12u);
+}
+
 TEST(EventDriven, PerfectlyInelasticBallStopsAtFirstImpact) {
   const BallDrop model = ball(0.0);
   const RigidBounces ref(1.0, 0.0, 9.81, 0.0);
