@@ -30,6 +30,7 @@ int Experiment::run_body(int argc, char** argv, const std::function<void(OutputS
     std::cerr << program() << ": " << err << "\n";
     return cli::kExitBadInput;
   }
+  require_scratch_location();  // figures are drawn there
   const auto start = std::chrono::steady_clock::now();
   OutputSet outputs;
   body(outputs);                      // exceptions go to guarded_main: exit 2 for bad input, 1 otherwise

@@ -11,7 +11,10 @@
 #include <nlohmann/json.hpp>
 
 #include <unistd.h>
+#include <cerrno>
 #include <csignal>
+#include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <stdexcept>
 
@@ -56,12 +59,23 @@ std::string sibling_name(const fs::path& dir, const char* what) {
 }  // namespace
 
 fs::path make_scratch_dir(const std::string& stem) {
-  std::string pattern = (fs::temp_directory_path() / (stem + "_XXXXXX")).string();
-  if (::mkdtemp(pattern.data()) == nullptr)
-    throw std::runtime_error(
-        fmt::format("cannot create a scratch folder in {}", fs::temp_directory_path().string()));
-  return pattern;
+  std::error_code ec;
+  const fs::path tmp = fs::temp_directory_path(ec);
+  std::string pattern = (tmp / (stem + "_XXXXXX")).string();
+  if (!ec && ::mkdtemp(pattern.data()) != nullptr) return pattern;
+  const std::string why = ec ? ec.message() : std::strerror(errno);
+  const char* tmpdir = std::getenv("TMPDIR");
+  throw std::invalid_argument(
+      tmpdir != nullptr
+          ? fmt::format(
+                "TMPDIR: value '{}' is not a folder where a scratch folder can be made ({}); accepted: "
+                "an existing, writable folder",
+                tmpdir, why)
+          : fmt::format("cannot make a scratch folder in {} ({}); set TMPDIR to an existing, writable folder",
+                        tmp.string(), why));
 }
+
+void require_scratch_location() { const ScratchDir probe{make_scratch_dir("contact_probe")}; }
 
 ScratchDir::~ScratchDir() {
   std::error_code ec;

@@ -24,8 +24,13 @@ struct ScratchDir {
 };
 
 // A new private folder in the temporary directory (mkdtemp: unique, not guessable), named
-// STEM_XXXXXX; throws std::runtime_error when it cannot be made. Own it with a ScratchDir.
+// STEM_XXXXXX; throws std::invalid_argument naming TMPDIR and its value (bad input: exit 2) when it
+// cannot be made. Own it with a ScratchDir.
 std::filesystem::path make_scratch_dir(const std::string& stem);
+
+// Throws as make_scratch_dir does unless a scratch folder can be made: checked before any work, so
+// that a TMPDIR that is not a folder is refused at once, not after a run, when figures are drawn.
+void require_scratch_location();
 
 // A figure drawn by gnuplot (figure.hpp): NAME.png, NAME.pdf and the script NAME.gp.
 struct Figure {

@@ -63,6 +63,7 @@ int program(int argc, char** argv) {
     std::cerr << "study: " << err << "\n";
     return cli::kExitBadInput;
   }
+  require_scratch_location();  // the logs' folder, and every experiment's figures
   const fs::path bin = fs::read_symlink("/proc/self/exe").parent_path();
   const auto start = std::chrono::steady_clock::now();
   nlohmann::json record = {{"tiny", tiny}, {"experiments", nlohmann::json::array()}};

@@ -134,6 +134,29 @@ TEST_F(TrustCli, AQuoteInTmpdirDoesNotBreakTheFigures) {
   EXPECT_TRUE(fs::is_empty(dir_ / "it's")) << "scratch folders left behind";
 }
 
+// A TMPDIR where no scratch folder can be made (missing, or a file) is bad input, refused before any
+// work with its value: it used to surface after the whole run, when the figures were drawn, as
+// "filesystem error: temp_directory_path: No such file or directory" (exit 1).
+TEST_F(TrustCli, AnUnusableTmpdirIsRefusedBeforeAnyWork) {
+  std::ofstream(dir_ / "a_file") << "x";
+  for (const char* tmpdir : {"missing", "a_file"}) {
+    for (const char* program : {"zeno", "study"}) {
+      const Outcome r = run(exe(program), "--out res", fmt::format("TMPDIR=\"$PWD/{}\"", tmpdir));
+      EXPECT_EQ(r.code, 2) << program << " " << tmpdir << ": " << r.err;
+      EXPECT_NE(
+          r.err.find(fmt::format("{}: TMPDIR: value '{}/{}' is not a folder where a scratch folder can be "
+                                 "made (",
+                                 program, dir_.string(), tmpdir)),
+          std::string::npos)
+          << r.err;
+      EXPECT_NE(r.err.find("accepted: an existing, writable folder"), std::string::npos) << r.err;
+      EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+      EXPECT_EQ(r.out, "") << program << ": it ran before refusing";
+    }
+  }
+  expect_only({"a_file"});
+}
+
 // SIGINT or SIGTERM: exit 128 + N, no output, no staging or scratch folder left; a study keeps the
 // results of an earlier run of an experiment it did not get to.
 TEST_F(TrustCli, InterruptsLeaveNothingBehindAndKeepEarlierResults) {
