@@ -72,12 +72,22 @@ TEST_F(StudyCli, AnIndexNoStudyWroteIsRefusedAndKept) {
   EXPECT_EQ(run(STUDY_EXE, "--tiny --only contact_advisor --out s").code, 0);
 }
 
-// The check is not vacuous: a missing column, a short row, a figure without its PDF and a missing
-// file are each reported.
+// The check is not vacuous: a missing column, a short row, a long row, a table without rows, a
+// figure without its PDF and a missing file are each reported.
 TEST_F(StudyCli, OutputCheckReportsEveryKindOfDefect) {
-  StudyExperiment e{"x", "x", {},
-                    {},  "",  {{"t.csv", {"a", "b"}, ""}, {"f.png", {}, ""}, {"gone.csv", {}, ""}}};
+  StudyExperiment e{"x",
+                    "x",
+                    {},
+                    {},
+                    "",
+                    {{"t.csv", {"a", "b"}, ""},
+                     {"long.csv", {"a"}, ""},
+                     {"empty.csv", {"a"}, ""},
+                     {"f.png", {}, ""},
+                     {"gone.csv", {}, ""}}};
   std::ofstream(dir_ / "t.csv") << "a,c\n1\n";
+  std::ofstream(dir_ / "long.csv") << "a\n1\n2,3\n";
+  std::ofstream(dir_ / "empty.csv") << "a\n";
   std::ofstream(dir_ / "f.png") << "\x89PNG\r\n\x1a\n....";
   std::ofstream(dir_ / "meta.json") << "{}";
   const auto problems = check_outputs(e, dir_);
@@ -87,9 +97,11 @@ TEST_F(StudyCli, OutputCheckReportsEveryKindOfDefect) {
   };
   EXPECT_TRUE(reported("column 'b' missing"));
   EXPECT_TRUE(reported("row 1 does not have the header's 2 cells"));
+  EXPECT_TRUE(reported("long.csv: row 2 does not have the header's 1 cells"));
+  EXPECT_TRUE(reported("empty.csv: no rows"));
   EXPECT_TRUE(reported("f.png: no PDF"));
   EXPECT_TRUE(reported("gone.csv: missing"));
-  EXPECT_EQ(problems.size(), 4u);
+  EXPECT_EQ(problems.size(), 6u);
 }
 
 TEST_F(StudyCli, BadInputIsRefused) {

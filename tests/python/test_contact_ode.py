@@ -590,3 +590,27 @@ def test_the_scipy_peer_solves_the_projects_ball_drop():
     for method in ("BDF", "Radau", "LSODA", "RK45"):
         _, apexes, _, _ = peer["drop"](method, 1e-9, 1e-12, m, g, k, c, 1.0, 0.0, 3.0)
         np.testing.assert_allclose(apexes[:5], exact, rtol=0, atol=1e-6, err_msg=method)
+
+
+def test_the_engine_settings_reach_their_methods():
+    """erp and contact_hertz set what their names say, read off exact consequences (each keyword
+    could have set another field unnoticed). Sequential impulses without split impulses push a
+    plastic landing's overlap out by Baumgarte's erp / dt alone: each step leaves 1 - erp of it.
+    A ball resting under the soft step settles where a sub-step's soft solve leaves it still:
+    -impulse_scale g h = mass_scale bias_rate s, from Box2D's soft constraint at contact_hertz
+    (zeta 10, h = dt / 4), to rounding once the settling has converged (1e-12 of it by 2 s)."""
+    dt, erp = 1e-3, 0.2
+    r = co.solve("ball-drop", "sequential-impulses", erp=erp, split_impulse=False, e=0.0, h0=0.01, dt=dt,
+                 t_end=0.1, sample_dt=dt)
+    y = np.asarray(r.y)[:, 0]
+    landed = int(np.argmax(y < 0))
+    np.testing.assert_allclose(y[landed + 1:landed + 5] / y[landed:landed + 4], 1 - erp, rtol=1e-12)
+
+    dt, hertz, g = 1 / 60, 45.0, 9.81
+    h, w = dt / 4, 2 * math.pi * hertz
+    a1 = 2 * 10 + h * w
+    a2 = h * w * a1
+    impulse_scale, mass_scale, bias_rate = 1 / (1 + a2), a2 / (1 + a2), w / a1
+    r = co.solve("ball-drop", "soft-step", contact_hertz=hertz, h0=0.0, dt=dt, t_end=2.0, sample_dt=dt)
+    settled = -impulse_scale * g * h / (mass_scale * bias_rate)
+    assert np.asarray(r.y)[-1, 0] == pytest.approx(settled, rel=1e-10)
