@@ -134,6 +134,34 @@ TEST_F(KSweepCli, ABallHeldNearTheEdgeIsCertifiedUnderEitherLaw) {
   }
 }
 
+// The certificate's own edge: a ball at its static sag s = m g / k (u = 0) moving at speed r has
+// energy m r^2 / 2, and is certified held while r sqrt(m reach) < k s, with reach k for the law
+// that never lets go while overlapping and k + c^2 / m (Cauchy-Schwarz on k u + c u') for the
+// clamped one, which can. Each is certified just below its edge and refused just above; the
+// clamped edge lies 1 % below the other (1 + 4 zeta^2 under the root), so a certificate that
+// forgot the dashpot would certify the clamped ball there.
+TEST(HeldForGood, TheCertificatesEdgeIsItsForceBound) {
+  for (const char* law_name : {"kelvin-voigt", "kelvin-voigt-clamped"}) {
+    const contact::ContactLaw law = contact::make_law(law_name, {.k = 6.34, .m = 1.0, .e = 0.8});
+    const contact::BallDropParams p{1.0, 9.81, 1.0, 0.0, 0.8, law};
+    const contact::LinearLaw kc = contact::linear_law(law);
+    const double s = p.m * p.g / kc.k;
+    const double reach = std::string(law_name) == "kelvin-voigt" ? kc.k : kc.k + kc.c * kc.c / p.m;
+    const double edge = kc.k * s / std::sqrt(p.m * reach);
+    const auto held_at = [&](double speed) {
+      contact::RunResult r;
+      r.contacts = {
+          {.contact = 0, .t_begin = 0.45, .t_end = NAN, .max_penetration = s, .v_in = -4.4, .v_out = NAN}};
+      contact::Vector y(2);
+      y << -s, -speed;
+      r.samples = {{.t = 1.0, .y = y, .energy = 0.0, .dissipated = 0.0}};
+      return contact::held_for_good(r, p);
+    };
+    EXPECT_TRUE(held_at(0.999 * edge)) << law_name;
+    EXPECT_FALSE(held_at(1.001 * edge)) << law_name;
+  }
+}
+
 TEST_F(KSweepCli, BadInputIsRefused) {
   expect_refused(K_SWEEP_EXE, {
                                   {"--k-min 0", "--k-min", "'0'", "(0, inf)"},
