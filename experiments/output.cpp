@@ -63,7 +63,12 @@ fs::path make_scratch_dir(const std::string& stem) {
   const fs::path tmp = fs::temp_directory_path(ec);
   std::string pattern = (tmp / (stem + "_XXXXXX")).string();
   if (!ec && ::mkdtemp(pattern.data()) != nullptr) return pattern;
-  const std::string why = ec ? ec.message() : std::strerror(errno);
+  const int err = errno;
+  const std::string why = ec ? ec.message() : std::strerror(err);
+  // A folder that is missing, not a folder or not writable is the setting's fault (bad input); a
+  // full disk or too many open files is the run's (exit 1).
+  if (!ec && err != ENOENT && err != ENOTDIR && err != EACCES && err != EROFS)
+    throw std::runtime_error(fmt::format("cannot make a scratch folder in {}: {}", tmp.string(), why));
   const char* tmpdir = std::getenv("TMPDIR");
   throw std::invalid_argument(
       tmpdir != nullptr

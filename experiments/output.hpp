@@ -24,8 +24,9 @@ struct ScratchDir {
 };
 
 // A new private folder in the temporary directory (mkdtemp: unique, not guessable), named
-// STEM_XXXXXX; throws std::invalid_argument naming TMPDIR and its value (bad input: exit 2) when it
-// cannot be made. Own it with a ScratchDir.
+// STEM_XXXXXX; throws std::invalid_argument naming TMPDIR and its value (bad input: exit 2) when
+// the temporary directory is missing, not a folder or not writable, and std::runtime_error on any
+// other failure (a full disk). Own it with a ScratchDir.
 std::filesystem::path make_scratch_dir(const std::string& stem);
 
 // Throws as make_scratch_dir does unless a scratch folder can be made: checked before any work, so

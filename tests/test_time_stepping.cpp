@@ -120,6 +120,7 @@ TEST(SequentialImpulses, ABounceThatMeetsAPartingContactLiftsItAndMakesEnergy) {
 // Bullet's restitution threshold (btContactSolverInfo's m_restitutionVelocityThreshold, 0.2 m/s,
 // the default): a pair struck at exactly it is plastic (both leave at v0 / 2), 1e-12 m/s faster it
 // leaves with Newton's velocities (1 -+ e) v0 / 2; a threshold set to 1 m/s makes 0.5 m/s plastic.
+// One sweep on one contact is the exact impulse: each to rounding (1e-15 of ratios of order one).
 TEST(SequentialImpulses, BouncesOnlyApproachesFasterThanItsThreshold) {
   const auto last_velocities = [](double v0, double threshold) {
     const auto scene = make_scene(
