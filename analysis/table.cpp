@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 namespace contact {
@@ -34,15 +35,6 @@ std::string csv_field(const std::string& s) {
   return q + "\"";
 }
 
-std::string latex_escape(const std::string& s) {
-  std::string out;
-  for (char ch : s) {
-    if (ch == '_' || ch == '%' || ch == '&' || ch == '#') out += '\\';
-    out += ch;
-  }
-  return out;
-}
-
 // A rendered number as LaTeX: "3.2e-05" becomes $3.2\times10^{-5}$; text is escaped.
 std::string latex_cell(const Table::Cell& c, int digits) {
   const std::string s = render(c, digits);
@@ -57,6 +49,36 @@ std::string latex_cell(const Table::Cell& c, int digits) {
 }
 
 }  // namespace
+
+std::string latex_escape(const std::string& s) {
+  std::string out;
+  for (char ch : s) {
+    switch (ch) {
+      case '~':
+        out += "\\textasciitilde{}";
+        break;
+      case '^':
+        out += "\\textasciicircum{}";
+        break;
+      case '\\':
+        out += "\\textbackslash{}";
+        break;
+      case '&':
+      case '%':
+      case '$':
+      case '#':
+      case '_':
+      case '{':
+      case '}':
+        out += '\\';
+        out += ch;
+        break;
+      default:
+        out += ch;
+    }
+  }
+  return out;
+}
 
 void Table::set_latex_header(std::vector<std::string> header) {
   if (header.size() != columns_.size())
@@ -147,17 +169,43 @@ std::vector<std::string> split_csv_line(const std::string& line) {
   return cells;
 }
 
+std::vector<std::vector<std::string>> parse_csv(const std::string& text) {
+  std::vector<std::vector<std::string>> records;
+  std::size_t begin = 0;
+  while (begin < text.size()) {
+    std::size_t end = begin;  // the record's end: the first newline outside quotes
+    bool quoted = false;
+    for (; end < text.size() && (quoted || text[end] != '\n'); ++end) quoted ^= text[end] == '"';
+    if (quoted)
+      throw std::runtime_error(fmt::format("record {}: a quoted cell is not closed", records.size() + 1));
+    std::string record = text.substr(begin, end - begin);
+    if (!record.empty() && record.back() == '\r') record.pop_back();  // a CRLF file
+    records.push_back(split_csv_line(record));
+    begin = end + 1;
+  }
+  return records;
+}
+
 std::vector<CsvRecord> read_csv(const std::filesystem::path& path) {
-  std::ifstream in(path);
+  std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error(fmt::format("cannot read {}", path.string()));
-  std::string line;
-  std::getline(in, line);
-  const auto header = split_csv_line(line);
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (in.bad()) throw std::runtime_error(fmt::format("cannot read {}", path.string()));
+  std::vector<std::vector<std::string>> records;
+  try {
+    records = parse_csv(text);
+  } catch (const std::runtime_error& ex) {
+    throw std::runtime_error(fmt::format("{}: {}", path.string(), ex.what()));
+  }
+  if (records.empty()) throw std::runtime_error(fmt::format("{}: empty, not even a header", path.string()));
+  const auto& header = records.front();
   std::vector<CsvRecord> rows;
-  while (std::getline(in, line)) {
-    const auto cells = split_csv_line(line);
+  for (std::size_t r = 1; r < records.size(); ++r) {
+    if (records[r].size() != header.size())  // a row cut short or run together: not a table
+      throw std::runtime_error(fmt::format("{}: row {} has {} cells, the header {}", path.string(), r,
+                                           records[r].size(), header.size()));
     CsvRecord row;
-    for (std::size_t i = 0; i < header.size() && i < cells.size(); ++i) row[header[i]] = cells[i];
+    for (std::size_t i = 0; i < header.size(); ++i) row[header[i]] = records[r][i];
     rows.push_back(std::move(row));
   }
   return rows;

@@ -50,21 +50,25 @@ std::string slurp(const fs::path& p) {
 // Problems of one CSV: the header must hold every declared column; every row must be as wide as
 // the header.
 void check_csv(const std::string& text, const StudyOutput& o, std::vector<std::string>& problems) {
-  std::istringstream in(text);
-  std::string header;
-  std::getline(in, header);
-  const auto columns = split_csv_line(header);
+  std::vector<std::vector<std::string>> records;
+  try {
+    records = parse_csv(text);
+  } catch (const std::runtime_error& ex) {
+    problems.push_back(fmt::format("{}: {}", o.file, ex.what()));
+    return;
+  }
+  const auto columns = records.empty() ? std::vector<std::string>{} : records.front();
   for (const auto& c : o.columns)
     if (std::find(columns.begin(), columns.end(), c) == columns.end())
-      problems.push_back(fmt::format("{}: column '{}' missing (header: {})", o.file, c, header));
-  long row = 1;
-  for (std::string line; std::getline(in, line); ++row)
-    if (split_csv_line(line).size() != columns.size()) {
+      problems.push_back(
+          fmt::format("{}: column '{}' missing (header: {})", o.file, c, fmt::join(columns, ",")));
+  for (std::size_t row = 1; row < records.size(); ++row)
+    if (records[row].size() != columns.size()) {
       problems.push_back(
           fmt::format("{}: row {} does not have the header's {} cells", o.file, row, columns.size()));
       return;
     }
-  if (row == 1) problems.push_back(fmt::format("{}: no rows", o.file));
+  if (records.size() < 2) problems.push_back(fmt::format("{}: no rows", o.file));
 }
 
 }  // namespace

@@ -60,6 +60,40 @@ TEST(PaperInputs, CsvReadsBackWhatTablesWrite) {
   EXPECT_THROW(contact::read_csv(file), std::runtime_error);
 }
 
+// A CSV written elsewhere reads the same: CRLF line ends are not part of the last cell; a quoted
+// newline is part of its cell (Table::to_csv quotes one). A file that is not a table is refused
+// naming the file and the record: a row cut short or run on (their cells used to be dropped or
+// shifted silently), a quote not closed, an empty file. LaTeX's ten specials are escaped.
+TEST(PaperInputs, CsvReadsOnlyTables) {
+  const fs::path file = fs::temp_directory_path() / ("contact_csv_" + std::to_string(::getpid()) + ".csv");
+  const auto read = [&](const std::string& text) {
+    std::ofstream(file, std::ios::binary) << text;
+    return contact::read_csv(file);
+  };
+  auto rows = read("name,value\r\n\"a\nb\",1.5\r\nc,2\r\n");
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0].at("name"), "a\nb");
+  EXPECT_EQ(rows[1].at("value"), "2");
+  contact::Table t({"name"});
+  t.add_row({std::string("two\nlines")});
+  EXPECT_EQ(read(t.to_csv()).at(0).at("name"), "two\nlines");
+  for (const auto& [text, message] : std::vector<std::pair<std::string, std::string>>{
+           {"a,b\n1,2\n3\n", "row 2 has 1 cells, the header 2"},
+           {"a,b\n1,2,3\n", "row 1 has 3 cells, the header 2"},
+           {"a,b\n\"1,2\n", "record 2: a quoted cell is not closed"},
+           {"", "empty, not even a header"}}) {
+    try {
+      read(text);
+      ADD_FAILURE() << text << " was read";
+    } catch (const std::runtime_error& ex) {
+      EXPECT_EQ(std::string(ex.what()), file.string() + ": " + message);
+    }
+  }
+  fs::remove(file);
+  EXPECT_EQ(contact::latex_escape("a&b%c$d#e_f{g}h~i^j\\k"),
+            "a\\&b\\%c\\$d\\#e\\_f\\{g\\}h\\textasciitilde{}i\\textasciicircum{}j\\textbackslash{}k");
+}
+
 // A CSV cell holds the shortest text that reads back as its double: exact, and what a reader types
 // to find it (0.2, not 0.20000000000000001; 1e-05, not 1.0000000000000001e-05).
 TEST(PaperInputs, CsvNumbersAreTheShortestTextThatReadsBackExactly) {

@@ -77,3 +77,68 @@ TEST_F(PaperNumbersCli, EachMacroIsTheRowItsConditionsName) {
         "\\newcommand{\\Scaled}{250.0}\n", "\\newcommand{\\Tiny}{\\ensuremath{1.5\\times10^{-7}}}\n"})
     EXPECT_NE(tex.find(macro), std::string::npos) << macro << " not in\n" << tex;
 }
+
+// The list is checked whole before any result is read, and an entry that is not one is refused
+// (exit 2) naming it, its key, the value and what is accepted, with nothing written. An empty
+// [column, value] pair used to be read past its end (a segfault); a number for a value, a format
+// that cannot print a number or a missing key ended in a library's bare exception (exit 1); a macro
+// with a digit, one defined twice, or a format with LaTeX's % wrote a file the paper cannot build.
+TEST_F(PaperNumbersCli, AnEntryThatIsNotOneIsRefusedBeforeAnyResultIsRead) {
+  const auto entry = [](const std::string& fields) {
+    return fmt::format(
+        R"({{"macro": "Dur", "file": "k_sweep/exponents.csv", "column": "duration_exponent", {}}})", fields);
+  };
+  const std::string hooke = R"("where": [["law", "hooke"]])";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {entry(R"("where": [["law", "hooke"], []])"), "entry 1 ('Dur'): where: value [[\"law\",\"hooke\"],[]]"},
+      {entry(R"("where": [["law", 1]])"),
+       "entry 1 ('Dur'): where: value [[\"law\",1]] is not accepted; accepted: "
+       "a list of [column, value] string pairs"},
+      {entry(hooke + R"(, "format": "{:d}")"), "entry 1 ('Dur'): format: value '{:d}' cannot print a number"},
+      {entry(hooke + R"(, "format": "{:.1f}%")"),
+       "format: value '{:.1f}%' prints '1.0%', which LaTeX cannot typeset as it is"},
+      {entry(hooke + R"(, "scale": "1e3")"),
+       "scale: value \"1e3\" is not accepted; accepted: a finite number"},
+      {entry(hooke + R"(, "last": "yes")"), "last: value \"yes\" is not accepted; accepted: true or false"},
+      {entry(hooke + R"(, "formt": "{:.2f}")"), "key 'formt' is not known; accepted: macro, file, where"},
+      {R"({"macro": "Dur", "file": "k_sweep/exponents.csv", "where": []})",
+       "entry 1 ('Dur'): column: missing"},
+      {entry(hooke) + ", " + entry(hooke), "entry 2 ('Dur'): macro: defined by an entry before it"},
+      {R"({"macro": "Dur2", "file": "k_sweep/exponents.csv", "where": [], "column": "x"})",
+       "macro: value 'Dur2' is not accepted; accepted: letters only"},
+      {R"({"macro": "Dur", "file": "../exponents.csv", "where": [], "column": "x"})",
+       "file: value '../exponents.csv' is not accepted; accepted: a relative path under the results folder"},
+      {"1", "entry 1 (''): is not an object"},
+      {"{", "list.json' is not JSON: [json.exception.parse_error.101] parse error at line 1"}};
+  for (const auto& [numbers, message] : cases) {
+    const Outcome r = run_on("law,duration_exponent\nhooke,-0.5\n", numbers, "numbers.tex");
+    EXPECT_EQ(r.code, 2) << numbers;
+    EXPECT_NE(r.err.find("paper_numbers: --numbers: '"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(message), std::string::npos) << numbers << "\n" << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "numbers.tex")) << numbers;
+  }
+}
+
+// A quoted cell that is empty, NaN or infinite is a failed run's, not a number for the paper: the
+// run fails naming the file, the row and the cell, writing nothing (NaN used to be printed as
+// "nan"). A text cell is quoted as text, LaTeX's specials escaped (one with an e used to be read
+// as a mantissa and exponent, and failed with "stoi").
+TEST_F(PaperNumbersCli, ACellThatIsNotAFiniteNumberFailsTheRun) {
+  const std::string entry =
+      R"({"macro": "Dur", "file": "k_sweep/exponents.csv", "where": [["law", "hooke"]], "column": "d")";
+  for (const std::string cell : {"nan", "", "inf", "-0.5x"}) {
+    const Outcome r =
+        run_on("law,d\nhooke," + cell + "\n", entry + R"(, "format": "{:.3f}"})", "numbers.tex");
+    EXPECT_EQ(r.code, 1) << cell;
+    EXPECT_NE(r.err.find("k_sweep/exponents.csv: column 'd' on the row with law=hooke holds '" + cell +
+                         "', not a finite number"),
+              std::string::npos)
+        << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "numbers.tex")) << cell;
+  }
+  const Outcome text = run_on("law,d\nhooke,event_exact & 10%\n", entry + "}", "numbers.tex");
+  ASSERT_EQ(text.code, 0) << text.err;
+  EXPECT_NE(slurp(dir_ / "numbers.tex").find("\\newcommand{\\Dur}{event\\_exact \\& 10\\%}\n"),
+            std::string::npos)
+      << slurp(dir_ / "numbers.tex");
+}

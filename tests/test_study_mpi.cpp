@@ -13,13 +13,22 @@ constexpr const char* kMpirun =
     "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 " MPIEXEC " --oversubscribe -np ";
 
 // Every CSV under `root`, relative path -> rows with the timing (wall-clock and CPU) columns and
-// figures left out.
+// figures left out. A figure's data (NAME-data.csv: gnuplot's blocks, no header) by its records.
 std::map<std::string, std::vector<contact::CsvRecord>> tables(const fs::path& root) {
   std::map<std::string, std::vector<contact::CsvRecord>> out;
   for (const auto& entry : fs::recursive_directory_iterator(root)) {
     // Timing figures (stack's cost: CPU time against n) differ between any two runs.
     if (entry.path().extension() != ".csv" || entry.path().filename() == "cost-data.csv") continue;
-    auto rows = contact::read_csv(entry.path());
+    const std::string name = entry.path().filename().string();
+    std::vector<contact::CsvRecord> rows;
+    if (name.ends_with("-data.csv")) {
+      for (const auto& record : contact::parse_csv(slurp(entry.path()))) {
+        auto& row = rows.emplace_back();
+        for (std::size_t i = 0; i < record.size(); ++i) row[std::to_string(i)] = record[i];
+      }
+    } else {
+      rows = contact::read_csv(entry.path());
+    }
     for (auto& row : rows)
       std::erase_if(row, [](const auto& cell) {
         return cell.first.find("wall") != std::string::npos || cell.first.find("cpu") != std::string::npos;

@@ -45,8 +45,16 @@ std::vector<std::string> split_csv_line(const std::string& line);
 Table pivot(const Table& t, const std::string& row, const std::vector<std::string>& keep,
             const std::string& across, const std::string& value);
 
+// Text as LaTeX typesets it: each of LaTeX's ten special characters escaped.
+std::string latex_escape(const std::string& s);
+
+// The records of a CSV text, each its cells: a newline inside quotes belongs to its cell, a CRLF
+// ends a record as a LF does. Throws std::runtime_error naming the record whose quote is not closed.
+std::vector<std::vector<std::string>> parse_csv(const std::string& text);
+
 // The rows of a CSV file written by Table::to_csv(), each a map from column name to cell.
-// Throws std::runtime_error naming the file when it cannot be read.
+// Throws std::runtime_error naming the file when it cannot be read, is empty, has a quote not
+// closed or a row whose width is not the header's.
 using CsvRecord = std::map<std::string, std::string>;
 std::vector<CsvRecord> read_csv(const std::filesystem::path& path);
 
