@@ -90,6 +90,15 @@ std::string read_text(const std::string& path) {
   return s.str();
 }
 
+// A parse error names the file (and line) it is in.
+json parse_json(const std::string& text, const std::string& where) {
+  try {
+    return json::parse(text);
+  } catch (const json::parse_error& ex) {
+    throw std::runtime_error(where + ": " + ex.what());
+  }
+}
+
 constexpr const char* kUsage =
     "usage: bench_report --build-type T --load L [--scipy P1.jsonl]... [--timing TIMING.json] RESULT.json...";
 
@@ -129,7 +138,7 @@ int main(int argc, char** argv) try {
     for (const char* token : {": NaN", ": -NaN", ": Infinity", ": -Infinity"})
       for (auto at = text.find(token); at != std::string::npos; at = text.find(token, at))
         text.replace(at, std::strlen(token), ": null");
-    const json j = json::parse(text);
+    const json j = parse_json(text, path);
     context = j["context"];
     for (const auto& b : j["benchmarks"]) {
       Case c;
@@ -217,9 +226,10 @@ int main(int argc, char** argv) try {
     for (const auto& path : scipy_paths) {
       auto& round = rounds.emplace_back();
       std::istringstream lines(read_text(path));
+      int number = 0;
       for (std::string line; std::getline(lines, line);)
-        if (!line.empty() && line[0] == '{') {
-          const json p = json::parse(line);
+        if (++number, !line.empty() && line[0] == '{') {
+          const json p = parse_json(line, fmt::format("{} line {}", path, number));
           const std::string setup = p.value("setup", "tuned");
           round[(setup == "tuned" ? "" : setup + " ") + p.value("method", "")] = p;
         }
@@ -377,7 +387,7 @@ int main(int argc, char** argv) try {
     fmt::print("- column (not a target; linear expected): CPU per step grows from N = 100 to 1e3 as {}\n",
                fmt::join(column, ", "));
   if (!timing_path.empty()) {
-    const json t = json::parse(read_text(timing_path));
+    const json t = parse_json(read_text(timing_path), timing_path);
     const double total = t.value("study_s", NAN) + t.value("paper_s", NAN);
     // Several runs (run_benchmarks.sh times three): the median run's, with the totals' range.
     std::string runs;

@@ -297,6 +297,23 @@ TEST_F(BenchReportCli, EachVerdictTurnsAtItsTarget) {
   for (const auto& [target, measured] : past) EXPECT_EQ(lines(measured)[target], "**not met**") << target;
 }
 
+// An input that is not JSON is refused naming it (and a SciPy round's line): the report used to
+// give the parser's position alone, in none of the files it read.
+TEST_F(BenchReportCli, AnInputThatIsNotJsonIsNamed) {
+  write_inputs({"BDF", "Radau"});
+  std::ofstream(dir_ / "scipy.jsonl", std::ios::app) << "{\"method\": LSODA}\n";
+  Outcome r = report();
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("bench_report: scipy.jsonl line 3: [json.exception.parse_error.101]"),
+            std::string::npos)
+      << r.err;
+  std::ofstream(dir_ / "broken.json") << "{\"benchmarks\": [";
+  r = run(BENCH_REPORT_EXE, "--build-type Release --load 0 broken.json");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("bench_report: broken.json: [json.exception.parse_error.101]"), std::string::npos)
+      << r.err;
+}
+
 TEST_F(BenchReportCli, UnknownOptionsAreRefused) {
   const Outcome r = run(BENCH_REPORT_EXE, "--bogus bench.json");
   EXPECT_EQ(r.code, 2);
