@@ -40,8 +40,11 @@ int program(int argc, char** argv) {
   app.add("--jobs", jobs, "experiments run at a time (default: the cores)", cli::integer_in(1, 64));
   if (const int code = app.parse(argc, argv); code >= 0) return code;
   StudyManifest manifest;
+  const fs::path bin = fs::read_symlink("/proc/self/exe").parent_path();
   try {
     manifest = load_study_manifest(manifest_path);
+    if (const auto err = missing_program(manifest, bin); !err.empty())
+      throw std::runtime_error(fmt::format("'{}': {}", manifest_path, err));
   } catch (const std::exception& ex) {
     std::cerr << "study: --manifest: " << ex.what() << "\n";
     return cli::kExitBadInput;
@@ -64,7 +67,6 @@ int program(int argc, char** argv) {
     return cli::kExitBadInput;
   }
   require_scratch_location();  // the logs' folder, and every experiment's figures
-  const fs::path bin = fs::read_symlink("/proc/self/exe").parent_path();
   const auto start = std::chrono::steady_clock::now();
   nlohmann::json record = {{"tiny", tiny}, {"experiments", nlohmann::json::array()}};
   nlohmann::json mine = nlohmann::json::array();  // this rank's runs: {"index", "record", "ok"}

@@ -7,35 +7,108 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <functional>
+#include <set>
 #include <sstream>
 #include <stdexcept>
+
+#include <unistd.h>
 
 namespace contact {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+using ordered_json = nlohmann::ordered_json;
+
+// A plain name: one path component, so that an experiment's folder is inside --out ("", ".", ".."
+// or "a/b" would put it elsewhere: "../x" wrote beside --out).
+bool plain_name(const std::string& s) {
+  return !s.empty() && s != "." && s != ".." && s.find('/') == std::string::npos;
+}
+
+// One experiment, every key checked; `bad` throws naming the experiment.
+StudyExperiment parse_experiment(const ordered_json& e, const std::function<void(const std::string&)>& bad) {
+  if (!e.is_object()) bad("is not an object; accepted: {\"name\", \"exe\", \"args\", ...}");
+  const std::set<std::string> keys{"name", "exe", "args", "tiny", "cpu_s", "summary", "outputs"};
+  for (const auto& [key, value] : e.items())
+    if (!keys.count(key)) bad(fmt::format("key '{}' is not known; accepted: {}", key, fmt::join(keys, ", ")));
+  for (const auto& key : keys)
+    if (!e.contains(key)) bad(fmt::format("{}: missing", key));
+  const auto strings = [&](const char* key) {
+    const auto& v = e.at(key);
+    if (!v.is_array() || !std::all_of(v.begin(), v.end(), [](const auto& a) { return a.is_string(); }))
+      bad(fmt::format("{}: value {} is not accepted; accepted: a list of strings", key, v.dump()));
+    return v.template get<std::vector<std::string>>();
+  };
+  const auto text = [&](const char* key) {
+    if (!e.at(key).is_string())
+      bad(fmt::format("{}: value {} is not accepted; accepted: a string", key, e.at(key).dump()));
+    return e.at(key).template get<std::string>();
+  };
+  StudyExperiment x{text("name"), text("exe"), strings("args"), strings("tiny"), text("summary"), {}, 0.0};
+  if (!plain_name(x.name))
+    bad(fmt::format(
+        "name: value '{}' is not accepted; accepted: a folder's plain name (no '/', not '.' or '..')",
+        x.name));
+  const auto& cpu = e.at("cpu_s");
+  if (!cpu.is_number() || !std::isfinite(cpu.get<double>()) || cpu.get<double>() < 0)
+    bad(fmt::format("cpu_s: value '{}' is out of range; accepted range [0, inf)",
+                    cpu.is_number() ? fmt::format("{}", cpu.get<double>()) : cpu.dump()));
+  x.cpu_s = cpu.get<double>();
+  if (!e.at("outputs").is_object())
+    bad(fmt::format("outputs: value {} is not accepted; accepted: an object, output file -> about it",
+                    e.at("outputs").dump()));
+  for (const auto& [file, o] : e.at("outputs").items()) {
+    const fs::path f(file);
+    if (file.empty() || f.is_absolute() || std::count(f.begin(), f.end(), fs::path("..")) > 0)
+      bad(fmt::format("outputs: '{}' is not accepted; accepted: a path inside the experiment's folder",
+                      file));
+    if (!o.is_object() || !o.contains("about") || !o.at("about").is_string() ||
+        (o.contains("columns") &&
+         (!o.at("columns").is_array() || !std::all_of(o.at("columns").begin(), o.at("columns").end(),
+                                                      [](const auto& c) { return c.is_string(); }))))
+      bad(
+          fmt::format("outputs: '{}': value {} is not accepted; accepted: {{\"about\": sentence, optional "
+                      "\"columns\": [names]}}",
+                      file, o.dump()));
+    x.outputs.push_back({file, o.value("columns", std::vector<std::string>{}), o.at("about")});
+  }
+  return x;
+}
+
+}  // namespace
+
 StudyManifest load_study_manifest(const fs::path& path) {
   std::ifstream in(path);
   if (!in) throw std::runtime_error(fmt::format("cannot read '{}'", path.string()));
+  ordered_json j;  // ordered: outputs keep the manifest's order
   try {
-    const auto j = nlohmann::ordered_json::parse(in);  // ordered: outputs keep the manifest's order
-    StudyManifest m{j.at("title").get<std::string>(), {}};
-    for (const auto& e : j.at("experiments")) {
-      StudyExperiment x{e.at("name"),    e.at("exe"), e.at("args"),         e.at("tiny"),
-                        e.at("summary"), {},          e.value("cpu_s", 0.0)};
-      if (!std::isfinite(x.cpu_s) || x.cpu_s < 0)
-        throw std::runtime_error(
-            fmt::format("'{}': experiment '{}': cpu_s: value '{}' is out of range; "
-                        "accepted range [0, inf)",
-                        path.string(), x.name, x.cpu_s));
-      for (const auto& [file, o] : e.at("outputs").items())
-        x.outputs.push_back({file, o.value("columns", std::vector<std::string>{}), o.at("about")});
-      m.experiments.push_back(std::move(x));
-    }
-    return m;
-  } catch (const nlohmann::ordered_json::exception& ex) {
-    throw std::runtime_error(fmt::format("'{}' is not a valid study manifest: {}", path.string(), ex.what()));
+    j = ordered_json::parse(in);
+  } catch (const ordered_json::parse_error& ex) {
+    throw std::runtime_error(fmt::format("'{}' is not JSON: {}", path.string(), ex.what()));
   }
+  const auto whole = [&](const std::string& what) {
+    throw std::runtime_error(fmt::format("'{}': {}", path.string(), what));
+  };
+  if (!j.is_object() || !j.contains("title") || !j.at("title").is_string() || !j.contains("experiments") ||
+      !j.at("experiments").is_array() || j.at("experiments").empty())
+    whole("not a study manifest; accepted: {\"title\": text, \"experiments\": [at least one]}");
+  StudyManifest m{j.at("title"), {}};
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < j.at("experiments").size(); ++i) {
+    const auto& e = j.at("experiments")[i];
+    const auto bad = [&](const std::string& what) {
+      const bool named = e.is_object() && e.contains("name") && e.at("name").is_string();
+      whole(
+          fmt::format("experiment {} ('{}'): {}", i + 1, named ? e.at("name").get<std::string>() : "", what));
+    };
+    m.experiments.push_back(parse_experiment(e, bad));
+    if (!names.insert(m.experiments.back().name).second)  // two runs into one folder
+      bad("name: given to an experiment before it; accepted: each name once");
+  }
+  return m;
 }
 
 namespace {
@@ -72,6 +145,16 @@ void check_csv(const std::string& text, const StudyOutput& o, std::vector<std::s
 }
 
 }  // namespace
+
+std::string missing_program(const StudyManifest& m, const fs::path& bin) {
+  for (const auto& e : m.experiments)
+    if (::access((bin / e.exe).c_str(), X_OK) != 0 || fs::is_directory(bin / e.exe))
+      return fmt::format(
+          "experiment '{}': exe: value '{}' is not a program in {}; accepted: a program built there, or the "
+          "absolute path of one",
+          e.name, e.exe, bin.string());
+  return "";
+}
 
 std::vector<std::string> check_outputs(const StudyExperiment& e, const fs::path& dir) {
   std::vector<std::string> problems;

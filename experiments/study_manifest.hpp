@@ -32,8 +32,14 @@ struct StudyManifest {
   std::vector<StudyExperiment> experiments;
 };
 
-// Throws std::runtime_error naming the file and what is wrong with it.
+// Throws std::runtime_error naming the file and what is wrong with it: not JSON, a key unknown,
+// missing or of the wrong kind, a name that is not a folder's plain name or is given twice, no
+// experiment, an output outside the experiment's folder, a cost out of range.
 StudyManifest load_study_manifest(const std::filesystem::path& path);
+
+// "" when every experiment's program (exe: a name in `bin`, next to study, or an absolute path) is
+// an executable; else the refusal naming the first that is not.
+std::string missing_program(const StudyManifest& manifest, const std::filesystem::path& bin);
 
 // What is wrong with an experiment's folder: a declared output missing or empty, a CSV whose
 // header lacks a declared column or whose rows differ in width from it, a PNG or PDF without its

@@ -14,6 +14,12 @@ using namespace contact;
 
 namespace {
 class StudyCli : public CliTest {};
+// The manifest's entry for experiment `name`, or null.
+nlohmann::json entry_named(const nlohmann::json& manifest, const std::string& name) {
+  for (const auto& e : manifest.at("experiments"))
+    if (e.at("name") == name) return e;
+  return nullptr;
+}
 }  // namespace
 
 TEST_F(StudyCli, EveryExperimentLeavesItsDeclaredOutputsAndTheIndexLinksThem) {
@@ -117,9 +123,7 @@ TEST_F(StudyCli, BadInputIsRefused) {
 // manifest's order. One job at a time shows the start order; a hint out of range is refused.
 TEST_F(StudyCli, TheCostliestExperimentStartsFirstAndTheIndexKeepsTheManifestOrder) {
   auto manifest = nlohmann::json::parse(slurp(STUDY_MANIFEST));
-  nlohmann::json advisor;
-  for (const auto& e : manifest.at("experiments"))
-    if (e.at("name") == "contact_advisor") advisor = e;
+  const nlohmann::json advisor = entry_named(manifest, "contact_advisor");
   ASSERT_FALSE(advisor.is_null());
   auto write = [&](double cheap_s, double dear_s) {
     nlohmann::json cheap = advisor, dear = advisor;
@@ -144,6 +148,46 @@ TEST_F(StudyCli, TheCostliestExperimentStartsFirstAndTheIndexKeepsTheManifestOrd
   EXPECT_EQ(bad.code, 2);
   for (const char* part : {"--manifest", "'cheap'", "cpu_s", "'-1'", "[0, inf)"})
     EXPECT_NE(bad.err.find(part), std::string::npos) << part << " in: " << bad.err;
+}
+
+// A manifest is checked whole before any experiment runs, and one that is not a manifest is refused
+// (exit 2) naming the experiment, its key, the value and what is accepted, with nothing written. A
+// name "../esc" used to write its folder beside --out (exit 0); a name given twice ran two
+// experiments into one folder; a missing program failed only after the others had run; an empty
+// list wrote an index of nothing; a key of the wrong kind gave the JSON library's message alone.
+TEST_F(StudyCli, AManifestThatIsNotOneIsRefusedBeforeAnyWork) {
+  auto manifest = nlohmann::json::parse(slurp(STUDY_MANIFEST));
+  const nlohmann::json advisor = entry_named(manifest, "contact_advisor");
+  ASSERT_FALSE(advisor.is_null());
+  const auto with = [&](const char* key, const nlohmann::json& value) {
+    nlohmann::json e = advisor;
+    e[key] = value;
+    return e;
+  };
+  const auto list = [](auto... e) { return nlohmann::json::array({e...}); };
+  const std::vector<std::pair<nlohmann::json, std::string>> cases = {
+      {list(with("name", "../esc")),
+       "experiment 1 ('../esc'): name: value '../esc' is not accepted; accepted: a folder's plain name"},
+      {list(with("name", "")), "experiment 1 (''): name: value '' is not accepted"},
+      {list(advisor, advisor), "experiment 2 ('contact_advisor'): name: given to an experiment before it"},
+      {list(with("exe", "nosuch")), "experiment 'contact_advisor': exe: value 'nosuch' is not a program in "},
+      {list(), "not a study manifest; accepted: {\"title\": text, \"experiments\": [at least one]}"},
+      {list(with("tinny", list())), "experiment 1 ('contact_advisor'): key 'tinny' is not known"},
+      {list(with("args", list(1))), "args: value [1] is not accepted; accepted: a list of strings"},
+      {list(with("outputs", {{"../advice.csv", {{"about", "a"}}}})),
+       "outputs: '../advice.csv' is not accepted; accepted: a path inside the experiment's folder"},
+      {list(with("outputs", {{"advice.csv", {{"columns", "k_lin"}, {"about", "a"}}}})),
+       "outputs: 'advice.csv': value"},
+      {list(with("cpu_s", "1")), "cpu_s: value '\"1\"' is out of range; accepted range [0, inf)"}};
+  for (const auto& [experiments, message] : cases) {
+    manifest["experiments"] = experiments;
+    std::ofstream(dir_ / "m.json") << manifest.dump();
+    const Outcome r = run(STUDY_EXE, "--tiny --jobs 1 --manifest m.json --out s/out");
+    EXPECT_EQ(r.code, 2) << experiments.dump();
+    EXPECT_NE(r.err.find("study: --manifest: '"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(message), std::string::npos) << experiments.dump() << "\n" << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "s")) << experiments.dump();
+  }
 }
 
 // A new experiment without its cost would run last (cpu_s 0) however long it takes, and the study
