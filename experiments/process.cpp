@@ -87,8 +87,9 @@ void install_interrupt_handlers() {
   sa.sa_handler = on_signal;
   sigemptyset(&sa.sa_mask);
   sa.sa_flags = 0;  // no SA_RESTART: a blocking wait returns EINTR and the flag is seen
-  sigaction(SIGINT, &sa, nullptr);
-  sigaction(SIGTERM, &sa, nullptr);
+  // SIGPIPE: the reader of stdout has gone (`study | head`). Its default killed the study at once,
+  // and the experiments it ran went on as orphans writing their folders.
+  for (const int sig : {SIGINT, SIGTERM, SIGPIPE}) sigaction(sig, &sa, nullptr);
 }
 
 bool interrupted() { return g_signal != 0; }
@@ -126,6 +127,7 @@ int run_process(const std::vector<std::string>& args, const std::filesystem::pat
   int status = 0;
   {
     const ChildSlot held(pid);
+    if (interrupted()) ::kill(pid, g_signal);  // a signal between the spawn and the slot: not passed on
     while (::waitpid(pid, &status, 0) < 0)
       if (errno != EINTR)
         throw std::runtime_error(fmt::format("waiting for {}: {}", args[0], std::strerror(errno)));

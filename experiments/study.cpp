@@ -108,17 +108,18 @@ int program(int argc, char** argv) {
       std::vector<std::string> problems =
           code == 0 ? check_outputs(e, dir) : std::vector<std::string>{fmt::format("exit code {}", code)};
       const std::lock_guard<std::mutex> hold(lock);
-      if (quiet) fmt::print("\n== {} ({:.1f} s) ==\n{}", e.name, seconds, read_text(log));
-      std::fflush(stdout);
-      for (const auto& p : problems) std::cerr << fmt::format("study: {}: {}\n", e.name, p);
-      mine.push_back({{"index", index},
+      mine.push_back({{"index", index},  // recorded first: a print may fail (stdout's reader gone)
                       {"record",
                        {{"name", e.name},
                         {"command", fmt::format("{}", fmt::join(cmd, " "))},
                         {"wall_time_s", seconds},
                         {"ok", problems.empty()}}}});
+      if (quiet) fmt::print("\n== {} ({:.1f} s) ==\n{}", e.name, seconds, read_text(log));
+      std::fflush(stdout);
+      for (const auto& p : problems) std::cerr << fmt::format("study: {}: {}\n", e.name, p);
     });
-  } catch (const Interrupted&) {
+  } catch (...) {  // Interrupted, or a print the interrupt cut short (SIGPIPE)
+    if (!interrupted()) throw;
     throw Interrupted{interrupted_outcome(mine)};  // say which experiments finished before it
   }
   // Rank 0 gathers every rank's runs and lists them in the manifest's order.

@@ -4,8 +4,13 @@
 
 #include <fmt/format.h>
 
+#include <chrono>
 #include <cmath>
+#include <csignal>
 #include <set>
+#include <thread>
+
+#include <unistd.h>
 
 namespace {
 
@@ -19,6 +24,19 @@ class TrustCli : public CliTest {
   }
 };
 
+// A study manifest (manifest.json) of two shell scripts, "first" started before "second"; each
+// writes its folder with a meta.json after `before` (first: the whole script, when given).
+void write_shell_study(const fs::path& dir, const std::string& first, const std::string& before) {
+  const std::string writes = "mkdir -p $1 && echo '{}' > $1/meta.json";
+  const auto entry = [](const char* name, double cpu_s, const std::string& script) {
+    return fmt::format(
+        R"({{"name": "{}", "exe": "/bin/sh", "cpu_s": {}, "summary": "s", "outputs": {{}}, "tiny": [], "args": ["-c", "{}"]}})",
+        name, cpu_s, script);
+  };
+  std::ofstream(dir / "manifest.json")
+      << fmt::format(R"({{"title": "t", "experiments": [{}, {}]}})",
+                     entry("first", 2, first.empty() ? writes : first), entry("second", 1, before + writes));
+}
 }  // namespace
 
 // t_end / dt = 1e20 steps overflowed to 0 and reported success.
@@ -197,11 +215,7 @@ TEST_F(TrustCli, InterruptsLeaveNothingBehindAndKeepEarlierResults) {
 // the study passes on). Before, the study threw on the signal once that child had ended, and
 // named no experiment (a run under load did so with real experiments).
 TEST_F(TrustCli, AnInterruptedStudySaysWhichExperimentsFinished) {
-  std::ofstream(dir_ / "manifest.json") << R"({"title": "t", "experiments": [
-    {"name": "first", "exe": "/bin/sh", "cpu_s": 2, "summary": "s", "outputs": {}, "tiny": [],
-     "args": ["-c", "trap '' INT; mkdir -p $1 && echo '{}' > $1/meta.json && kill -INT $PPID"]},
-    {"name": "second", "exe": "/bin/sh", "cpu_s": 1, "summary": "s", "outputs": {}, "tiny": [],
-     "args": ["-c", "mkdir -p $1 && echo '{}' > $1/meta.json"]}]})";
+  write_shell_study(dir_, "trap '' INT; mkdir -p $1 && echo '{}' > $1/meta.json && kill -INT $PPID", "");
   const Outcome r = run(exe("study"), "--manifest manifest.json --jobs 1 --out res");
   EXPECT_EQ(r.code, 130) << r.err;
   EXPECT_NE(r.err.find("study: interrupted; finished before it, their folders replaced: first; the "
@@ -211,6 +225,35 @@ TEST_F(TrustCli, AnInterruptedStudySaysWhichExperimentsFinished) {
   EXPECT_TRUE(fs::exists(dir_ / "res" / "first" / "meta.json"));
   EXPECT_FALSE(fs::exists(dir_ / "res" / "second")) << "the study went on after the interrupt";
   EXPECT_FALSE(fs::exists(dir_ / "res" / "index.md"));
+}
+
+// A study whose reader has gone (`study | head`) stops like an interrupted one. SIGPIPE's default
+// killed it at its first print after an experiment ended: the others went on as orphans, writing
+// their folders, and its scratch folder of logs stayed in TMPDIR. Its stdout here is a pipe whose
+// read end is closed before it starts (deterministic: the first write fails); the second
+// experiment would write its folder after a second.
+TEST_F(TrustCli, AStudyWhoseReaderHasGoneStopsItsExperiments) {
+  write_shell_study(dir_, "", "sleep 1; ");
+  fs::create_directories(dir_ / "tmp");
+  int ends[2];
+  ASSERT_EQ(::pipe(ends), 0);
+  ::close(ends[0]);  // no reader
+  const std::string cmd =
+      fmt::format("cd '{}' && TMPDIR=tmp '{}' --manifest manifest.json --jobs 2 --out res >&{} 2>err.txt",
+                  dir_.string(), exe("study"), ends[1]);
+  const int status = std::system(cmd.c_str());
+  ::close(ends[1]);
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));  // the second's sleep, had it gone on
+  const std::string err = slurp(dir_ / "err.txt");
+  EXPECT_EQ(WEXITSTATUS(status), 128 + SIGPIPE) << err;
+  EXPECT_NE(
+      err.find("study: interrupted; finished before it, their folders replaced: first; the others keep their "
+               "earlier results; index.md not written"),
+      std::string::npos)
+      << err;
+  EXPECT_TRUE(fs::exists(dir_ / "res" / "first" / "meta.json"));
+  EXPECT_FALSE(fs::exists(dir_ / "res" / "second")) << "the second experiment went on";
+  EXPECT_TRUE(fs::is_empty(dir_ / "tmp")) << "the study's scratch folder of logs was left";
 }
 
 // An interrupt ends the solve in progress, not only the experiment between two solves: a
