@@ -98,9 +98,9 @@ void OutputSet::write(const fs::path& dir_in, const std::string& program) const 
     throw std::runtime_error(refusal);
   if (!figures_.empty())
     throw std::logic_error(fmt::format("{} figure(s) queued but not drawn (draw_figures)", figures_.size()));
-  const fs::path dir = fs::absolute(dir_in).lexically_normal();
-  const fs::path target = dir.filename().empty() ? dir.parent_path() : dir;
   std::error_code ec;
+  const fs::path target = results_folder(dir_in, ec);
+  if (ec) throw std::runtime_error(fmt::format("cannot resolve {}: {}", dir_in.string(), ec.message()));
   fs::create_directories(target.parent_path(), ec);
   if (ec)
     throw std::runtime_error(
@@ -191,6 +191,17 @@ std::string run_meta_json(const std::string& program, const std::string& options
          "\n";
 }
 
+fs::path results_folder(const fs::path& dir, std::error_code& ec) {
+  fs::path abs = fs::absolute(dir, ec).lexically_normal();
+  if (ec) return {};
+  if (abs.filename().empty()) abs = abs.parent_path();  // "a/." normalises to "a/"
+  // A link to a folder (results -> /data/results) stands for the folder: replacing the link by a
+  // new folder beside it left the link's target with the old results and the link gone.
+  if (fs::is_symlink(abs, ec) && fs::is_directory(abs, ec)) return fs::canonical(abs, ec);
+  ec.clear();
+  return abs;
+}
+
 std::string check_output_dir(const fs::path& dir, const std::string& program) {
   auto refuse = [&](const std::string& why) {
     return fmt::format("--out: value '{}' {}; accepted: {}", dir.string(), why,
@@ -201,9 +212,10 @@ std::string check_output_dir(const fs::path& dir, const std::string& program) {
   };
   if (dir.empty()) return refuse("is empty");
   std::error_code ec;
-  fs::path abs = fs::absolute(dir, ec).lexically_normal();
+  const fs::path abs = results_folder(dir, ec);
   if (ec) return refuse(ec.message());
-  if (abs.filename().empty()) abs = abs.parent_path();  // "a/." normalises to "a/"
+  if (fs::is_symlink(abs, ec) && !fs::exists(abs, ec))
+    return refuse(fmt::format("is a link to nothing ({})", fs::read_symlink(abs, ec).string()));
   // The staging folder beside it adds ".NAME.staging-PID": every name must leave room for it.
   for (const auto& part : abs)
     if (part.string().size() > 200) return refuse("has a name longer than 200 characters");

@@ -71,6 +71,10 @@ class OutputSet {
 std::string run_meta_json(const std::string& program, const std::string& options_json,
                           const std::vector<std::string>& command_line, double wall_time_s, int ranks);
 
+// The folder --out names, absolute: through a link to a folder, the folder it points to (its
+// results are replaced there, the link kept). Sets `ec` when it cannot be resolved.
+std::filesystem::path results_folder(const std::filesystem::path& dir, std::error_code& ec);
+
 // Checks before running that --out can receive the results: not empty, not a file or under one,
 // every name short enough for the staging folder beside it, the nearest existing folder
 // writable, and, if it exists, empty or an earlier run's results of `program` (its meta.json names

@@ -138,3 +138,29 @@ TEST(OutputSetWrite, NeverReplacesAnotherProgramsResults) {
 }
 
 }  // namespace
+
+// A --out that is a link to a folder (results -> /data/results) stands for that folder: its
+// results are replaced there and the link stays. The link used to be replaced by a new folder in
+// its place, the target keeping the old results. A link to nothing is refused, naming its target.
+TEST(OutputSetWrite, ALinkToAFolderIsReplacedWhereItPoints) {
+  namespace fs = std::filesystem;
+  const contact::ScratchDir scratch{contact::make_scratch_dir("output_set")};
+  OutputSet out;
+  out.add("meta.json", R"({"experiment": "probe"})"
+                       "\n");
+  out.write(scratch.path / "data", "probe");
+  std::ofstream(scratch.path / "data" / "stale.txt") << "stale\n";
+  fs::create_directory_symlink(scratch.path / "data", scratch.path / "link");
+  for (const char* given : {"link", "link/"}) {
+    out.write(scratch.path / given, "probe");
+    EXPECT_TRUE(fs::is_symlink(scratch.path / "link")) << given;
+    EXPECT_TRUE(fs::exists(scratch.path / "data" / "meta.json")) << given;
+    EXPECT_FALSE(fs::exists(scratch.path / "data" / "stale.txt")) << given;
+  }
+  fs::create_directory_symlink(scratch.path / "gone", scratch.path / "dangling");
+  EXPECT_NE(contact::check_output_dir(scratch.path / "dangling", "probe")
+                .find("is a link to nothing (" + (scratch.path / "gone").string() + ")"),
+            std::string::npos);
+  EXPECT_THROW(out.write(scratch.path / "dangling", "probe"), std::runtime_error);
+  EXPECT_TRUE(fs::is_symlink(scratch.path / "dangling"));
+}
