@@ -33,7 +33,7 @@ void run_single(const BallDropOptions& o, OutputSet& out) {
   columns.insert(columns.end(), metric_columns().begin(), metric_columns().end());
   Table comparison(columns);
   RunRecords records({"y_m", "v_mps"});
-  const auto methods = cli::chosen(o.methods, ball_methods(o));
+  const auto methods = chosen_methods(o);
   Progress progress("ball_drop", methods.size());
   std::size_t failures = 0;
   Series heights;

@@ -1,11 +1,15 @@
 #include "ball_drop_setup.hpp"
 
+#include "cli.hpp"
+
 #include "contact_ode/models/ball_drop.hpp"
 #include "contact_ode/models/law_registry.hpp"
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <set>
 #include <stdexcept>
 
 namespace contact {
@@ -89,9 +93,33 @@ std::string ball_references(const BallDropOptions& o) {
   return s;
 }
 
+std::vector<std::string> chosen_methods(const BallDropOptions& o) {
+  return cli::chosen(o.methods, ball_methods(o));
+}
+
 void note_options_without_effect(const BallDropOptions& o, const Experiment& app,
                                  const IntegratorOptions& integrator) {
-  if (app.given("--rtol") && !reads_rtol(integrator))
+  // A method setting none of the methods run reads (--method siconos --integrator rk4 said nothing,
+  // and with --rtol blamed the integrator, which siconos does not run).
+  const auto methods = chosen_methods(o);
+  std::set<std::string> read;  // as options: max_steps is --max-steps
+  for (const auto& name : methods)
+    for (std::string setting : method_info(name).settings) {
+      std::replace(setting.begin(), setting.end(), '_', '-');
+      read.insert("--" + setting);
+    }
+  const std::vector<std::string> options{"--integrator",    "--rtol",     "--atol",      "--dt",
+                                         "--linear-solver", "--jacobian", "--max-steps", "--rest-speed"};
+  std::vector<std::string> taken;  // ball_drop's options the methods read, in --help's order
+  std::copy_if(options.begin(), options.end(), std::back_inserter(taken),
+               [&](const std::string& option) { return read.count(option) > 0; });
+  for (const auto& option : options)
+    if (app.given(option) && !read.count(option))
+      fmt::print(
+          stderr, "ball_drop: note: {} has no effect on {}, which read{} {}\n", option,
+          fmt::join(methods, ", "), methods.size() == 1 ? "s" : "",
+          taken.empty() ? std::string("none of these options") : fmt::format("{}", fmt::join(taken, ", ")));
+  if (app.given("--rtol") && read.count("--rtol") && !reads_rtol(integrator))
     fmt::print(stderr,
                "ball_drop: note: --rtol has no effect on --integrator {} (fixed step: its accuracy is set by "
                "--dt)\n",

@@ -51,7 +51,11 @@ SpringContact closed_form_contact(const BallDropOptions& o, double k);
 // The closed forms a reader compares the tables with, as text.
 std::string ball_references(const BallDropOptions& o);
 
-// Notes on stderr for options given that do not take effect: --rtol on a fixed-step integrator (no
+// The methods --method names (all: every method the options allow).
+std::vector<std::string> chosen_methods(const BallDropOptions& o);
+
+// Notes on stderr for options given that do not take effect: a method setting that none of the
+// methods run reads (--integrator for siconos), --rtol on a fixed-step integrator (no
 // error control; as co.solve() warns in Python), and the other mode's options (a sweep's k range
 // without --sweep, --k in a sweep). Notes, not errors: --method all runs methods that do not read
 // the tolerance. (--atol still sets the contact threshold and the rest height.)

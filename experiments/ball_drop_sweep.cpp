@@ -23,9 +23,9 @@ void run_sweep(const BallDropOptions& o, Experiment& app, OutputSet& out) {
   Table sweep(columns);
   std::vector<std::pair<double, MethodInfo>> runs;
   for (double k : ks)
-    for (const auto& name : ball_methods(o))
+    for (const auto& name : chosen_methods(o))
       if (method_info(name).uses_contact_law) runs.emplace_back(k, method_info(name));
-  for (const auto& name : ball_methods(o))
+  for (const auto& name : chosen_methods(o))
     if (!method_info(name).uses_contact_law) runs.emplace_back(std::nan(""), method_info(name));
 
   Progress progress("ball_drop sweep", runs.size());

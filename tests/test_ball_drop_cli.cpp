@@ -5,6 +5,7 @@
 #include "contact_ode/integrators/method_registry.hpp"
 
 #include <regex>
+#include <set>
 
 #include <nlohmann/json.hpp>
 
@@ -215,6 +216,33 @@ TEST_F(BallDropCli, AToleranceAFixedStepIntegratorIgnoresIsNoted) {
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_EQ(r.err.find("no effect"), std::string::npos) << quiet << ": " << r.err;
   }
+}
+
+// A method setting that none of the methods run reads is noted with what they do read, as co.solve()
+// warns: --method siconos --integrator rk4 said nothing, and with --rtol blamed rk4, which siconos
+// does not run. The sweep runs the methods --method names (it ran every method whatever it said).
+TEST_F(BallDropCli, AnOptionNoMethodRunReadsIsNoted) {
+  const Outcome engine = run("--method siconos --integrator rk4 --rtol 1e-6 --t-end 0.2 --out engine");
+  ASSERT_EQ(engine.code, 0) << engine.err;
+  EXPECT_NE(engine.err.find("note: --integrator has no effect on siconos, which reads --dt\n"),
+            std::string::npos)
+      << engine.err;
+  EXPECT_NE(engine.err.find("note: --rtol has no effect on siconos, which reads --dt\n"), std::string::npos)
+      << engine.err;
+  EXPECT_EQ(engine.err.find("on --integrator rk4"), std::string::npos) << engine.err;
+  const Outcome two = run("--method game-euler,event-exact --jacobian dq --dt 1e-3 --t-end 0.2 --out two");
+  ASSERT_EQ(two.code, 0) << two.err;
+  EXPECT_NE(two.err.find(
+                "note: --jacobian has no effect on game-euler, event-exact, which read --dt, --rest-speed\n"),
+            std::string::npos)
+      << two.err;
+  EXPECT_EQ(two.err.find("--dt has no effect"), std::string::npos) << two.err;  // game-euler reads it
+  const Outcome sweep =
+      run("--sweep --method penalty,event-exact --k-min 1e3 --k-max 1e4 --t-end 0.3 --out sweep");
+  ASSERT_EQ(sweep.code, 0) << sweep.err;
+  std::multiset<std::string> methods;
+  for (const auto& row : contact::read_csv(dir_ / "sweep" / "sweep.csv")) methods.insert(row.at("method"));
+  EXPECT_EQ(methods, (std::multiset<std::string>{"penalty", "penalty", "event-exact"}));
 }
 
 // The other mode's options do nothing: a sweep's k range without --sweep, --k in a sweep. They
