@@ -9,7 +9,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <set>
 #include <stdexcept>
 
 namespace contact {
@@ -102,24 +101,15 @@ void note_options_without_effect(const BallDropOptions& o, const Experiment& app
   // A method setting none of the methods run reads (--method siconos --integrator rk4 said nothing,
   // and with --rtol blamed the integrator, which siconos does not run).
   const auto methods = chosen_methods(o);
-  std::set<std::string> read;  // as options: max_steps is --max-steps
-  for (const auto& name : methods)
-    for (std::string setting : method_info(name).settings) {
-      std::replace(setting.begin(), setting.end(), '_', '-');
-      read.insert("--" + setting);
-    }
-  const std::vector<std::string> options{"--integrator",    "--rtol",     "--atol",      "--dt",
-                                         "--linear-solver", "--jacobian", "--max-steps", "--rest-speed"};
-  std::vector<std::string> taken;  // ball_drop's options the methods read, in --help's order
-  std::copy_if(options.begin(), options.end(), std::back_inserter(taken),
-               [&](const std::string& option) { return read.count(option) > 0; });
-  for (const auto& option : options)
-    if (app.given(option) && !read.count(option))
-      fmt::print(
-          stderr, "ball_drop: note: {} has no effect on {}, which read{} {}\n", option,
-          fmt::join(methods, ", "), methods.size() == 1 ? "s" : "",
-          taken.empty() ? std::string("none of these options") : fmt::format("{}", fmt::join(taken, ", ")));
-  if (app.given("--rtol") && read.count("--rtol") && !reads_rtol(integrator))
+  std::vector<std::string> options{"--integrator", "--rtol",      "--atol",       "--dt", "--linear-solver",
+                                   "--jacobian",   "--max-steps", "--rest-speed", "--law"};
+  if (!o.sweep) options.push_back("--k");  // a sweep's is noted below
+  note_unread_options("ball_drop", app, methods, options);
+  const bool rtol_read = std::any_of(methods.begin(), methods.end(), [](const std::string& m) {
+    const auto& s = method_info(m).settings;
+    return std::find(s.begin(), s.end(), "rtol") != s.end();
+  });
+  if (app.given("--rtol") && rtol_read && !reads_rtol(integrator))
     fmt::print(stderr,
                "ball_drop: note: --rtol has no effect on --integrator {} (fixed step: its accuracy is set by "
                "--dt)\n",

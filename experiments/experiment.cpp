@@ -2,6 +2,7 @@
 
 #include "figure.hpp"
 
+#include "contact_ode/integrators/method_registry.hpp"
 #include "contact_ode/integrators/run_result.hpp"
 #include "process.hpp"
 #include "ranks.hpp"
@@ -9,6 +10,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <iostream>
@@ -109,6 +111,28 @@ RunResult require(RunResult r, const std::string& what) {
 bool report(const RunResult& r, const std::string& what) {
   if (!r.ok()) std::cerr << failure(r, what) << "\n";
   return r.ok();
+}
+
+void note_unread_options(const std::string& program, const cli::Options& app,
+                         const std::vector<std::string>& methods, const std::vector<std::string>& options) {
+  const auto reads = [](const std::string& method, const std::string& option) {
+    const MethodInfo& info = method_info(method);
+    if (option == "--k" || option == "--law") return info.uses_contact_law;
+    std::string setting = option.substr(2);  // --max-steps is the setting max_steps
+    std::replace(setting.begin(), setting.end(), '-', '_');
+    return std::find(info.settings.begin(), info.settings.end(), setting) != info.settings.end();
+  };
+  const auto read_by_one = [&](const std::string& option) {
+    return std::any_of(methods.begin(), methods.end(), [&](const auto& m) { return reads(m, option); });
+  };
+  std::vector<std::string> taken;  // the options the methods read
+  std::copy_if(options.begin(), options.end(), std::back_inserter(taken), read_by_one);
+  for (const auto& option : options)
+    if (app.given(option) && !read_by_one(option))
+      fmt::print(
+          stderr, "{}: note: {} has no effect on {}, which read{} {}\n", program, option,
+          fmt::join(methods, ", "), methods.size() == 1 ? "s" : "",
+          taken.empty() ? std::string("none of these options") : fmt::format("{}", fmt::join(taken, ", ")));
 }
 
 nlohmann::json row_to_json(const std::vector<Table::Cell>& row) {

@@ -65,6 +65,12 @@ RunResult require(RunResult r, const std::string& what);
 // when r failed, and returns whether it succeeded.
 bool report(const RunResult& r, const std::string& what);
 
+// For each of `options` given (a method setting such as --dt or --integrator; --k and --law, read by
+// the methods that use a contact law) that none of `methods` reads, a note on stderr naming the
+// options they do read, as co.solve() warns in Python.
+void note_unread_options(const std::string& program, const cli::Options& app,
+                         const std::vector<std::string>& methods, const std::vector<std::string>& options);
+
 // A table row through share(): its cells as JSON (strings, integers and doubles keep their kind).
 nlohmann::json row_to_json(const std::vector<Table::Cell>& row);
 std::vector<Table::Cell> row_from_json(const nlohmann::json& cells);

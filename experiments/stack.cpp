@@ -73,6 +73,7 @@ int program(int argc, char** argv) {
             fmt::format("--methods: value '{}' cannot run with --law {}: it needs {}; "
                         "accepted with it: {}",
                         name, law, method_info(name).needs, fmt::join(runnable, ", ")));
+    note_unread_options("stack", app, chosen, {"--dt", "--k", "--law"});
     Table table({"balls", "method", "status", "top_sink_m", "closed_form_sink_m", "max_penetration_m",
                  "jitter_mps", "energy_drift_rel", "rhs_evals", "rhs_per_sim_s", "cpu_s_per_sim_s",
                  "cpu_repeats"});

@@ -237,6 +237,12 @@ TEST_F(BallDropCli, AnOptionNoMethodRunReadsIsNoted) {
             std::string::npos)
       << two.err;
   EXPECT_EQ(two.err.find("--dt has no effect"), std::string::npos) << two.err;  // game-euler reads it
+  const Outcome law = run("--method event-exact --k 1e3 --law hertz --t-end 0.2 --out law");
+  ASSERT_EQ(law.code, 0) << law.err;
+  EXPECT_NE(law.err.find("note: --k has no effect on event-exact, which reads --rest-speed\n"),
+            std::string::npos)
+      << law.err;
+  EXPECT_NE(law.err.find("note: --law has no effect on event-exact"), std::string::npos) << law.err;
   const Outcome sweep =
       run("--sweep --method penalty,event-exact --k-min 1e3 --k-max 1e4 --t-end 0.3 --out sweep");
   ASSERT_EQ(sweep.code, 0) << sweep.err;

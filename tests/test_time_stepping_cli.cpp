@@ -72,6 +72,22 @@ TEST_F(TimeSteppingCli, StackUnderHertzRunsEveryMethodThatCan) {
   EXPECT_FALSE(fs::exists(dir_ / "st2"));
 }
 
+// --k and --law set the penalty law, which the impulse methods do not use: given with only those,
+// each is noted (it passed silently), naming what they do read.
+TEST_F(TimeSteppingCli, StackNotesALawNoMethodRunUses) {
+  const Outcome r =
+      run(STACK_EXE, "--methods event-ode,game-euler --k 1e6 --law hertz --balls 1 --t-end 0.05 --out st");
+  ASSERT_EQ(r.code, 0) << r.err;
+  for (const char* option : {"--k", "--law"})
+    EXPECT_NE(r.err.find(fmt::format(
+                  "stack: note: {} has no effect on event-ode, game-euler, which read --dt\n", option)),
+              std::string::npos)
+        << r.err;
+  const Outcome penalty = run(STACK_EXE, "--methods penalty --k 1e6 --balls 1 --t-end 0.05 --out st2");
+  ASSERT_EQ(penalty.code, 0) << penalty.err;
+  EXPECT_EQ(penalty.err.find("no effect"), std::string::npos) << penalty.err;
+}
+
 // method_orders' finest step is bounded by the work it implies, as convergence_dt's: a largest
 // step of 8.34e-6 s halved 6 times is 1.2e7 steps to 1.5 s per run (it ran for minutes).
 TEST_F(TimeSteppingCli, MethodOrdersRefusesALadderPastTheWorkBound) {
