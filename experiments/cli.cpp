@@ -72,9 +72,20 @@ Check one_of(std::vector<std::string> names, bool list) {
   return Check{(list ? "comma-separated list of: " : "one of: ") + accepted,
                [=](const std::string& s) -> std::string {
                  const auto items = list ? split_list(s) : std::vector<std::string>{s};
-                 for (const auto& item : items)
+                 for (std::size_t i = 0; i < items.size(); ++i) {
+                   const std::string& item = items[i];
                    if (std::find(names.begin(), names.end(), item) == names.end() || item.empty())
                      return fmt::format("value '{}' is not one of: {}", item, accepted);
+                   // "penalty,penalty" ran it twice; "penalty,all" passed here and failed later
+                   if (std::find(items.begin(), items.begin() + static_cast<std::ptrdiff_t>(i), item) !=
+                       items.begin() + static_cast<std::ptrdiff_t>(i))
+                     return fmt::format("value '{}' names '{}' twice; accepted: each name once", s, item);
+                   if (items.size() > 1 && (item == "all" || item == "none"))
+                     return fmt::format(
+                         "value '{}' lists '{}', which stands alone; accepted: {} alone, or a "
+                         "list of the others",
+                         s, item, item);
+                 }
                  return items.empty() ? fmt::format("value '' is not one of: {}", accepted) : std::string{};
                }};
 }
@@ -135,6 +146,12 @@ Check each_item(const Check& each) {
                                    s, each.description);
               if (std::string err = each.error(part); !err.empty()) return err;
             }
+            const auto parts = split_list(s);  // each a number now: the same one twice ran twice
+            for (std::size_t i = 0; i < parts.size(); ++i)
+              for (std::size_t j = 0; j < i; ++j)
+                if (std::strtod(parts[i].c_str(), nullptr) == std::strtod(parts[j].c_str(), nullptr))
+                  return fmt::format("value '{}' gives {} twice{}; accepted: each value once", s, parts[i],
+                                     parts[i] == parts[j] ? "" : fmt::format(" (as '{}')", parts[j]));
             return {};
           }};
 }

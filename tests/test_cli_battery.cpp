@@ -127,6 +127,37 @@ TEST_F(CliBattery, EveryDefaultShownIsAValueItsOptionAccepts) {
   EXPECT_GE(checked, 80u);  // the programs' tolerances, steps, stiffnesses, counts: 87 when written
 }
 
+// A list names each item once: "--balls 2,2" or "--method penalty,penalty" ran the same case twice
+// (duplicate rows, figures and paper lookups), and "all" or "none" beside other names passed the
+// check and failed later. Every list option of every program, from --help: its first default
+// item (or first name) twice, and "all" with a name, are refused naming the option.
+TEST_F(CliBattery, AListNamesEachItemOnce) {
+  const std::regex numbers(R"(^\s+(--[a-z0-9-]+) TEXT:comma-separated, each .*?=([^,\s]+).*$)");
+  const std::regex names(R"(^\s+(--[a-z0-9-]+) TEXT:comma-separated list of: all, ([a-z0-9-]+),.*$)");
+  std::size_t checked = 0;
+  for (const auto& exe : executables()) {
+    std::istringstream help(run(path(exe), "--help").out);
+    for (std::string l; std::getline(help, l);) {
+      std::smatch m;
+      std::vector<std::pair<std::string, std::string>> cases;  // value, what the refusal says
+      if (std::regex_match(l, m, numbers))
+        cases.emplace_back(m[2].str() + "," + m[2].str(), "gives " + m[2].str() + " twice");
+      else if (std::regex_match(l, m, names))
+        cases = {{m[2].str() + "," + m[2].str(), "names '" + m[2].str() + "' twice"},
+                 {m[2].str() + ",all", "lists 'all', which stands alone"}};
+      for (const auto& [value, says] : cases) {
+        const Outcome r = run(path(exe), base_args(exe) + " " + m[1].str() + " " + value + " --out never");
+        EXPECT_EQ(r.code, 2) << exe << " " << m[1] << " " << value << ": " << r.err;
+        EXPECT_NE(r.err.find(m[1].str() + ": value '" + value + "' " + says), std::string::npos)
+            << exe << " " << m[1] << " " << value << ": " << r.err;
+        EXPECT_TRUE(dir_is_empty()) << exe << " wrote files";
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GE(checked, 20u);  // 25 when written: stack's --balls, energy_drift's steps, the method lists, ...
+}
+
 // A report cut short is a failure: written to a full disk (/dev/full), every program's help and
 // tables were lost and it exited 0, stdout being flushed only at exit. Now exit 1 and a line on
 // stderr; a run's results folder is still written whole (only the report was lost).
