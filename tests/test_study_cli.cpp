@@ -169,11 +169,15 @@ TEST_F(StudyCli, AManifestThatIsNotOneIsRefusedBeforeAnyWork) {
       {list(with("name", "../esc")),
        "experiment 1 ('../esc'): name: value '../esc' is not accepted; accepted: a folder's plain name"},
       {list(with("name", "")), "experiment 1 (''): name: value '' is not accepted"},
+      {list(with("name", "..")), "experiment 1 ('..'): name: value '..' is not accepted"},
+      {list(with("exe", "")), "experiment 'contact_advisor': exe: value '' is not a program in "},
       {list(advisor, advisor), "experiment 2 ('contact_advisor'): name: given to an experiment before it"},
       {list(with("exe", "nosuch")), "experiment 'contact_advisor': exe: value 'nosuch' is not a program in "},
       {list(), "not a study manifest; accepted: {\"title\": text, \"experiments\": [at least one]}"},
       {list(with("tinny", list())), "experiment 1 ('contact_advisor'): key 'tinny' is not known"},
       {list(with("args", list(1))), "args: value [1] is not accepted; accepted: a list of strings"},
+      {list(with("outputs", {{"/tmp/advice.csv", {{"about", "a"}}}})),
+       "outputs: '/tmp/advice.csv' is not accepted"},
       {list(with("outputs", {{"../advice.csv", {{"about", "a"}}}})),
        "outputs: '../advice.csv' is not accepted; accepted: a path inside the experiment's folder"},
       {list(with("outputs", {{"advice.csv", {{"columns", "k_lin"}, {"about", "a"}}}})),
@@ -188,6 +192,24 @@ TEST_F(StudyCli, AManifestThatIsNotOneIsRefusedBeforeAnyWork) {
     EXPECT_NE(r.err.find(message), std::string::npos) << experiments.dump() << "\n" << r.err;
     EXPECT_FALSE(fs::exists(dir_ / "s")) << experiments.dump();
   }
+}
+
+// A program that exists but cannot start (its interpreter missing) fails the study with the
+// system's reason, exit 1, not as an interrupt: the study turns an exception into the interrupt's
+// message only after a signal (a print cut short by SIGPIPE).
+TEST_F(StudyCli, AProgramThatCannotStartFailsTheStudyNamingIt) {
+  std::ofstream(dir_ / "broken.sh") << "#!/nonexistent/interpreter\n";
+  fs::permissions(dir_ / "broken.sh", fs::perms::owner_all);
+  std::ofstream(dir_ / "m.json") << fmt::format(
+      R"({{"title": "t", "experiments": [{{"name": "broken", "exe": "{}", "args": [], "tiny": [], "cpu_s": 1,
+      "summary": "s", "outputs": {{}}}}]}})",
+      (dir_ / "broken.sh").string());
+  const Outcome r = run(STUDY_EXE, "--manifest m.json --jobs 1 --out s");
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_NE(r.err.find("study: cannot run " + (dir_ / "broken.sh").string() + ": No such file or directory"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.err.find("interrupted"), std::string::npos) << r.err;
 }
 
 // A new experiment without its cost would run last (cpu_s 0) however long it takes, and the study
