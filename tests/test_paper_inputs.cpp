@@ -60,7 +60,8 @@ TEST(PaperInputs, CsvReadsBackWhatTablesWrite) {
   EXPECT_THROW(contact::read_csv(file), std::runtime_error);
 }
 
-// A CSV written elsewhere reads the same: CRLF line ends are not part of the last cell; a quoted
+// A CSV written elsewhere reads the same: CRLF line ends are not part of the last cell, a blank last
+// line is no row; a quoted
 // newline is part of its cell (Table::to_csv quotes one). A file that is not a table is refused
 // naming the file and the record: a row cut short or run on (their cells used to be dropped or
 // shifted silently), a quote not closed, an empty file. LaTeX's ten specials are escaped.
@@ -70,7 +71,7 @@ TEST(PaperInputs, CsvReadsOnlyTables) {
     std::ofstream(file, std::ios::binary) << text;
     return contact::read_csv(file);
   };
-  auto rows = read("name,value\r\n\"a\nb\",1.5\r\nc,2\r\n");
+  auto rows = read("name,value\r\n\"a\nb\",1.5\r\nc,2\r\n\r\n");
   ASSERT_EQ(rows.size(), 2u);
   EXPECT_EQ(rows[0].at("name"), "a\nb");
   EXPECT_EQ(rows[1].at("value"), "2");

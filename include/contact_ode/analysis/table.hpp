@@ -53,8 +53,8 @@ std::string latex_escape(const std::string& s);
 std::vector<std::vector<std::string>> parse_csv(const std::string& text);
 
 // The rows of a CSV file written by Table::to_csv(), each a map from column name to cell.
-// Throws std::runtime_error naming the file when it cannot be read, is empty, has a quote not
-// closed or a row whose width is not the header's.
+// Blank lines are skipped. Throws std::runtime_error naming the file when it cannot be read, is
+// empty, has a quote not closed or a row whose width is not the header's.
 using CsvRecord = std::map<std::string, std::string>;
 std::vector<CsvRecord> read_csv(const std::filesystem::path& path);
 
