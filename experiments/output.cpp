@@ -143,7 +143,8 @@ void OutputSet::write_into(const fs::path& dir) const {
     write_file(tmp, content);
     fs::rename(tmp, final_path, ec);
     if (ec) {
-      fs::remove(tmp, ec);
+      std::error_code ignored;  // the rename's error is the one to tell (it said "Success")
+      fs::remove(tmp, ignored);
       throw std::runtime_error(fmt::format("cannot write {}: {}", final_path.string(), ec.message()));
     }
   }

@@ -85,6 +85,11 @@ int program(int argc, char** argv) {
   app.add("--out", out, "the macro file to write");
   app.add("--numbers", list, "the list of quoted numbers (JSON)", cli::existing_file());
   if (const int code = app.parse(argc, argv); code >= 0) return code;
+  if (const fs::path file(out); out.empty() || !file.has_filename() || fs::is_directory(file)) {
+    std::cerr << fmt::format("paper_numbers: --out: value '{}' is {}; accepted: the path of a file\n", out,
+                             out.empty() ? "empty" : "a folder");
+    return cli::kExitBadInput;
+  }
   std::vector<QuotedNumber> numbers;
   try {  // the whole list checked before any result is read
     numbers = load_quoted_numbers(list);

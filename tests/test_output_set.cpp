@@ -164,3 +164,20 @@ TEST(OutputSetWrite, ALinkToAFolderIsReplacedWhereItPoints) {
   EXPECT_THROW(out.write(scratch.path / "dangling", "probe"), std::runtime_error);
   EXPECT_TRUE(fs::is_symlink(scratch.path / "dangling"));
 }
+
+// A file write_into cannot rename into place says why: the clean-up of its temporary file used to
+// overwrite the rename's error, and the message read "cannot write d/sub: Success".
+TEST(OutputSetWrite, AFileThatCannotBeWrittenSaysWhy) {
+  namespace fs = std::filesystem;
+  const contact::ScratchDir scratch{contact::make_scratch_dir("output_set")};
+  fs::create_directories(scratch.path / "sub");
+  OutputSet out;
+  out.add("sub", "a file where a folder is\n");
+  try {
+    out.write_into(scratch.path);
+    ADD_FAILURE() << "a file was written over a folder";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), "cannot write " + (scratch.path / "sub").string() + ": Is a directory");
+  }
+  EXPECT_FALSE(fs::exists(scratch.path / ".sub.tmp"));
+}

@@ -23,6 +23,17 @@ class PaperNumbersCli : public CliTest {
 
 TEST_F(PaperNumbersCli, BadInputIsRefused) {
   expect_refused(PAPER_NUMBERS_EXE, {{"--results nowhere", "--results", "nowhere", "exist"}});
+  // --out is a file: a folder, or a path ending in '/', was written at ("cannot write d/: Success",
+  // exit 1: the rename's error lost to the clean-up's).
+  fs::create_directories(dir_ / "r" / "k_sweep");
+  fs::create_directories(dir_ / "folder");
+  for (const std::string out : {"folder", "new/", "''"}) {
+    const Outcome r = run(PAPER_NUMBERS_EXE, "--results r --out " + out);
+    EXPECT_EQ(r.code, 2) << out;
+    EXPECT_NE(r.err.find("paper_numbers: --out: value '"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("accepted: the path of a file"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "new")) << out;
+  }
 }
 
 TEST_F(PaperNumbersCli, MissingNumberFailsWithoutWriting) {
