@@ -201,8 +201,8 @@ std::vector<CsvRecord> read_csv(const std::filesystem::path& path) {
   const auto& header = records.front();
   std::vector<CsvRecord> rows;
   for (std::size_t r = 1; r < records.size(); ++r) {
-    if (records[r] == std::vector<std::string>{""}) continue;  // a blank line (an editor's last)
-    if (records[r].size() != header.size())                    // a row cut short or run together: not a table
+    if (records[r].size() == 1 && records[r][0].empty()) continue;  // a blank line (an editor's last)
+    if (records[r].size() != header.size())  // a row cut short or run together: not a table
       throw std::runtime_error(fmt::format("{}: row {} has {} cells, the header {}", path.string(), r,
                                            records[r].size(), header.size()));
     CsvRecord row;

@@ -105,10 +105,8 @@ void note_options_without_effect(const BallDropOptions& o, const Experiment& app
                                    "--jacobian",   "--max-steps", "--rest-speed", "--law"};
   if (!o.sweep) options.push_back("--k");  // a sweep's is noted below
   note_unread_options("ball_drop", app, methods, options);
-  const bool rtol_read = std::any_of(methods.begin(), methods.end(), [](const std::string& m) {
-    const auto& s = method_info(m).settings;
-    return std::find(s.begin(), s.end(), "rtol") != s.end();
-  });
+  const bool rtol_read =
+      std::any_of(methods.begin(), methods.end(), [](const auto& m) { return reads_option(m, "--rtol"); });
   if (app.given("--rtol") && rtol_read && !reads_rtol(integrator))
     fmt::print(stderr,
                "ball_drop: note: --rtol has no effect on --integrator {} (fixed step: its accuracy is set by "

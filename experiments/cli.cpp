@@ -12,6 +12,8 @@
 #include <filesystem>
 #include <iostream>
 #include <limits>
+#include <map>
+#include <set>
 
 namespace contact::cli {
 
@@ -72,13 +74,12 @@ Check one_of(std::vector<std::string> names, bool list) {
   return Check{(list ? "comma-separated list of: " : "one of: ") + accepted,
                [=](const std::string& s) -> std::string {
                  const auto items = list ? split_list(s) : std::vector<std::string>{s};
-                 for (std::size_t i = 0; i < items.size(); ++i) {
-                   const std::string& item = items[i];
+                 std::set<std::string> seen;
+                 for (const auto& item : items) {
                    if (std::find(names.begin(), names.end(), item) == names.end() || item.empty())
                      return fmt::format("value '{}' is not one of: {}", item, accepted);
                    // "penalty,penalty" ran it twice; "penalty,all" passed here and failed later
-                   if (std::find(items.begin(), items.begin() + static_cast<std::ptrdiff_t>(i), item) !=
-                       items.begin() + static_cast<std::ptrdiff_t>(i))
+                   if (!seen.insert(item).second)
                      return fmt::format("value '{}' names '{}' twice; accepted: each name once", s, item);
                    if (items.size() > 1 && (item == "all" || item == "none"))
                      return fmt::format(
@@ -146,12 +147,11 @@ Check each_item(const Check& each) {
                                    s, each.description);
               if (std::string err = each.error(part); !err.empty()) return err;
             }
-            const auto parts = split_list(s);  // each a number now: the same one twice ran twice
-            for (std::size_t i = 0; i < parts.size(); ++i)
-              for (std::size_t j = 0; j < i; ++j)
-                if (std::strtod(parts[i].c_str(), nullptr) == std::strtod(parts[j].c_str(), nullptr))
-                  return fmt::format("value '{}' gives {} twice{}; accepted: each value once", s, parts[i],
-                                     parts[i] == parts[j] ? "" : fmt::format(" (as '{}')", parts[j]));
+            std::map<double, std::string> seen;  // each a number now: the same one twice ran twice
+            for (const std::string& part : split_list(s))
+              if (const auto [it, added] = seen.emplace(std::strtod(part.c_str(), nullptr), part); !added)
+                return fmt::format("value '{}' gives {} twice{}; accepted: each value once", s, part,
+                                   part == it->second ? "" : fmt::format(" (as '{}')", it->second));
             return {};
           }};
 }

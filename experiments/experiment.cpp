@@ -113,17 +113,19 @@ bool report(const RunResult& r, const std::string& what) {
   return r.ok();
 }
 
+bool reads_option(const std::string& method, const std::string& option) {
+  const MethodInfo& info = method_info(method);
+  if (option == "--k" || option == "--law") return info.uses_contact_law;
+  std::string setting = option.substr(2);  // --max-steps is the setting max_steps
+  std::replace(setting.begin(), setting.end(), '-', '_');
+  return std::find(info.settings.begin(), info.settings.end(), setting) != info.settings.end();
+}
+
 void note_unread_options(const std::string& program, const cli::Options& app,
                          const std::vector<std::string>& methods, const std::vector<std::string>& options) {
-  const auto reads = [](const std::string& method, const std::string& option) {
-    const MethodInfo& info = method_info(method);
-    if (option == "--k" || option == "--law") return info.uses_contact_law;
-    std::string setting = option.substr(2);  // --max-steps is the setting max_steps
-    std::replace(setting.begin(), setting.end(), '-', '_');
-    return std::find(info.settings.begin(), info.settings.end(), setting) != info.settings.end();
-  };
   const auto read_by_one = [&](const std::string& option) {
-    return std::any_of(methods.begin(), methods.end(), [&](const auto& m) { return reads(m, option); });
+    return std::any_of(methods.begin(), methods.end(),
+                       [&](const auto& m) { return reads_option(m, option); });
   };
   std::vector<std::string> taken;  // the options the methods read
   std::copy_if(options.begin(), options.end(), std::back_inserter(taken), read_by_one);

@@ -65,6 +65,10 @@ RunResult require(RunResult r, const std::string& what);
 // when r failed, and returns whether it succeeded.
 bool report(const RunResult& r, const std::string& what);
 
+// Whether `method` reads the command-line option (a method setting such as --dt or --max-steps by
+// the registry's list; --k and --law when it uses a contact law).
+bool reads_option(const std::string& method, const std::string& option);
+
 // For each of `options` given (a method setting such as --dt or --integrator; --k and --law, read by
 // the methods that use a contact law) that none of `methods` reads, a note on stderr naming the
 // options they do read, as co.solve() warns in Python.

@@ -192,6 +192,10 @@ std::string run_meta_json(const std::string& program, const std::string& options
          "\n";
 }
 
+bool stays_inside(const fs::path& p) {
+  return !p.empty() && !p.is_absolute() && std::find(p.begin(), p.end(), fs::path("..")) == p.end();
+}
+
 fs::path results_folder(const fs::path& dir, std::error_code& ec) {
   fs::path abs = fs::absolute(dir, ec).lexically_normal();
   if (ec) return {};

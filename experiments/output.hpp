@@ -71,6 +71,10 @@ class OutputSet {
 std::string run_meta_json(const std::string& program, const std::string& options_json,
                           const std::vector<std::string>& command_line, double wall_time_s, int ranks);
 
+// A path that names something inside the folder it is taken from: relative, non-empty, with no
+// ".." (a manifest's outputs, the paper's quoted files).
+bool stays_inside(const std::filesystem::path& p);
+
 // The folder --out names, absolute: through a link to a folder, the folder it points to (its
 // results are replaced there, the link kept). Sets `ec` when it cannot be resolved.
 std::filesystem::path results_folder(const std::filesystem::path& dir, std::error_code& ec);

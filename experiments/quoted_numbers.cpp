@@ -1,6 +1,7 @@
 #include "quoted_numbers.hpp"
 
 #include "contact_ode/analysis/table.hpp"
+#include "output.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -67,11 +68,11 @@ QuotedNumber parse_entry(const json& e, const std::function<void(const std::stri
   if (!std::all_of(n.macro.begin(), n.macro.end(), [](unsigned char c) { return std::isalpha(c); }))
     bad(fmt::format("macro: value '{}' is not accepted; accepted: letters only (a LaTeX command's name)",
                     n.macro));
-  const fs::path file(n.file);
-  if (file.is_absolute() || std::count(file.begin(), file.end(), fs::path("..")) > 0)
+  if (!stays_inside(n.file))
     bad(fmt::format("file: value '{}' is not accepted; accepted: a relative path under the results folder",
                     n.file));
-  const json where = e.contains("where") ? e.at("where") : json();
+  if (!e.contains("where")) bad("where: missing");
+  const json& where = e.at("where");
   const auto is_pair = [](const json& w) {
     return w.is_array() && w.size() == 2 && w[0].is_string() && w[1].is_string();
   };

@@ -8,7 +8,7 @@
 // study.json, as a serial run does.
 // --jobs N runs N experiments at a time (default: one per core), each child's output kept in a
 // log and printed whole when it ends, so that two experiments' lines never interleave.
-// Exit codes: 0, 1 an experiment failed or left an output missing, 2 bad input, 130/143 interrupted.
+// Exit codes: 0, 1 an experiment failed or an output is missing, 2 bad input, 128 + an interrupt's signal.
 #include "cli.hpp"
 #include "output.hpp"
 #include "process.hpp"

@@ -1,5 +1,7 @@
 #include "study_manifest.hpp"
 
+#include "output.hpp"
+
 #include "contact_ode/analysis/table.hpp"
 
 #include <fmt/format.h>
@@ -61,8 +63,7 @@ StudyExperiment parse_experiment(const ordered_json& e, const std::function<void
     bad(fmt::format("outputs: value {} is not accepted; accepted: an object, output file -> about it",
                     e.at("outputs").dump()));
   for (const auto& [file, o] : e.at("outputs").items()) {
-    const fs::path f(file);
-    if (file.empty() || f.is_absolute() || std::count(f.begin(), f.end(), fs::path("..")) > 0)
+    if (!stays_inside(file))
       bad(fmt::format("outputs: '{}' is not accepted; accepted: a path inside the experiment's folder",
                       file));
     if (!o.is_object() || !o.contains("about") || !o.at("about").is_string() ||

@@ -114,6 +114,7 @@ TEST_F(PaperNumbersCli, AnEntryThatIsNotOneIsRefusedBeforeAnyResultIsRead) {
       {entry(hooke + R"(, "formt": "{:.2f}")"), "key 'formt' is not known; accepted: macro, file, where"},
       {R"({"macro": "Dur", "file": "k_sweep/exponents.csv", "where": []})",
        "entry 1 ('Dur'): column: missing"},
+      {entry(R"("last": true)"), "entry 1 ('Dur'): where: missing"},
       {entry(hooke) + ", " + entry(hooke), "entry 2 ('Dur'): macro: defined by an entry before it"},
       {R"({"macro": "Dur2", "file": "k_sweep/exponents.csv", "where": [], "column": "x"})",
        "macro: value 'Dur2' is not accepted; accepted: letters only"},
