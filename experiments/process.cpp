@@ -29,19 +29,58 @@ namespace contact {
 namespace {
 
 volatile std::sig_atomic_t g_signal = 0;
+const char* g_program = "contact-ode";  // a string literal, for the handlers' messages
 // The children being waited for (by up to kSlots threads at once: the study runs experiments in
 // parallel), to pass SIGTERM on. Lock-free atomics, so the handler may read them.
 constexpr int kSlots = 64;
 std::atomic<pid_t> g_children[kSlots];
 static_assert(std::atomic<pid_t>::is_always_lock_free);
 
+void say(const char* text) {
+  for (const char* part : {g_program, ": ", text}) {
+    const ssize_t ignored = ::write(STDERR_FILENO, part, std::strlen(part));
+    (void)ignored;  // nothing to be done about a closed stderr here
+  }
+}
+
+// The stop that does not wait for the program (async-signal-safe throughout): the children are
+// killed (they may ignore `sig`), and `sig` ends this process by its default action once the
+// handler returns (or, if the folder swap holds it, once the swap is done). Scratch and staging
+// folders the program was working in may be left, as after SIGKILL.
+void stop_at_once(int sig, const char* why) {
+  say(why);
+  for (auto& slot : g_children)
+    if (const pid_t child = slot.load(); child > 0) ::kill(child, SIGKILL);
+  struct sigaction dfl {};
+  dfl.sa_handler = SIG_DFL;
+  sigemptyset(&dfl.sa_mask);
+  sigaction(sig, &dfl, nullptr);
+  ::raise(sig);
+}
+
 extern "C" void on_signal(int sig) {
+  // A second SIGINT or SIGTERM (Ctrl-C pressed again): the user will not wait. SIGPIPE comes at
+  // every write to a closed pipe, and is no one's second request.
+  if (g_signal != 0 && sig != SIGPIPE) return stop_at_once(sig, "a second interrupt: stopping at once\n");
+  const int interrupted_errno = errno;  // the code the signal interrupted may be about to read it
   g_signal = sig;
   request_stop();  // a solve in progress ends within a step (Status::Interrupted)
+  // The flag is seen by our own loops only: inside a library that never returns to them (a peer
+  // engine's step, OpenBLAS retrying an allocation forever under `ulimit -v`) the program would
+  // run on, deaf to every further SIGTERM (`timeout` without -k waited forever).
+  ::alarm(kStopGraceSeconds);
   // Passed on to the children (kill is async-signal-safe): a Ctrl-C on a terminal reaches the
   // whole process group anyway, but a signal sent to this process alone must stop them too.
   for (auto& slot : g_children)
     if (const pid_t child = slot.load(); child > 0) ::kill(child, sig);
+  errno = interrupted_errno;
+}
+
+static_assert(kStopGraceSeconds == 10, "the message below says 10 s");
+extern "C" void on_stop_deadline(int) {
+  stop_at_once(g_signal,
+               "still running 10 s after the interrupt (inside a library that does not look "
+               "at it): stopping at once\n");
 }
 
 // Holds a child's pid in a free slot while it is waited for.
@@ -82,7 +121,12 @@ std::vector<char*> environment_for_child() {
 
 }  // namespace
 
-void install_interrupt_handlers() {
+void install_interrupt_handlers(const char* program) {
+  g_program = program;
+  struct sigaction deadline {};
+  deadline.sa_handler = on_stop_deadline;
+  sigemptyset(&deadline.sa_mask);
+  sigaction(SIGALRM, &deadline, nullptr);
   struct sigaction sa {};
   sa.sa_handler = on_signal;
   sigemptyset(&sa.sa_mask);
@@ -213,7 +257,7 @@ int run_body(const char* name, int argc, char** argv, int (*body)(int, char**)) 
 }  // namespace
 
 int guarded_main(const char* name, int argc, char** argv, int (*body)(int, char**)) {
-  install_interrupt_handlers();
+  install_interrupt_handlers(name);
   const int code = run_body(name, argc, argv, body);
   return code != 0 ? code : report_written(name);
 }

@@ -1,8 +1,8 @@
 #pragma once
 // How an experiment process starts, runs children and stops.
 //
-// Interrupts: SIGINT, SIGTERM and SIGPIPE (stdout's reader gone) only raise a flag. Long work checks it at
-// every progress step, every figure and every child process (throw_if_interrupted), and an Interrupted
+// Interrupts: SIGINT, SIGTERM and SIGPIPE (stdout's reader gone) first only raise a flag. Long work checks it
+// at every progress step, every figure and every child process (throw_if_interrupted), and an Interrupted
 // exception unwinds the stack, so that scratch and staging folders are removed by their owners and no
 // half-written output is left; guarded_main turns it into exit code 128 + the signal (130 for SIGINT).
 // A signal reaching the process while it waits for a child is passed on to the child.
@@ -24,8 +24,12 @@ struct Interrupted {
   std::string outcome;
 };
 
-// Installs the SIGINT/SIGTERM/SIGPIPE flag handlers (once per process).
-void install_interrupt_handlers();
+// Installs the SIGINT/SIGTERM/SIGPIPE flag handlers (once per process); `program` (a string
+// literal) names it in their messages. The stop is the program's own only while it is quick: a
+// second SIGINT or SIGTERM, or kStopGraceSeconds after the first without an end, stops it at once
+// by the signal's default action (its children killed), whatever it is doing.
+constexpr unsigned kStopGraceSeconds = 10;
+void install_interrupt_handlers(const char* program);
 bool interrupted();
 void throw_if_interrupted();
 

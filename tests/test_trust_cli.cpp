@@ -269,3 +269,56 @@ TEST_F(TrustCli, AnInterruptEndsTheSolveInProgress) {
   EXPECT_NE(r.err.find("interrupted; nothing written"), std::string::npos) << r.err;
   expect_only({"tmp"});
 }
+
+// A program deaf to the stop, as inside a library that never returns to the program's loops (a
+// peer engine's step; OpenBLAS, which Siconos loads, retries a failed allocation forever under
+// `ulimit -v`): here a study whose experiment ignores the interrupt the study passes on. SIGINT
+// only raised the flag, and the study waited for it for ever, deaf to every further SIGINT or
+// SIGTERM. `signals` is the shell that signals the study ($p), once its experiment has started.
+class StuckStudy : public TrustCli {
+ protected:
+  struct Ended {
+    Outcome outcome;
+    bool experiment_alive;
+  };
+  Ended interrupt(const std::string& signals) const {
+    const std::string pid_file = (dir_ / "stuck.pid").string();
+    write_shell_study(dir_, fmt::format("trap '' INT TERM; echo $$ > {}; exec sleep 600", pid_file), "");
+    std::ofstream(dir_ / "signal.sh") << fmt::format(
+        "'{}' --manifest manifest.json --jobs 1 --out res & p=$!\n"
+        "while [ ! -s stuck.pid ]; do sleep 0.1; done\n{}\nwait $p\n",
+        exe("study"), signals);
+    const Outcome r = run("/bin/sh", "signal.sh", "timeout -s KILL 60");
+    const std::string pid = slurp(pid_file);
+    // Gone, or a zombie not yet reaped by whoever adopted it (the third field of stat: its state);
+    // a SIGKILL takes effect soon after it is sent, not at once.
+    const auto alive = [&] {
+      const std::string stat = slurp(fs::path("/proc") / pid.substr(0, pid.find('\n')) / "stat");
+      return !stat.empty() && stat.find(") Z ") == std::string::npos;
+    };
+    bool still = alive();
+    for (int i = 0; still && i < 50; ++i, still = alive())
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    if (still) ::kill(std::stoi(pid), SIGKILL);
+    return {r, still};
+  }
+};
+
+TEST_F(StuckStudy, EndsByTheSignalTenSecondsAfterIt) {
+  const Ended e = interrupt("kill -INT $p");
+  EXPECT_EQ(e.outcome.code, 128 + SIGINT) << e.outcome.err;
+  EXPECT_NE(e.outcome.err.find("study: still running 10 s after the interrupt (inside a library that does "
+                               "not look at it): stopping at once"),
+            std::string::npos)
+      << e.outcome.err;
+  EXPECT_FALSE(e.experiment_alive) << "the study's experiment was left running";
+}
+
+TEST_F(StuckStudy, ASecondInterruptEndsItAtOnce) {
+  const Ended e = interrupt("kill -TERM $p; sleep 1; kill -TERM $p");
+  EXPECT_EQ(e.outcome.code, 128 + SIGTERM) << e.outcome.err;
+  EXPECT_NE(e.outcome.err.find("study: a second interrupt: stopping at once"), std::string::npos)
+      << e.outcome.err;
+  EXPECT_EQ(e.outcome.err.find("still running"), std::string::npos) << e.outcome.err;
+  EXPECT_FALSE(e.experiment_alive) << "the study's experiment was left running";
+}
