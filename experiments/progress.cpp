@@ -3,6 +3,7 @@
 #include "process.hpp"
 
 #include <fmt/format.h>
+#include <sys/ioctl.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -10,17 +11,32 @@
 
 namespace contact {
 
+std::string progress_line(const std::string& label, std::size_t done, std::size_t total,
+                          const std::string& what, std::size_t columns) {
+  std::string line = fmt::format("{} [{}/{}] {}", label, done, total, what);
+  if (columns > 0 && line.size() >= columns) line.resize(columns - 1);
+  return line;
+}
+
 Progress::Progress(std::string label, std::size_t total)
     : label_(std::move(label)), total_(total), enabled_(isatty(STDERR_FILENO) && !std::getenv("CI")) {}
 
+// The line is drawn with the cursor left at its start, so that whatever the program prints next
+// (a run's failure on stderr, the report on stdout) writes over it from the first column: it was
+// glued to its end ("ball_drop [2/2] event-exactBall drop: m = 1 kg, ..."). Here the cursor is
+// either still there (the line is erased) or at the start of an empty row below what was printed.
 Progress::~Progress() {
-  if (enabled_) fmt::print(stderr, "\r\033[K");
+  if (enabled_) fmt::print(stderr, "\033[K");
 }
 
 void Progress::step(const std::string& what) {
   throw_if_interrupted();  // every sweep passes here between runs
   ++done_;
-  if (enabled_) fmt::print(stderr, "\r\033[K{} [{}/{}] {}", label_, done_, total_, what);
+  if (!enabled_) return;
+  winsize size{};  // asked at every step: the window may have been resized
+  const std::size_t columns = ::ioctl(STDERR_FILENO, TIOCGWINSZ, &size) == 0 ? size.ws_col : 0;
+  std::fflush(stdout);  // what the program printed before comes before the line
+  fmt::print(stderr, "\r\033[K{}\r", progress_line(label_, done_, total_, what, columns));
 }
 
 }  // namespace contact

@@ -5,6 +5,12 @@
 
 namespace contact {
 
+// The progress line's text, "label [done/total] what", cut to columns - 1 characters (0: uncut):
+// "\r" returns to the start of the terminal's last row only, so a line that wrapped left a copy of
+// its first row behind at every step in a narrow window.
+std::string progress_line(const std::string& label, std::size_t done, std::size_t total,
+                          const std::string& what, std::size_t columns);
+
 class Progress {
  public:
   Progress(std::string label, std::size_t total);

@@ -322,3 +322,22 @@ TEST_F(StuckStudy, ASecondInterruptEndsItAtOnce) {
   EXPECT_EQ(e.outcome.err.find("still running"), std::string::npos) << e.outcome.err;
   EXPECT_FALSE(e.experiment_alive) << "the study's experiment was left running";
 }
+
+// On a terminal (a pseudo-terminal from script(1), 16 columns wide) every progress line fits one
+// row: "\r" returns to the start of the last row only, and a line that wrapped left its first row
+// behind at every step ("ball_drop [1/2] penalty" is 23 characters).
+TEST_F(TrustCli, ProgressFitsANarrowTerminal) {
+  const std::string command =
+      fmt::format("stty cols 16; env -u CI '{}' --method penalty,event-exact --out res", exe("ball_drop"));
+  const Outcome r = run("script", fmt::format("-qec \"{}\" /dev/null", command));
+  ASSERT_EQ(r.code, 0) << r.out << r.err;
+  std::size_t lines = 0;
+  for (std::size_t at = r.out.find("\033[K"); at != std::string::npos; at = r.out.find("\033[K", at + 1)) {
+    const std::size_t begin = at + 3;
+    const std::string line = r.out.substr(begin, r.out.find_first_of("\r\n", begin) - begin);
+    if (!line.starts_with("ball_drop [")) continue;  // the clearing at the end, then the report
+    EXPECT_LE(line.size(), 15u) << line;
+    ++lines;
+  }
+  EXPECT_EQ(lines, 2u) << "no progress shown:\n" << r.out;
+}
