@@ -63,12 +63,14 @@ extern "C" void on_signal(int sig) {
   // every write to a closed pipe, and is no one's second request.
   if (g_signal != 0 && sig != SIGPIPE) return stop_at_once(sig, "a second interrupt: stopping at once\n");
   const int interrupted_errno = errno;  // the code the signal interrupted may be about to read it
+  const bool first = g_signal == 0;
   g_signal = sig;
   request_stop();  // a solve in progress ends within a step (Status::Interrupted)
   // The flag is seen by our own loops only: inside a library that never returns to them (a peer
   // engine's step, OpenBLAS retrying an allocation forever under `ulimit -v`) the program would
   // run on, deaf to every further SIGTERM (`timeout` without -k waited forever).
-  ::alarm(kStopGraceSeconds);
+  // Armed once: a SIGPIPE at every later write must not put the deadline off.
+  if (first) ::alarm(kStopGraceSeconds);
   // Passed on to the children (kill is async-signal-safe): a Ctrl-C on a terminal reaches the
   // whole process group anyway, but a signal sent to this process alone must stop them too.
   for (auto& slot : g_children)

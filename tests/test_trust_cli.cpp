@@ -290,6 +290,10 @@ class StuckStudy : public TrustCli {
         exe("study"), signals);
     const Outcome r = run("/bin/sh", "signal.sh", "timeout -s KILL 60");
     const std::string pid = slurp(pid_file);
+    if (pid.empty()) {  // the study ended before its experiment started: nothing of it to look for
+      ADD_FAILURE() << "the experiment never started: " << r.err;
+      return {r, false};
+    }
     // Gone, or a zombie not yet reaped by whoever adopted it (the third field of stat: its state);
     // a SIGKILL takes effect soon after it is sent, not at once.
     const auto alive = [&] {
