@@ -8,6 +8,7 @@
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 #include <algorithm>
 #include <atomic>
@@ -29,6 +30,7 @@ namespace contact {
 namespace {
 
 volatile std::sig_atomic_t g_signal = 0;
+double g_first_signal_at = 0;           // CLOCK_MONOTONIC seconds; written by the first handler call only
 const char* g_program = "contact-ode";  // a string literal, for the handlers' messages
 // The children being waited for (by up to kSlots threads at once: the study runs experiments in
 // parallel), to pass SIGTERM on. Lock-free atomics, so the handler may read them.
@@ -58,19 +60,32 @@ void stop_at_once(int sig, const char* why) {
   ::raise(sig);
 }
 
+double monotonic_seconds() {  // clock_gettime is async-signal-safe
+  timespec now{};
+  clock_gettime(CLOCK_MONOTONIC, &now);
+  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
+}
+
 extern "C" void on_signal(int sig) {
-  // A second SIGINT or SIGTERM (Ctrl-C pressed again): the user will not wait. SIGPIPE comes at
-  // every write to a closed pipe, and is no one's second request.
-  if (g_signal != 0 && sig != SIGPIPE) return stop_at_once(sig, "a second interrupt: stopping at once\n");
   const int interrupted_errno = errno;  // the code the signal interrupted may be about to read it
-  const bool first = g_signal == 0;
+  const double now = monotonic_seconds();
+  // A second SIGINT or SIGTERM (Ctrl-C pressed again): the user will not wait. Not a copy of the
+  // first arriving within milliseconds of it (see kSameInterruptSeconds): experiments under a
+  // study on a terminal got Ctrl-C from both, and stopped at once, their staging folders left.
+  // SIGPIPE comes at every write to a closed pipe, and is no one's second request.
+  if (g_signal != 0 && sig != SIGPIPE && now - g_first_signal_at >= kSameInterruptSeconds)
+    return stop_at_once(sig, "a second interrupt: stopping at once\n");
+  if (g_signal != 0) {
+    errno = interrupted_errno;
+    return;
+  }
+  g_first_signal_at = now;
   g_signal = sig;
   request_stop();  // a solve in progress ends within a step (Status::Interrupted)
   // The flag is seen by our own loops only: inside a library that never returns to them (a peer
   // engine's step, OpenBLAS retrying an allocation forever under `ulimit -v`) the program would
   // run on, deaf to every further SIGTERM (`timeout` without -k waited forever).
-  // Armed once: a SIGPIPE at every later write must not put the deadline off.
-  if (first) ::alarm(kStopGraceSeconds);
+  ::alarm(kStopGraceSeconds);  // armed once: a SIGPIPE at every later write must not put it off
   // Passed on to the children (kill is async-signal-safe): a Ctrl-C on a terminal reaches the
   // whole process group anyway, but a signal sent to this process alone must stop them too.
   for (auto& slot : g_children)
@@ -131,7 +146,8 @@ void install_interrupt_handlers(const char* program) {
   sigaction(SIGALRM, &deadline, nullptr);
   struct sigaction sa {};
   sa.sa_handler = on_signal;
-  sigemptyset(&sa.sa_mask);
+  sigemptyset(&sa.sa_mask);  // one handler call at a time: a SIGTERM amid a SIGINT's waits for it
+  for (const int sig : {SIGINT, SIGTERM, SIGPIPE}) sigaddset(&sa.sa_mask, sig);
   sa.sa_flags = 0;  // no SA_RESTART: a blocking wait returns EINTR and the flag is seen
   // SIGPIPE: the reader of stdout has gone (`study | head`). Its default killed the study at once,
   // and the experiments it ran went on as orphans writing their folders.

@@ -27,8 +27,12 @@ struct Interrupted {
 // Installs the SIGINT/SIGTERM/SIGPIPE flag handlers (once per process); `program` (a string
 // literal) names it in their messages. The stop is the program's own only while it is quick: a
 // second SIGINT or SIGTERM, or kStopGraceSeconds after the first without an end, stops it at once
-// by the signal's default action (its children killed), whatever it is doing.
+// by the signal's default action (its children killed), whatever it is doing. A signal within
+// kSameInterruptSeconds of the first is a copy of it, not a second request: one Ctrl-C reaches
+// every process of the terminal's group and the study passes it on to its experiments, and
+// `timeout` signals its command and then its group, so one interrupt may arrive twice.
 constexpr unsigned kStopGraceSeconds = 10;
+constexpr double kSameInterruptSeconds = 1.0;
 void install_interrupt_handlers(const char* program);
 bool interrupted();
 void throw_if_interrupted();

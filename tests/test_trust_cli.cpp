@@ -209,6 +209,25 @@ TEST_F(TrustCli, InterruptsLeaveNothingBehindAndKeepEarlierResults) {
     EXPECT_EQ(e.path().filename().string().find(".staging"), std::string::npos) << e.path();
 }
 
+// Ctrl-C on a terminal signals the whole foreground group: the study and the experiment it runs
+// (here the study leads a group of its own, from setsid(1), and the group is signalled). The experiment
+// got it twice, from the terminal and passed on by the study, took the copy for a second Ctrl-C
+// and stopped at once ("convergence_dt: a second interrupt"), leaving its staging folder.
+TEST_F(TrustCli, CtrlCOnATerminalStopsAStudyAndItsExperimentCleanly) {
+  fs::create_directories(dir_ / "tmp");
+  std::ofstream(dir_ / "ctrl_c.sh") << fmt::format(
+      "setsid '{}' --jobs 1 --only convergence_dt,newton_cradle --out res & p=$!\n"
+      "sleep 1; kill -INT -$p; wait $p\n",
+      exe("study"));
+  const Outcome r = run("/bin/sh", "ctrl_c.sh", "TMPDIR=\"$PWD/tmp\" timeout -s KILL 60");
+  EXPECT_EQ(r.code, 130) << r.err;
+  EXPECT_EQ(r.err.find("second interrupt"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("convergence_dt: interrupted; nothing written"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("study: interrupted; no experiment had finished"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::is_empty(dir_ / "tmp")) << "scratch folders left behind";
+  expect_only({"ctrl_c.sh", "tmp"});
+}
+
 // A study interrupted after some experiments finished says which have replaced their folders (it
 // said "nothing written"), the one that finished as the signal came among them: a manifest whose
 // first experiment writes its folder, interrupts the study and exits 0 (ignoring the interrupt
@@ -318,12 +337,28 @@ TEST_F(StuckStudy, EndsByTheSignalTenSecondsAfterIt) {
   EXPECT_FALSE(e.experiment_alive) << "the study's experiment was left running";
 }
 
+// The second a second or more after the first (kSameInterruptSeconds: 1 s), with a margin for the
+// scheduling of the handler of the first.
 TEST_F(StuckStudy, ASecondInterruptEndsItAtOnce) {
-  const Ended e = interrupt("kill -TERM $p; sleep 1; kill -TERM $p");
+  const Ended e = interrupt("kill -TERM $p; sleep 2; kill -TERM $p");
   EXPECT_EQ(e.outcome.code, 128 + SIGTERM) << e.outcome.err;
   EXPECT_NE(e.outcome.err.find("study: a second interrupt: stopping at once"), std::string::npos)
       << e.outcome.err;
   EXPECT_EQ(e.outcome.err.find("still running"), std::string::npos) << e.outcome.err;
+  EXPECT_FALSE(e.experiment_alive) << "the study's experiment was left running";
+}
+
+// A copy of the interrupt, 0.2 s after it, is that interrupt again, not a second one: a Ctrl-C on a
+// terminal reaches the study's experiments from the terminal and from the study, and `timeout`
+// signals the study and then its group; the copy stopped them at once ("a second interrupt"),
+// their staging folders left (CI saw it once in InterruptsLeaveNothingBehindAndKeepEarlierResults).
+// Deaf, this study ends by the deadline 10 s after the first.
+TEST_F(StuckStudy, ACopyOfTheInterruptIsNotASecondOne) {
+  const Ended e = interrupt("kill -TERM $p; sleep 0.2; kill -TERM $p");
+  EXPECT_EQ(e.outcome.code, 128 + SIGTERM) << e.outcome.err;
+  EXPECT_EQ(e.outcome.err.find("second interrupt"), std::string::npos) << e.outcome.err;
+  EXPECT_NE(e.outcome.err.find("study: still running 10 s after the interrupt"), std::string::npos)
+      << e.outcome.err;
   EXPECT_FALSE(e.experiment_alive) << "the study's experiment was left running";
 }
 
