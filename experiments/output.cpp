@@ -38,15 +38,12 @@ void write_file(const fs::path& path, const std::string& content) {
   if (!out.flush()) throw std::runtime_error(fmt::format("cannot write {}", path.string()));
 }
 
-// Blocks SIGINT and SIGTERM while alive, so that a swap of folders is not cut in half; a
-// signal that arrives meanwhile is delivered (and its flag raised) when it ends.
+// Blocks the stop signals while alive, so that a swap of folders is not cut in half; a signal
+// that arrives meanwhile is delivered (and its flag raised) when it ends.
 struct SignalsHeld {
   sigset_t old{};
   SignalsHeld() {
-    sigset_t set;
-    sigemptyset(&set);
-    sigaddset(&set, SIGINT);
-    sigaddset(&set, SIGTERM);
+    const sigset_t set = stop_signals();
     sigprocmask(SIG_BLOCK, &set, &old);
   }
   ~SignalsHeld() { sigprocmask(SIG_SETMASK, &old, nullptr); }

@@ -33,7 +33,7 @@ volatile std::sig_atomic_t g_signal = 0;
 double g_first_signal_at = 0;           // CLOCK_MONOTONIC seconds; written by the first handler call only
 const char* g_program = "contact-ode";  // a string literal, for the handlers' messages
 // The children being waited for (by up to kSlots threads at once: the study runs experiments in
-// parallel), to pass SIGTERM on. Lock-free atomics, so the handler may read them.
+// parallel), to pass the stop signal on. Lock-free atomics, so the handler may read them.
 constexpr int kSlots = 64;
 std::atomic<pid_t> g_children[kSlots];
 static_assert(std::atomic<pid_t>::is_always_lock_free);
@@ -69,7 +69,7 @@ double monotonic_seconds() {  // clock_gettime is async-signal-safe
 extern "C" void on_signal(int sig) {
   const int interrupted_errno = errno;  // the code the signal interrupted may be about to read it
   const double now = monotonic_seconds();
-  // A second SIGINT or SIGTERM (Ctrl-C pressed again): the user will not wait. Not a copy of the
+  // A second SIGINT, SIGTERM or SIGHUP (Ctrl-C pressed again): the user will not wait. Not a copy of the
   // first arriving within milliseconds of it (see kSameInterruptSeconds): experiments under a
   // study on a terminal got Ctrl-C from both, and stopped at once, their staging folders left.
   // SIGPIPE comes at every write to a closed pipe, and is no one's second request.
@@ -138,6 +138,13 @@ std::vector<char*> environment_for_child() {
 
 }  // namespace
 
+sigset_t stop_signals() {
+  sigset_t set;
+  sigemptyset(&set);
+  for (const int sig : {SIGINT, SIGTERM, SIGHUP, SIGPIPE}) sigaddset(&set, sig);
+  return set;
+}
+
 void install_interrupt_handlers(const char* program) {
   g_program = program;
   struct sigaction deadline {};
@@ -146,12 +153,15 @@ void install_interrupt_handlers(const char* program) {
   sigaction(SIGALRM, &deadline, nullptr);
   struct sigaction sa {};
   sa.sa_handler = on_signal;
-  sigemptyset(&sa.sa_mask);  // one handler call at a time: a SIGTERM amid a SIGINT's waits for it
-  for (const int sig : {SIGINT, SIGTERM, SIGPIPE}) sigaddset(&sa.sa_mask, sig);
-  sa.sa_flags = 0;  // no SA_RESTART: a blocking wait returns EINTR and the flag is seen
+  sa.sa_mask = stop_signals();  // one handler call at a time: a SIGTERM amid a SIGINT's waits for it
+  sa.sa_flags = 0;              // no SA_RESTART: a blocking wait returns EINTR and the flag is seen
   // SIGPIPE: the reader of stdout has gone (`study | head`). Its default killed the study at once,
-  // and the experiments it ran went on as orphans writing their folders.
+  // and the experiments it ran went on as orphans writing their folders. So did SIGHUP's (a closed
+  // terminal, a supervisor's `kill -HUP`), but under `nohup` it is ignored, and stays so.
   for (const int sig : {SIGINT, SIGTERM, SIGPIPE}) sigaction(sig, &sa, nullptr);
+  struct sigaction hangup {};
+  if (sigaction(SIGHUP, nullptr, &hangup) == 0 && hangup.sa_handler != SIG_IGN)
+    sigaction(SIGHUP, &sa, nullptr);
 }
 
 bool interrupted() { return g_signal != 0; }

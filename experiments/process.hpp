@@ -1,7 +1,8 @@
 #pragma once
 // How an experiment process starts, runs children and stops.
 //
-// Interrupts: SIGINT, SIGTERM and SIGPIPE (stdout's reader gone) first only raise a flag. Long work checks it
+// Interrupts: SIGINT, SIGTERM, SIGHUP (the terminal closed) and SIGPIPE (stdout's reader gone) first
+// only raise a flag. Long work checks it
 // at every progress step, every figure and every child process (throw_if_interrupted), and an Interrupted
 // exception unwinds the stack, so that scratch and staging folders are removed by their owners and no
 // half-written output is left; guarded_main turns it into exit code 128 + the signal (130 for SIGINT).
@@ -9,6 +10,7 @@
 //
 // Children (gnuplot, the experiments a study runs) are started without a shell: arguments are
 // passed as they are, so a quote or a space in a path (TMPDIR, --out) cannot break a command.
+#include <csignal>
 #include <filesystem>
 #include <functional>
 #include <stdexcept>
@@ -24,16 +26,19 @@ struct Interrupted {
   std::string outcome;
 };
 
-// Installs the SIGINT/SIGTERM/SIGPIPE flag handlers (once per process); `program` (a string
-// literal) names it in their messages. The stop is the program's own only while it is quick: a
-// second SIGINT or SIGTERM, or kStopGraceSeconds after the first without an end, stops it at once
-// by the signal's default action (its children killed), whatever it is doing. A signal within
+// Installs the flag handlers of the signals stop_signals() holds (once per process; SIGHUP only
+// where it is not ignored: `nohup` means it); `program` (a string literal) names it in their
+// messages. The stop is the program's own only while it is quick: a second stop signal (not
+// SIGPIPE), or kStopGraceSeconds after the first without an end, stops it at once by the signal's
+// default action (its children killed), whatever it is doing. A signal within
 // kSameInterruptSeconds of the first is a copy of it, not a second request: one Ctrl-C reaches
 // every process of the terminal's group and the study passes it on to its experiments, and
 // `timeout` signals its command and then its group, so one interrupt may arrive twice.
 constexpr unsigned kStopGraceSeconds = 10;
 constexpr double kSameInterruptSeconds = 1.0;
 void install_interrupt_handlers(const char* program);
+// The signals that stop a program: SIGINT, SIGTERM, SIGHUP, SIGPIPE.
+sigset_t stop_signals();
 bool interrupted();
 void throw_if_interrupted();
 

@@ -40,7 +40,7 @@ namespace detail {
 std::atomic<bool> stop_flag{false};
 static_assert(std::atomic<bool>::is_always_lock_free, "request_stop must be safe in a signal handler");
 void throw_stopped(double t) {
-  throw SolverFailure(Status::Interrupted, t, "a stop was requested (SIGINT or SIGTERM)");
+  throw SolverFailure(Status::Interrupted, t, "a stop was requested (SIGINT, SIGTERM or SIGHUP)");
 }
 }  // namespace detail
 

@@ -228,6 +228,41 @@ TEST_F(TrustCli, CtrlCOnATerminalStopsAStudyAndItsExperimentCleanly) {
   expect_only({"ctrl_c.sh", "tmp"});
 }
 
+// SIGHUP (the terminal closed, a supervisor's `kill -HUP`) killed the study at once, and its
+// experiment went on as an orphan, writing its folder after the study had gone. It stops both now
+// as SIGTERM does (exit 129). The script names (and kills) an experiment left running here.
+TEST_F(TrustCli, AHangupStopsAStudyAndItsExperiment) {
+  fs::create_directories(dir_ / "tmp");
+  std::ofstream(dir_ / "hup.sh") << fmt::format(
+      "'{}' --jobs 1 --only convergence_dt,newton_cradle --out res & p=$!\n"
+      "sleep 1; kill -HUP $p; wait $p; code=$?\n"
+      "for d in /proc/[0-9]*; do\n"
+      "  if [ \"$(readlink $d/cwd 2> /dev/null)\" = \"$PWD\" ] &&\n"
+      "     [ \"$(cat $d/comm 2> /dev/null)\" = convergence_dt ]; then\n"
+      "    echo \"left running: $d\" >&2; kill -KILL ${{d#/proc/}}\n"
+      "  fi\n"
+      "done\n"
+      "exit $code\n",
+      exe("study"));
+  const Outcome r = run("/bin/sh", "hup.sh", "TMPDIR=\"$PWD/tmp\" timeout -s KILL 60");
+  EXPECT_EQ(r.code, 128 + SIGHUP) << r.err;
+  EXPECT_NE(r.err.find("study: interrupted; no experiment had finished"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("left running"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::is_empty(dir_ / "tmp")) << "scratch folders left behind";
+  expect_only({"hup.sh", "tmp"});
+}
+
+// Under nohup a hangup is ignored, as nohup asks: the run goes on and writes its results.
+TEST_F(TrustCli, NohupKeepsARunThroughAHangup) {
+  std::ofstream(dir_ / "nohup.sh") << fmt::format(
+      "nohup '{}' --sweep --per-decade 40 --out res > out.txt 2>&1 & p=$!\n"
+      "sleep 1; kill -HUP $p; wait $p\n",
+      exe("ball_drop"));
+  const Outcome r = run("/bin/sh", "nohup.sh");
+  EXPECT_EQ(r.code, 0) << r.err << slurp(dir_ / "out.txt");
+  EXPECT_TRUE(fs::exists(dir_ / "res" / "meta.json"));
+}
+
 // A study interrupted after some experiments finished says which have replaced their folders (it
 // said "nothing written"), the one that finished as the signal came among them: a manifest whose
 // first experiment writes its folder, interrupts the study and exits 0 (ignoring the interrupt

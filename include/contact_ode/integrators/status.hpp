@@ -17,13 +17,13 @@ enum class Status {
   Unresolved,          // event-driven: an impact below what the flight's tolerance resolves
   NoProgress,          // the solver kept returning at the same time without advancing
   WorkLimit,           // the run's bound on steps, samples or records (RunLimits) was reached
-  Interrupted,         // a stop was requested (request_stop: the program's SIGINT or SIGTERM)
+  Interrupted,         // a stop was requested (request_stop: a stop signal)
   SolverError,         // any other solver error
 };
 
 const char* to_string(Status s);
 
-// A request to end every run in the process, made by a program's SIGINT or SIGTERM handler (a
+// A request to end every run in the process, made by a program's stop signal handler (a
 // lock-free atomic store: safe there). The integrators look at it at every step or right-hand side
 // and end the run as Status::Interrupted, so that a single long solve stops within a step.
 // Inline: it is looked at once per step of loops that take 100 ns per step.
