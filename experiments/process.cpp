@@ -30,7 +30,10 @@ namespace contact {
 namespace {
 
 volatile std::sig_atomic_t g_signal = 0;
-double g_first_signal_at = 0;           // CLOCK_MONOTONIC seconds; written by the first handler call only
+// When the first stop signal came (CLOCK_MONOTONIC seconds; 0: none yet), claimed by one handler
+// call: the copies of one interrupt may be handled on two threads at once.
+std::atomic<double> g_first_signal_at{0};
+static_assert(std::atomic<double>::is_always_lock_free);
 const char* g_program = "contact-ode";  // a string literal, for the handlers' messages
 // The children being waited for (by up to kSlots threads at once: the study runs experiments in
 // parallel), to pass the stop signal on. Lock-free atomics, so the handler may read them.
@@ -69,17 +72,17 @@ double monotonic_seconds() {  // clock_gettime is async-signal-safe
 extern "C" void on_signal(int sig) {
   const int interrupted_errno = errno;  // the code the signal interrupted may be about to read it
   const double now = monotonic_seconds();
-  // A second SIGINT, SIGTERM or SIGHUP (Ctrl-C pressed again): the user will not wait. Not a copy of the
-  // first arriving within milliseconds of it (see kSameInterruptSeconds): experiments under a
-  // study on a terminal got Ctrl-C from both, and stopped at once, their staging folders left.
-  // SIGPIPE comes at every write to a closed pipe, and is no one's second request.
-  if (g_signal != 0 && sig != SIGPIPE && now - g_first_signal_at >= kSameInterruptSeconds)
-    return stop_at_once(sig, "a second interrupt: stopping at once\n");
-  if (g_signal != 0) {
+  if (double first = 0; !g_first_signal_at.compare_exchange_strong(first, now)) {
+    // A second SIGINT, SIGTERM or SIGHUP (Ctrl-C pressed again): the user will not wait. Not a
+    // copy of the first arriving within milliseconds of it (see kSameInterruptSeconds):
+    // experiments under a study on a terminal got Ctrl-C from both, and stopped at once, their
+    // staging folders left. SIGPIPE comes at every write to a closed pipe, and is no one's second
+    // request.
+    if (sig != SIGPIPE && now - first >= kSameInterruptSeconds)
+      return stop_at_once(sig, "a second interrupt: stopping at once\n");
     errno = interrupted_errno;
     return;
   }
-  g_first_signal_at = now;
   g_signal = sig;
   request_stop();  // a solve in progress ends within a step (Status::Interrupted)
   // The flag is seen by our own loops only: inside a library that never returns to them (a peer
