@@ -1,4 +1,5 @@
 #include "cli.hpp"
+#include "output.hpp"
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -237,7 +238,7 @@ std::string Options::values_json() const {
           opt->count() > 0 ? fmt::format("{}", fmt::join(opt->results(), ",")) : opt->get_default_str();
     }
   }
-  return options.dump();
+  return json_text(options);
 }
 
 }  // namespace contact::cli

@@ -160,7 +160,7 @@ std::string library_versions_json() {
                                     NLOHMANN_JSON_VERSION_PATCH)},
       {"compiler", fmt::format("g++ {}", __VERSION__)},
   }
-      .dump();
+      .dump();  // ASCII: version numbers and the compiler's
 }
 
 // The program whose results `dir` holds, by its meta.json: "" when there is none, or it names none.
@@ -176,17 +176,22 @@ std::string owner_of(const fs::path& dir) {
 
 std::string run_meta_json(const std::string& program, const std::string& options_json,
                           const std::vector<std::string>& command_line, double wall_time_s, int ranks) {
-  return nlohmann::json{
-             {"experiment", program},
-             {"options", nlohmann::json::parse(options_json)},
-             {"command_line", command_line},
-             {"git_revision", git_revision()},
-             {"libraries", nlohmann::json::parse(library_versions_json())},
-             {"wall_time_s", wall_time_s},
-             {"mpi_ranks", ranks},
-         }
-             .dump(2) +
+  return json_text(
+             nlohmann::json{
+                 {"experiment", program},
+                 {"options", nlohmann::json::parse(options_json)},
+                 {"command_line", command_line},
+                 {"git_revision", git_revision()},
+                 {"libraries", nlohmann::json::parse(library_versions_json())},
+                 {"wall_time_s", wall_time_s},
+                 {"mpi_ranks", ranks},
+             },
+             2) +
          "\n";
+}
+
+std::string json_text(const nlohmann::json& value, int indent) {
+  return value.dump(indent, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
 bool stays_inside(const fs::path& p) {

@@ -3,6 +3,8 @@
 // succeeded, into a staging folder beside --out that then replaces --out whole: a failed, refused
 // or interrupted run leaves no file and keeps the previous results, and a folder never mixes the
 // files of two runs.
+#include <nlohmann/json_fwd.hpp>
+
 #include <filesystem>
 #include <map>
 #include <string>
@@ -70,6 +72,12 @@ class OutputSet {
 // command line, the source revision, the libraries' versions, the wall time and the MPI ranks.
 std::string run_meta_json(const std::string& program, const std::string& options_json,
                           const std::vector<std::string>& command_line, double wall_time_s, int ranks);
+
+// JSON text that any run can write. A path or an option is bytes on Linux, not always UTF-8 (a
+// folder named in Latin-1), and nlohmann's dump throws on a byte that is not: a run with such an
+// --out, or built in such a folder, did all its work and then failed writing meta.json. Such a
+// byte is written as U+FFFD instead (the record loses that byte, the run nothing).
+std::string json_text(const nlohmann::json& value, int indent = -1);
 
 // A path that names something inside the folder it is taken from: relative, non-empty, with no
 // ".." (a manifest's outputs, the paper's quoted files).

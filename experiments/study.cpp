@@ -123,7 +123,7 @@ int program(int argc, char** argv) {
     throw Interrupted{interrupted_outcome(mine)};  // say which experiments finished before it
   }
   // Rank 0 gathers every rank's runs and lists them in the manifest's order.
-  const auto gathered = ranks.gather(mine.dump());
+  const auto gathered = ranks.gather(json_text(mine));
   if (ranks.rank() != 0) return 0;
   const int failures = add_runs(record, gathered);
   const std::size_t ran = record["experiments"].size();
@@ -140,7 +140,7 @@ int program(int argc, char** argv) {
   if (ran < manifest.experiments.size()) keep_earlier_runs(manifest, record, out);
   OutputSet files;
   files.add("index.md", study_index(manifest, record, out));
-  files.add("study.json", record.dump(2) + "\n");
+  files.add("study.json", json_text(record, 2) + "\n");
   files.write_into(out);
   fmt::print("\nstudy: {} experiment(s) in {:.1f} s; index in {}\n", ran, total,
              (fs::path(out) / "index.md").string());

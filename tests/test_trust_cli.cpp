@@ -3,6 +3,7 @@
 #include "cli_fixture.hpp"
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include <chrono>
 #include <cmath>
@@ -173,6 +174,28 @@ TEST_F(TrustCli, AnUnusableTmpdirIsRefusedBeforeAnyWork) {
     }
   }
   expect_only({"a_file"});
+}
+
+// A name that is not UTF-8 (Latin-1's "é", the byte 0xE9: a Linux path is bytes) in --out or in
+// the program's own path (a build in such a folder): the run did all its work and then failed
+// writing meta.json ("[json.exception.type_error.316] invalid UTF-8 byte", exit 1). meta.json
+// records the byte as U+FFFD now, and the study gathers its experiments' records the same way.
+TEST_F(TrustCli, ANameThatIsNotUtf8IsWrittenAndRecorded) {
+  const std::string latin1_e = "\xE9", replacement = "\xEF\xBF\xBD";
+  fs::create_directory_symlink(EXPERIMENTS_DIR, dir_ / ("bin" + latin1_e));
+  const fs::path bin = dir_ / ("bin" + latin1_e);
+  Outcome r = run((bin / "zeno").string(), "--out \"$(printf 'caf\\351')\"");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto meta = nlohmann::json::parse(slurp(dir_ / ("caf" + latin1_e) / "meta.json"));
+  EXPECT_EQ(meta["options"]["out"], "caf" + replacement);
+  EXPECT_EQ(meta["command_line"][0], (dir_ / ("bin" + replacement) / "zeno").string());
+
+  r = run((bin / "study").string(), "--tiny --only zeno --out \"$(printf 's\\351')\"");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto study = nlohmann::json::parse(slurp(dir_ / ("s" + latin1_e) / "study.json"));
+  EXPECT_NE(study["experiments"][0]["command"].get<std::string>().find("--out s" + replacement + "/zeno"),
+            std::string::npos)
+      << study.dump(2, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
 // SIGINT or SIGTERM: exit 128 + N, no output, no staging or scratch folder left; a study keeps the
