@@ -260,6 +260,9 @@ py::dict advice_dict(const ContactRequest& q, const ContactAdvice& a) {
 
 PYBIND11_MODULE(contact_ode, mod) {
   mod.doc() = "contact-ode: contact resolution as ODEs (penalty, game, time-stepping, event-driven)";
+  // NumPy now, not at the first solve's options (0.2 s of CPU): that solve's Ctrl-C window
+  // (InterruptibleSolve) opened only after it, and a Ctrl-C meanwhile waited for the whole solve.
+  py::module_::import("numpy");
   // Every refusal, from any function here, is a ValueError naming the keywords (python_names).
   py::register_local_exception_translator([](std::exception_ptr p) {
     try {
