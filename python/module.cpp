@@ -28,6 +28,7 @@
 #include <functional>
 #include <map>
 #include <optional>
+#include <string_view>
 
 namespace py = pybind11;
 using namespace contact;
@@ -59,41 +60,57 @@ bool switch_value(const py::handle& v) {
   return v.cast<bool>();
 }
 
-// The method settings a keyword can set, each with how it is read.
-using Setter = std::function<void(Method&, const py::handle&)>;
-const std::map<std::string, Setter>& method_settings() {
-  static const std::map<std::string, Setter> settings = {
+// The method settings a keyword can set, each with the kind of value it takes (named when a value
+// of another kind is refused) and how it is read.
+struct Setting {
+  const char* accepted;
+  std::function<void(Method&, const py::handle&)> set;
+};
+const std::map<std::string, Setting>& method_settings() {
+  static const std::map<std::string, Setting> settings = {
       // A fixed-step method's step; for penalty and event-driven runs, their integrator's.
       {"dt",
-       [](Method& m, const py::handle& v) {
-         (method_info(m.name).fixed_step ? m.dt : m.integrator.dt) = v.cast<double>();
-       }},
-      {"rtol", [](Method& m, const py::handle& v) { m.integrator.rtol = v.cast<double>(); }},
-      {"atol", [](Method& m, const py::handle& v) { m.integrator.atol = v.cast<double>(); }},
-      {"integrator", [](Method& m, const py::handle& v) { m.integrator.method = v.cast<std::string>(); }},
-      {"max_steps", [](Method& m, const py::handle& v) { m.integrator.max_steps = v.cast<long>(); }},
+       {"a number",
+        [](Method& m, const py::handle& v) {
+          (method_info(m.name).fixed_step ? m.dt : m.integrator.dt) = v.cast<double>();
+        }}},
+      {"rtol", {"a number", [](Method& m, const py::handle& v) { m.integrator.rtol = v.cast<double>(); }}},
+      {"atol", {"a number", [](Method& m, const py::handle& v) { m.integrator.atol = v.cast<double>(); }}},
+      {"integrator",
+       {"a string", [](Method& m, const py::handle& v) { m.integrator.method = v.cast<std::string>(); }}},
+      {"max_steps",
+       {"a whole number", [](Method& m, const py::handle& v) { m.integrator.max_steps = v.cast<long>(); }}},
       {"jacobian",
-       [](Method& m, const py::handle& v) { m.integrator.jacobian = parse_jacobian(v.cast<std::string>()); }},
+       {"a string",
+        [](Method& m, const py::handle& v) {
+          m.integrator.jacobian = parse_jacobian(v.cast<std::string>());
+        }}},
       // The implicit SUNDIALS integrators' linear solver: band, klu or gmres for a long chain.
       {"linear_solver",
-       [](Method& m, const py::handle& v) {
-         m.integrator.linear_solver = parse_linear_solver(v.cast<std::string>());
-       }},
-      {"rest_speed", [](Method& m, const py::handle& v) { m.rest_speed = v.cast<double>(); }},
+       {"a string",
+        [](Method& m, const py::handle& v) {
+          m.integrator.linear_solver = parse_linear_solver(v.cast<std::string>());
+        }}},
+      {"rest_speed", {"a number", [](Method& m, const py::handle& v) { m.rest_speed = v.cast<double>(); }}},
       // The event-driven cap on impacts (ZenoLimit names it when a run reaches it).
-      {"max_events", [](Method& m, const py::handle& v) { m.max_events = v.cast<long>(); }},
-      {"iterations", [](Method& m, const py::handle& v) { m.iterations = v.cast<int>(); }},
-      {"substeps", [](Method& m, const py::handle& v) { m.substeps = v.cast<int>(); }},
-      {"warm_start", [](Method& m, const py::handle& v) { m.warm_start = switch_value(v); }},
-      {"erp", [](Method& m, const py::handle& v) { m.erp = v.cast<double>(); }},
-      {"split_impulse", [](Method& m, const py::handle& v) { m.split_impulse = switch_value(v); }},
+      {"max_events",
+       {"a whole number", [](Method& m, const py::handle& v) { m.max_events = v.cast<long>(); }}},
+      {"iterations",
+       {"a whole number", [](Method& m, const py::handle& v) { m.iterations = v.cast<int>(); }}},
+      {"substeps", {"a whole number", [](Method& m, const py::handle& v) { m.substeps = v.cast<int>(); }}},
+      {"warm_start",
+       {"True or False", [](Method& m, const py::handle& v) { m.warm_start = switch_value(v); }}},
+      {"erp", {"a number", [](Method& m, const py::handle& v) { m.erp = v.cast<double>(); }}},
+      {"split_impulse",
+       {"True or False", [](Method& m, const py::handle& v) { m.split_impulse = switch_value(v); }}},
       {"restitution_threshold",
-       [](Method& m, const py::handle& v) { m.restitution_threshold = v.cast<double>(); }},
-      {"contact_hertz", [](Method& m, const py::handle& v) { m.contact_hertz = v.cast<double>(); }},
+       {"a number", [](Method& m, const py::handle& v) { m.restitution_threshold = v.cast<double>(); }}},
+      {"contact_hertz",
+       {"a number", [](Method& m, const py::handle& v) { m.contact_hertz = v.cast<double>(); }}},
       {"contact_damping_ratio",
-       [](Method& m, const py::handle& v) { m.contact_damping_ratio = v.cast<double>(); }},
-      {"push_max", [](Method& m, const py::handle& v) { m.push_max = v.cast<double>(); }},
-      {"theta", [](Method& m, const py::handle& v) { m.theta = v.cast<double>(); }},
+       {"a number", [](Method& m, const py::handle& v) { m.contact_damping_ratio = v.cast<double>(); }}},
+      {"push_max", {"a number", [](Method& m, const py::handle& v) { m.push_max = v.cast<double>(); }}},
+      {"theta", {"a number", [](Method& m, const py::handle& v) { m.theta = v.cast<double>(); }}},
   };
   return settings;
 }
@@ -176,10 +193,17 @@ RunResult run(const std::string& scene, const std::string& method, const std::st
       else if (name == "max_records")
         span.limits.max_records = value.cast<long>();
       else
-        method_settings().at(name)(m, value);
+        method_settings().at(name).set(m, value);
     } catch (const py::cast_error&) {
+      const char* accepted = is_parameter || name == "t_end" || name == "sample_dt" ? "a number"
+                             : name == "max_records"                                ? "a whole number"
+                                                     : method_settings().at(name).accepted;
+      // An int of the right kind that does not fit the setting's C++ type (max_steps=2**63).
+      const bool too_large = py::isinstance<py::int_>(value) && !py::isinstance<py::bool_>(value) &&
+                             std::string_view(accepted).find("number") != std::string_view::npos;
       throw std::invalid_argument(
-          fmt::format("{}: value '{}' has the wrong type", name, py::str(value).cast<std::string>()));
+          fmt::format("{}: value '{}' {}; accepted: {}", name, py::str(value).cast<std::string>(),
+                      too_large ? "is out of range" : "has the wrong type", accepted));
     }
   }
   check_integrator(m);

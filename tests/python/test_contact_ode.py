@@ -302,8 +302,18 @@ def test_time_stepping_settings_and_types_are_checked():
         co.solve("ball-drop", "soft-step", substeps=0)
     with pytest.raises(ValueError, match="theta: value '2' is out of range"):
         co.solve("ball-drop", "moreau-jean", theta=2.0)
-    with pytest.raises(ValueError, match="iterations: value 'many' has the wrong type"):
+    with pytest.raises(ValueError, match="iterations: value 'many' has the wrong type; accepted: a whole number$"):
         co.solve("ball-drop", "sequential-impulses", iterations="many")
+    # The refusal names the kind a setting takes (it said "the wrong type" alone); an int too large
+    # for the setting's C++ integer is out of range, not of the wrong type.
+    for name, value, said in [("max_events", 2.0, "has the wrong type; accepted: a whole number"),
+                              ("max_steps", 2**63, "is out of range; accepted: a whole number"),
+                              ("linear_solver", 3, "has the wrong type; accepted: a string"),
+                              ("k", "stiff", "has the wrong type; accepted: a number"),
+                              ("warm_start", 1, "has the wrong type; accepted: True or False"),
+                              ("max_records", 0.5, "has the wrong type; accepted: a whole number")]:
+        with pytest.raises(ValueError, match=re.escape(f"{name}: value '{value}' {said}") + "$"):
+            co.solve("ball-drop", "sequential-impulses", **{name: value})
     # A switch is a bool: any object's truth was taken (None ran without warm starting, NaN with it).
     for value in [None, float("nan"), -1.0, 2, "no"]:
         with pytest.raises(ValueError, match=f"warm_start: value '{value}' has the wrong type"):
