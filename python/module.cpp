@@ -16,6 +16,7 @@
 #include "contact_ode/models/law_registry.hpp"
 #include "contact_ode/models/scene_registry.hpp"
 #include "interruptible_solve.hpp"
+#include "result_state.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -328,6 +329,7 @@ PYBIND11_MODULE(contact_ode, mod) {
       .def_readonly("t_reached", &RunResult::t_reached)
       .def_readonly("message", &RunResult::message)
       .def_readonly("energy0", &RunResult::energy0)
+      .def(py::pickle(&python::result_state, &python::result_from_state))
       .def_property_readonly(
           "t",
           [](const RunResult& r) { return column<Sample>(r.samples, [](const Sample& s) { return s.t; }); })

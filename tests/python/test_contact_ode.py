@@ -4,8 +4,10 @@ import concurrent.futures
 import csv
 import json
 import math
+import multiprocessing
 import os
 import pathlib
+import pickle
 import re
 import runpy
 import signal
@@ -557,6 +559,49 @@ def test_other_threads_run_during_a_solve_and_threaded_solves_agree():
         runs = list(pool.map(lambda m: (m, co.solve("ball-drop", m, t_end=1.0).y), methods * 3))
     for method, y in runs:
         assert np.array_equal(y, serial[method]), method
+
+
+def assert_same_result(a, b):
+    for name in ["method", "state_labels", "status", "t_reached", "message", "energy0", "stats"]:
+        assert getattr(a, name) == getattr(b, name), name
+    for name in ["t", "y", "energy", "dissipated"]:
+        np.testing.assert_array_equal(getattr(a, name), getattr(b, name))
+    for name in ["contacts", "apexes", "notifications"]:
+        ours, theirs = getattr(a, name), getattr(b, name)
+        assert ours.keys() == theirs.keys()
+        for key in ours:
+            np.testing.assert_array_equal(ours[key], theirs[key])
+            assert ours[key].dtype == theirs[key].dtype
+
+
+def drop_ball(method):  # a worker process's task (by name: pickle cannot carry co.solve itself)
+    return co.solve("ball-drop", method)
+
+
+def test_a_result_and_a_failure_cross_processes_whole():
+    """A Result could not be pickled ("cannot pickle 'contact_ode.Result' object"), so a sweep over
+    processes (ProcessPoolExecutor, multiprocessing) could not return one, nor a SolverError (its
+    .result). Both travel now and arrive bitwise: every record, the statistics and how the run ended
+    (a penalty run's contacts and apexes, a game loop's notifications, an event-driven run's)."""
+    runs = [co.solve("ball-drop", method) for method in ["penalty", "game-euler", "event-exact"]]
+    assert all(len(r.contacts["t_begin"]) >= 3 and len(r.apexes["t"]) >= 2 for r in runs)
+    assert len(runs[1].notifications["t"]) > 0
+    for run in runs:
+        assert_same_result(pickle.loads(pickle.dumps(run)), run)
+    with pytest.raises(co.SolverError) as failed:
+        co.solve("ball-drop", "penalty", max_steps=10)
+    again = pickle.loads(pickle.dumps(failed.value))
+    assert (str(again), again.status, again.t_reached) == (str(failed.value), co.Status.max_steps,
+                                                            failed.value.t_reached)
+    assert_same_result(again.result, failed.value.result)
+    # A pickle of another layout is refused by name, not read as this one.
+    with pytest.raises(ValueError, match="a pickled contact_ode.Result of another layout"):
+        pickle.loads(pickle.dumps(runs[0]).replace(b"K\x01", b"K\x07", 1))
+    context = multiprocessing.get_context("fork")
+    with concurrent.futures.ProcessPoolExecutor(2, mp_context=context) as pool:
+        in_processes = list(pool.map(drop_ball, ["penalty", "game-euler", "event-exact"]))
+    for ours, theirs in zip(in_processes, runs):
+        np.testing.assert_array_equal(ours.y, theirs.y)
 
 
 def test_the_scipy_peer_runs_tuned_and_at_its_defaults():
