@@ -1,11 +1,11 @@
 #pragma once
 // How an experiment process starts, runs children and stops.
 //
-// Interrupts: SIGINT, SIGTERM, SIGHUP (the terminal closed) and SIGPIPE (stdout's reader gone) first
-// only raise a flag. Long work checks it
-// at every progress step, every figure and every child process (throw_if_interrupted), and an Interrupted
-// exception unwinds the stack, so that scratch and staging folders are removed by their owners and no
-// half-written output is left; guarded_main turns it into exit code 128 + the signal (130 for SIGINT).
+// Interrupts: SIGINT, SIGTERM, SIGHUP (the terminal closed) and SIGPIPE (stdout's reader gone)
+// first only raise a flag. Long work checks it at every progress step, every figure and every child
+// process (throw_if_interrupted), and an Interrupted exception unwinds the stack, so that scratch
+// and staging folders are removed by their owners and no half-written output is left; guarded_main
+// turns it into exit code 128 + the signal (130 for SIGINT).
 // A signal reaching the process while it waits for a child is passed on to the child.
 //
 // Children (gnuplot, the experiments a study runs) are started without a shell: arguments are

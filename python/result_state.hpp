@@ -49,9 +49,12 @@ inline RunResult result_from_state(const py::tuple& state) {
   r.state_labels = state[2].cast<std::vector<std::string>>();
   r.energy0 = state[3].cast<double>();
   for (const auto& [t, y, energy, dissipated] :
-       state[4].cast<std::vector<std::tuple<double, std::vector<double>, double, double>>>())
+       state[4].cast<std::vector<std::tuple<double, std::vector<double>, double, double>>>()) {
+    if (y.size() != r.state_labels.size())  // Result.y reads state_labels.size() values of each
+      throw std::invalid_argument("a pickled contact_ode.Result whose samples do not match its state labels");
     r.samples.push_back(
         {t, Eigen::Map<const Vector>(y.data(), static_cast<Eigen::Index>(y.size())), energy, dissipated});
+  }
   for (const auto& [contact, t_begin, t_end, pen, v_in, v_out] :
        state[5].cast<std::vector<std::tuple<std::size_t, double, double, double, double, double>>>())
     r.contacts.push_back({contact, t_begin, t_end, pen, v_in, v_out});

@@ -597,6 +597,11 @@ def test_a_result_and_a_failure_cross_processes_whole():
     # A pickle of another layout is refused by name, not read as this one.
     with pytest.raises(ValueError, match="a pickled contact_ode.Result of another layout"):
         pickle.loads(pickle.dumps(runs[0]).replace(b"K\x01", b"K\x07", 1))
+    # ... and one whose samples are shorter than its state labels (Result.y would read past them).
+    state = list(runs[0].__reduce_ex__(2)[2])
+    state[2] = state[2] + ["extra"]
+    with pytest.raises(ValueError, match="samples do not match its state labels"):
+        co.Result.__new__(co.Result).__setstate__(tuple(state))
     context = multiprocessing.get_context("fork")
     with concurrent.futures.ProcessPoolExecutor(2, mp_context=context) as pool:
         in_processes = list(pool.map(drop_ball, ["penalty", "game-euler", "event-exact"]))
