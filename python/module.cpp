@@ -29,7 +29,6 @@
 #include <functional>
 #include <map>
 #include <optional>
-#include <string_view>
 
 namespace py = pybind11;
 using namespace contact;
@@ -61,57 +60,60 @@ bool switch_value(const py::handle& v) {
   return v.cast<bool>();
 }
 
-// The method settings a keyword can set, each with the kind of value it takes (named when a value
-// of another kind is refused) and how it is read.
+// The kinds of value a keyword takes, as a refusal names them.
+enum class Kind { Number, Whole, Text, Switch };
+const char* kind_text(Kind kind) {
+  static constexpr const char* texts[] = {"a number", "a whole number", "a string", "True or False"};
+  return texts[static_cast<int>(kind)];
+}
+
+// The method settings a keyword can set, each with the kind of value it takes and how it is read.
 struct Setting {
-  const char* accepted;
+  Kind kind;
   std::function<void(Method&, const py::handle&)> set;
 };
 const std::map<std::string, Setting>& method_settings() {
   static const std::map<std::string, Setting> settings = {
       // A fixed-step method's step; for penalty and event-driven runs, their integrator's.
       {"dt",
-       {"a number",
+       {Kind::Number,
         [](Method& m, const py::handle& v) {
           (method_info(m.name).fixed_step ? m.dt : m.integrator.dt) = v.cast<double>();
         }}},
-      {"rtol", {"a number", [](Method& m, const py::handle& v) { m.integrator.rtol = v.cast<double>(); }}},
-      {"atol", {"a number", [](Method& m, const py::handle& v) { m.integrator.atol = v.cast<double>(); }}},
+      {"rtol", {Kind::Number, [](Method& m, const py::handle& v) { m.integrator.rtol = v.cast<double>(); }}},
+      {"atol", {Kind::Number, [](Method& m, const py::handle& v) { m.integrator.atol = v.cast<double>(); }}},
       {"integrator",
-       {"a string", [](Method& m, const py::handle& v) { m.integrator.method = v.cast<std::string>(); }}},
+       {Kind::Text, [](Method& m, const py::handle& v) { m.integrator.method = v.cast<std::string>(); }}},
       {"max_steps",
-       {"a whole number", [](Method& m, const py::handle& v) { m.integrator.max_steps = v.cast<long>(); }}},
+       {Kind::Whole, [](Method& m, const py::handle& v) { m.integrator.max_steps = v.cast<long>(); }}},
       {"jacobian",
-       {"a string",
+       {Kind::Text,
         [](Method& m, const py::handle& v) {
           m.integrator.jacobian = parse_jacobian(v.cast<std::string>());
         }}},
       // The implicit SUNDIALS integrators' linear solver: band, klu or gmres for a long chain.
       {"linear_solver",
-       {"a string",
+       {Kind::Text,
         [](Method& m, const py::handle& v) {
           m.integrator.linear_solver = parse_linear_solver(v.cast<std::string>());
         }}},
-      {"rest_speed", {"a number", [](Method& m, const py::handle& v) { m.rest_speed = v.cast<double>(); }}},
+      {"rest_speed", {Kind::Number, [](Method& m, const py::handle& v) { m.rest_speed = v.cast<double>(); }}},
       // The event-driven cap on impacts (ZenoLimit names it when a run reaches it).
-      {"max_events",
-       {"a whole number", [](Method& m, const py::handle& v) { m.max_events = v.cast<long>(); }}},
-      {"iterations",
-       {"a whole number", [](Method& m, const py::handle& v) { m.iterations = v.cast<int>(); }}},
-      {"substeps", {"a whole number", [](Method& m, const py::handle& v) { m.substeps = v.cast<int>(); }}},
-      {"warm_start",
-       {"True or False", [](Method& m, const py::handle& v) { m.warm_start = switch_value(v); }}},
-      {"erp", {"a number", [](Method& m, const py::handle& v) { m.erp = v.cast<double>(); }}},
+      {"max_events", {Kind::Whole, [](Method& m, const py::handle& v) { m.max_events = v.cast<long>(); }}},
+      {"iterations", {Kind::Whole, [](Method& m, const py::handle& v) { m.iterations = v.cast<int>(); }}},
+      {"substeps", {Kind::Whole, [](Method& m, const py::handle& v) { m.substeps = v.cast<int>(); }}},
+      {"warm_start", {Kind::Switch, [](Method& m, const py::handle& v) { m.warm_start = switch_value(v); }}},
+      {"erp", {Kind::Number, [](Method& m, const py::handle& v) { m.erp = v.cast<double>(); }}},
       {"split_impulse",
-       {"True or False", [](Method& m, const py::handle& v) { m.split_impulse = switch_value(v); }}},
+       {Kind::Switch, [](Method& m, const py::handle& v) { m.split_impulse = switch_value(v); }}},
       {"restitution_threshold",
-       {"a number", [](Method& m, const py::handle& v) { m.restitution_threshold = v.cast<double>(); }}},
+       {Kind::Number, [](Method& m, const py::handle& v) { m.restitution_threshold = v.cast<double>(); }}},
       {"contact_hertz",
-       {"a number", [](Method& m, const py::handle& v) { m.contact_hertz = v.cast<double>(); }}},
+       {Kind::Number, [](Method& m, const py::handle& v) { m.contact_hertz = v.cast<double>(); }}},
       {"contact_damping_ratio",
-       {"a number", [](Method& m, const py::handle& v) { m.contact_damping_ratio = v.cast<double>(); }}},
-      {"push_max", {"a number", [](Method& m, const py::handle& v) { m.push_max = v.cast<double>(); }}},
-      {"theta", {"a number", [](Method& m, const py::handle& v) { m.theta = v.cast<double>(); }}},
+       {Kind::Number, [](Method& m, const py::handle& v) { m.contact_damping_ratio = v.cast<double>(); }}},
+      {"push_max", {Kind::Number, [](Method& m, const py::handle& v) { m.push_max = v.cast<double>(); }}},
+      {"theta", {Kind::Number, [](Method& m, const py::handle& v) { m.theta = v.cast<double>(); }}},
   };
   return settings;
 }
@@ -179,12 +181,15 @@ RunResult run(const std::string& scene, const std::string& method, const std::st
       throw std::invalid_argument(
           fmt::format("{}: not an option of scene '{}' or of a method; accepted: {}", name, scene, accepted));
     }
+    const Kind kind = is_parameter || name == "t_end" || name == "sample_dt" ? Kind::Number
+                      : name == "max_records"                                ? Kind::Whole
+                                              : method_settings().at(name).kind;
     try {  // a value of the wrong type is named like one out of range
       // A bool is a Python int, which pybind11 casts to 1.0 or 0: dt=True ran the game at a 1 s
       // step. Only the on/off settings take one.
       const bool is_bool = py::isinstance<py::bool_>(value) ||
                            py::isinstance(value, py::module_::import("numpy").attr("bool_"));
-      if (is_bool && name != "warm_start" && name != "split_impulse") throw py::cast_error();
+      if (is_bool && kind != Kind::Switch) throw py::cast_error();
       if (is_parameter)
         values[name] = value.cast<double>();
       else if (name == "t_end")
@@ -196,15 +201,12 @@ RunResult run(const std::string& scene, const std::string& method, const std::st
       else
         method_settings().at(name).set(m, value);
     } catch (const py::cast_error&) {
-      const char* accepted = is_parameter || name == "t_end" || name == "sample_dt" ? "a number"
-                             : name == "max_records"                                ? "a whole number"
-                                                     : method_settings().at(name).accepted;
-      // An int of the right kind that does not fit the setting's C++ type (max_steps=2**63).
+      // An int where a number is taken that does not fit the setting's C++ type (max_steps=2**63).
       const bool too_large = py::isinstance<py::int_>(value) && !py::isinstance<py::bool_>(value) &&
-                             std::string_view(accepted).find("number") != std::string_view::npos;
+                             (kind == Kind::Number || kind == Kind::Whole);
       throw std::invalid_argument(
           fmt::format("{}: value '{}' {}; accepted: {}", name, py::str(value).cast<std::string>(),
-                      too_large ? "is out of range" : "has the wrong type", accepted));
+                      too_large ? "is out of range" : "has the wrong type", kind_text(kind)));
     }
   }
   check_integrator(m);

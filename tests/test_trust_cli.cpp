@@ -182,8 +182,8 @@ TEST_F(TrustCli, AnUnusableTmpdirIsRefusedBeforeAnyWork) {
 // records the byte as U+FFFD now, and the study gathers its experiments' records the same way.
 TEST_F(TrustCli, ANameThatIsNotUtf8IsWrittenAndRecorded) {
   const std::string latin1_e = "\xE9", replacement = "\xEF\xBF\xBD";
-  fs::create_directory_symlink(EXPERIMENTS_DIR, dir_ / ("bin" + latin1_e));
   const fs::path bin = dir_ / ("bin" + latin1_e);
+  fs::create_directory_symlink(EXPERIMENTS_DIR, bin);
   Outcome r = run((bin / "zeno").string(), "--out \"$(printf 'caf\\351')\"");
   ASSERT_EQ(r.code, 0) << r.err;
   const auto meta = nlohmann::json::parse(slurp(dir_ / ("caf" + latin1_e) / "meta.json"));
