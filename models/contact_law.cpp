@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <cmath>
 #include <stdexcept>
 
 #include <numbers>
@@ -14,8 +15,9 @@ namespace contact {
 double damping_ratio_for_restitution(double e) {
   require_in("damping_ratio_for_restitution: e", e, kUnitInterval);
   if (e <= 0.0) return 1.0;
-  const double l = std::log(e);
-  return -l / std::sqrt(std::numbers::pi * std::numbers::pi + l * l);
+  // |ln e|, not -ln e: at e = 1 that is -0, and an undamped law was printed with c=-0.
+  const double l = std::abs(std::log(e));
+  return l / std::sqrt(std::numbers::pi * std::numbers::pi + l * l);
 }
 
 KelvinVoigt kelvin_voigt_for_restitution(double k, double m, double e, bool no_pull) {

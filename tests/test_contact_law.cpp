@@ -21,7 +21,10 @@ TEST(ContactLaw, DampingRatioInvertsTheRestitutionOfTheLinearDashpot) {
     EXPECT_LT(zeta, 1.0);
     EXPECT_NEAR(std::exp(-zeta * std::numbers::pi / std::sqrt(1 - zeta * zeta)), e, 1e-14 + 1e-14 * e);
   }
-  EXPECT_EQ(damping_ratio_for_restitution(1.0), 0.0);  // undamped
+  EXPECT_EQ(damping_ratio_for_restitution(1.0), 0.0);              // undamped
+  EXPECT_FALSE(std::signbit(damping_ratio_for_restitution(1.0)));  // +0: c=-0 was printed
+  EXPECT_EQ(describe(ContactLaw{kelvin_voigt_for_restitution(1e6, 1.0, 1.0, false)}),
+            "kelvin-voigt k=1e+06 N/m c=0 N s/m");
   EXPECT_EQ(damping_ratio_for_restitution(0.0), 1.0);  // critical: the overlap never reopens
 }
 
