@@ -56,7 +56,19 @@ RigidBounces::RigidBounces(double h0, double v0, double g_, double e_)
         V, T1, h0, v0, g));
 }
 
+// The impacts and apexes are counted from 1 (apex n follows impact n). n = 0 was taken for 1 by
+// impact_time and gave V^2 / 2g from apex_height, so a 0-based loop in Python read the first impact
+// twice: refused, naming the count.
+static void require_counted_from_one(const char* what, std::size_t n) {
+  if (n == 0)
+    throw std::invalid_argument(fmt::format(
+        "rigid bounces: {} n: value 0 is out of range; accepted: whole numbers >= 1 (impacts and apexes "
+        "are counted from 1: apex n follows impact n)",
+        what));
+}
+
 double RigidBounces::impact_time(std::size_t n) const {
+  require_counted_from_one("impact time", n);
   // T(n) = T1 + (2V/g) (e + e^2 + ... + e^{n-1}) in closed form: the Zeno tail 2eV / (g (1 - e))
   // times 1 - e^{n-1}, a fraction of at most one (expm1 keeps it exact near e = 1), so T(n) never
   // passes zeno_time() by rounding, and a large n is no longer n terms (2^63 never returned).
@@ -67,11 +79,13 @@ double RigidBounces::impact_time(std::size_t n) const {
 }
 
 double RigidBounces::apex_height(std::size_t n) const {
+  require_counted_from_one("apex height", n);
   const double vn = std::pow(e, static_cast<double>(n)) * V;
   return vn * (vn / (2.0 * g));  // not vn^2 / 2g: vn^2 underflows for speeds below 1e-162 m/s
 }
 
 double RigidBounces::apex_time(std::size_t n) const {
+  require_counted_from_one("apex time", n);
   return impact_time(n) + std::pow(e, static_cast<double>(n)) * V / g;
 }
 

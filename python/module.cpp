@@ -258,6 +258,14 @@ std::string python_names(const std::string& message) {
   return out;
 }
 
+// A registry as a list of dicts, one per entry.
+template <class Entries, class ToDict>
+py::list listing(const Entries& entries, ToDict to_dict) {
+  py::list out;
+  for (const auto& entry : entries) out.append(to_dict(entry));
+  return out;
+}
+
 py::dict spring_contact(const SpringContact& c) {
   return py::dict(py::arg("duration") = c.duration, py::arg("max_penetration") = c.max_penetration,
                   py::arg("exit_speed") = c.exit_speed);
@@ -415,91 +423,161 @@ PYBIND11_MODULE(contact_ode, mod) {
          const py::kwargs& options) { return run(scene, method, law, options, solver_error); },
       py::arg("scene"), py::arg("method"), py::arg("law") = "", solve_doc.c_str());
 
-  mod.def("scenes", [] {
-    py::list out;
-    for (const auto& s : scene_registry())
-      out.append(py::dict(py::arg("name") = s.name, py::arg("description") = s.description,
+  mod.def(
+      "scenes",
+      [] {
+        return listing(scene_registry(), [](const auto& s) {
+          return py::dict(py::arg("name") = s.name, py::arg("description") = s.description,
                           py::arg("parameters") = parameters(s.parameters),
                           py::arg("takes_law") = !s.default_law.empty(),
                           py::arg("default_law") = s.default_law, py::arg("observables") = s.observables,
-                          py::arg("exact") = s.exact, py::arg("t_end") = s.t_end));
-    return out;
-  });
-  mod.def("laws", [] {
-    py::list out;
-    for (const auto& l : law_registry())
-      out.append(py::dict(py::arg("name") = l.name, py::arg("description") = l.description,
+                          py::arg("exact") = s.exact, py::arg("t_end") = s.t_end);
+        });
+      },
+      "The scenes solve() runs, one dict each: name, description, parameters (name, unit, default,\n"
+      "description, accepted range), takes_law, default_law, observables, exact (its closed forms) and\n"
+      "t_end (the default end time [s]).");
+  mod.def(
+      "laws",
+      [] {
+        return listing(law_registry(), [](const auto& l) {
+          return py::dict(py::arg("name") = l.name, py::arg("description") = l.description,
                           py::arg("exponent") = l.exponent, py::arg("damped") = l.damped,
                           py::arg("closed_forms") = l.closed_forms,
-                          py::arg("parameters") = parameters(l.parameters)));
-    return out;
-  });
-  mod.def("methods", [] {
-    py::list out;
-    for (const auto& m : method_registry())
-      out.append(py::dict(py::arg("name") = m.name, py::arg("description") = m.description,
+                          py::arg("parameters") = parameters(l.parameters));
+        });
+      },
+      "The contact laws, one dict each: name, description, exponent (n of K delta^n), damped,\n"
+      "closed_forms (what co.references has for it) and parameters, as in scenes().");
+  mod.def(
+      "methods",
+      [] {
+        return listing(method_registry(), [](const auto& m) {
+          return py::dict(py::arg("name") = m.name, py::arg("description") = m.description,
                           py::arg("family") = m.family, py::arg("fixed_step") = m.fixed_step,
                           py::arg("uses_contact_law") = m.uses_contact_law, py::arg("needs") = m.needs,
-                          py::arg("settings") = m.settings));
-    return out;
-  });
-  mod.def("integrators", [] {
-    py::list out;
-    for (const auto& i : integrator_catalog())
-      out.append(py::dict(py::arg("name") = i.name, py::arg("family") = i.family, py::arg("order") = i.order,
+                          py::arg("settings") = m.settings);
+        });
+      },
+      "The methods solve() runs, one dict each: name, description, family (penalty, game, event-driven,\n"
+      "time-stepping, engine), fixed_step, uses_contact_law, needs (what a scene must provide) and\n"
+      "settings (the keywords solve() reads for it).");
+  mod.def(
+      "integrators",
+      [] {
+        return listing(integrator_catalog(), [](const auto& i) {
+          return py::dict(py::arg("name") = i.name, py::arg("family") = i.family, py::arg("order") = i.order,
                           py::arg("adaptive") = i.adaptive, py::arg("implicit") = i.implicit,
-                          py::arg("description") = i.description));
-    return out;
-  });
+                          py::arg("description") = i.description);
+        });
+      },
+      "The ODE integrators a penalty or event-ode run takes as integrator=, one dict each: name, family,\n"
+      "order, adaptive (error-controlled), implicit and description.");
   mod.def(
       "methods_for",
       [](const std::string& scene, const std::string& law) {
         return methods_for(*make_scene(scene, {}, law));
       },
-      py::arg("scene"), py::arg("law") = "", "The methods that can run `scene`.");
+      py::arg("scene"), py::arg("law") = "",
+      "The names of the methods that can run `scene` (with contact law `law`; '': its default_law), in\n"
+      "methods() order: what solve(scene, method) accepts.");
 
-  auto refs = mod.def_submodule("references", "Closed forms (analysis/references.hpp)");
+  // Each closed form says what it computes, in which units, and where it holds: help() showed the
+  // signatures alone, and a 0-based loop over the impacts read the first one twice.
+  auto refs = mod.def_submodule(
+      "references",
+      "Closed forms of the ball drop and of a single spring contact (analysis/references.hpp), in SI\n"
+      "units. Each raises ValueError for arguments outside the domain its formula holds on.");
   refs.def(
       "hooke_contact",
       [](double m, double k, double V, double g) { return spring_contact(hooke_contact(m, k, V, g)); },
-      py::arg("m"), py::arg("k"), py::arg("V"), py::arg("g") = 0.0);
+      py::arg("m"), py::arg("k"), py::arg("V"), py::arg("g") = 0.0,
+      "One contact of a Hooke spring F = k delta (mass m [kg], stiffness k [N/m]) entered at speed\n"
+      "V [m/s] under gravity g >= 0 [m/s^2] (V > 0, or 0 under gravity: a mass set down on the\n"
+      "spring), exactly: a dict of duration [s], max_penetration [m] and exit_speed [m/s] (V).\n"
+      "With w = sqrt(k/m): duration (pi + 2 atan(g / (w V))) / w and max_penetration\n"
+      "g / w^2 + sqrt(g^2 / w^4 + V^2 / w^2); without gravity pi sqrt(m/k) and\n"
+      "V sqrt(m/k).");
   refs.def(
       "kelvin_voigt_contact",
       [](double m, double k, double zeta, double V, double g) {
         return spring_contact(kelvin_voigt_contact(m, k, zeta, V, g));
       },
-      py::arg("m"), py::arg("k"), py::arg("zeta"), py::arg("V"), py::arg("g") = 0.0);
+      py::arg("m"), py::arg("k"), py::arg("zeta"), py::arg("V"), py::arg("g") = 0.0,
+      "One contact of a spring and dashpot F = k delta + c delta' of damping ratio\n"
+      "zeta = c / (2 sqrt(k m)) in [0, 1], entered at speed V > 0 under gravity g >= 0, exactly: a\n"
+      "dict of duration [s] (until the overlap closes), max_penetration [m] and exit_speed [m/s].\n"
+      "Without gravity the duration is pi / w_d, w_d = sqrt(k/m) sqrt(1 - zeta^2), and the restitution\n"
+      "exp(-zeta pi / sqrt(1 - zeta^2)); where the spring holds the mass for good (zeta = 1 without\n"
+      "gravity, soft springs under it) the duration is inf and the exit speed 0.");
   refs.def(
       "clamped_kelvin_voigt_contact",
       [](double m, double k, double zeta, double V, double g) {
         return spring_contact(clamped_kelvin_voigt_contact(m, k, zeta, V, g));
       },
-      py::arg("m"), py::arg("k"), py::arg("zeta"), py::arg("V"), py::arg("g") = 0.0);
+      py::arg("m"), py::arg("k"), py::arg("zeta"), py::arg("V"), py::arg("g") = 0.0,
+      "As kelvin_voigt_contact, with the force clamped to F >= 0: the mass lets go while it still\n"
+      "overlaps and flies freely until the overlap closes, where duration and exit_speed are taken.\n"
+      "Without gravity the exit speed is V exp(-zeta (pi - 2 asin zeta) / sqrt(1 - zeta^2)), above\n"
+      "the unclamped one. Duration and exit speed are nan where gravity's share g / (w V) is large\n"
+      "enough that the clamp takes hold again before the overlap closes.");
   refs.def(
       "linear_law_first_contact",
       [](const std::string& law, double m, double k, double e, double V, double g) {
         law_info(law);  // an unknown law is a ValueError, not NaN
-        return spring_contact(linear_law_first_contact(law, m, k, e, V, g));
+        const SpringContact c = linear_law_first_contact(law, m, k, e, V, g);
+        if (std::isnan(c.max_penetration))  // a known law without a closed form here: not a silent NaN
+          throw py::value_error(fmt::format(
+              "linear_law_first_contact: law '{}' has no closed form here; accepted: hooke, kelvin-voigt, "
+              "kelvin-voigt-clamped (a Hunt-Crossley law's restitution: hunt_crossley_restitution)",
+              law));
+        return spring_contact(c);
       },
-      py::arg("law"), py::arg("m"), py::arg("k"), py::arg("e"), py::arg("V"), py::arg("g") = 0.0);
-  refs.def("hunt_crossley_restitution", &hunt_crossley_restitution, py::arg("chi_v"));
-  refs.def("damping_ratio_for_restitution", &damping_ratio_for_restitution, py::arg("e"));
+      py::arg("law"), py::arg("m"), py::arg("k"), py::arg("e"), py::arg("V"), py::arg("g") = 0.0,
+      "The first contact of a linear law of laws() as solve() builds it, tuned to restitution e:\n"
+      "'hooke' (hooke_contact, e unused), 'kelvin-voigt' (kelvin_voigt_contact) or\n"
+      "'kelvin-voigt-clamped' (clamped_kelvin_voigt_contact), with zeta =\n"
+      "damping_ratio_for_restitution(e). A dict of duration [s], max_penetration [m], exit_speed [m/s].");
+  refs.def("hunt_crossley_restitution", &hunt_crossley_restitution, py::arg("chi_v"),
+           "The restitution of a Hunt-Crossley contact F = K delta^n (1 + chi delta'), exact, without\n"
+           "gravity: the root e of a - ln(1 + a) = -a e - ln(1 - a e), a = chi_v = chi V >= 0 (damping\n"
+           "coefficient [s/m] times impact speed [m/s]). It depends on chi V alone, whatever n, K and m;\n"
+           "1 - e^2 = (4/3) chi V to first order.");
+  refs.def("damping_ratio_for_restitution", &damping_ratio_for_restitution, py::arg("e"),
+           "The damping ratio zeta = |ln e| / sqrt(pi^2 + ln^2 e) of a linear spring and dashpot whose\n"
+           "contact, without gravity, has restitution e in [0, 1] (0 for e = 1; 1, critical, for e = 0).");
+  static const char* const kCountedFromOne =
+      "h0 >= 0 [m] the release height, v0 [m/s] the release velocity (up positive), g > 0 [m/s^2],\n"
+      "e in [0, 1] Newton's restitution; n = 1, 2, ...: impacts and apexes are counted from 1 (apex n\n"
+      "follows impact n, and is element n - 1 of a solve()'s apexes), n = 0 a ValueError.";
+  static const std::string apex_doc =
+      std::string(
+          "The height [m] of the apex after the n-th impact of a rigid ball, (e^n V)^2 / (2 g) with\n"
+          "V = sqrt(v0^2 + 2 g h0) (e^(2n) h0 when v0 = 0).\n") +
+      kCountedFromOne;
+  static const std::string impact_doc =
+      std::string(
+          "The time [s] of the n-th impact of a rigid ball: T1 = (v0 + V) / g, then\n"
+          "T(n+1) = T(n) + 2 e^n V / g, V = sqrt(v0^2 + 2 g h0).\n") +
+      kCountedFromOne;
   refs.def(
       "rigid_apex_height",
       [](double h0, double v0, double g, double e, std::size_t n) {
         return RigidBounces(h0, v0, g, e).apex_height(n);
       },
-      py::arg("h0"), py::arg("v0"), py::arg("g"), py::arg("e"), py::arg("n"));
+      py::arg("h0"), py::arg("v0"), py::arg("g"), py::arg("e"), py::arg("n"), apex_doc.c_str());
   refs.def(
       "rigid_impact_time",
       [](double h0, double v0, double g, double e, std::size_t n) {
         return RigidBounces(h0, v0, g, e).impact_time(n);
       },
-      py::arg("h0"), py::arg("v0"), py::arg("g"), py::arg("e"), py::arg("n"));
+      py::arg("h0"), py::arg("v0"), py::arg("g"), py::arg("e"), py::arg("n"), impact_doc.c_str());
   refs.def(
       "zeno_time",
       [](double h0, double v0, double g, double e) { return RigidBounces(h0, v0, g, e).zeno_time(); },
-      py::arg("h0"), py::arg("v0"), py::arg("g"), py::arg("e"));
+      py::arg("h0"), py::arg("v0"), py::arg("g"), py::arg("e"),
+      "The time [s] at which a rigid ball's impacts accumulate, T1 + 2 e V / (g (1 - e)) (inf for\n"
+      "e = 1), with T1 and V as in rigid_impact_time: t0 (1 + e) / (1 - e) for v0 = 0, t0 = sqrt(2 h0 / g).");
 
   mod.def(
       "advise",

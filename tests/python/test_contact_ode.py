@@ -96,7 +96,6 @@ def test_spring_contact_closed_forms():
     c = co.references.hooke_contact(m, k, V)
     assert c["duration"] == pytest.approx(math.pi * math.sqrt(m / k), rel=1e-14)
     assert c["max_penetration"] == pytest.approx(V * math.sqrt(m / k), rel=1e-14)
-    assert math.isnan(co.references.linear_law_first_contact("hertz", m, k, 0.8, V)["duration"])
 
 
 def test_advisor_meets_its_budget():
@@ -362,8 +361,31 @@ def test_closed_forms_refuse_arguments_outside_their_domain():
         co.references.zeno_time(h0=1.0, v0=0.0, g=0.0, e=0.5)
     with pytest.raises(ValueError, match="kelvin_voigt_contact: zeta = 1.5"):
         co.references.kelvin_voigt_contact(m=1.0, k=1.0, zeta=1.5, V=1.0)
-    # A law without a linear closed form stays NaN (documented), not an error.
-    assert math.isnan(co.references.linear_law_first_contact("hertz", 1.0, 1e5, 0.8, 1.0)["duration"])
+    # A known law without a closed form there gave three NaNs, silently: now refused, naming those it
+    # has (the C++ function keeps NaN, which the programs' tables show as a dash).
+    with pytest.raises(ValueError, match="law 'hertz' has no closed form here; accepted: hooke, kelvin-voigt, "
+                       "kelvin-voigt-clamped"):
+        co.references.linear_law_first_contact("hertz", 1.0, 1e5, 0.8, 1.0)
+    # Impacts and apexes are counted from 1, as the closed forms read (apex n follows impact n): n = 0
+    # was impact 1 again, so [rigid_impact_time(..., n) for n in range(3)] gave T1 twice.
+    for name in ("rigid_impact_time", "rigid_apex_height"):
+        with pytest.raises(ValueError, match="n: value 0 is out of range; accepted: whole numbers >= 1"):
+            getattr(co.references, name)(1.0, 0.0, 9.81, 0.8, 0)
+
+
+def test_every_function_says_what_it_computes():
+    """help() on the module's functions and closed forms shows more than their signatures: the
+    registries, the references (with units and where they hold) and solve() each say what they give."""
+    for space in (co, co.references):
+        for name in dir(space):
+            f = getattr(space, name)
+            if name.startswith("_") or isinstance(f, type) or not callable(f):
+                continue
+            # pybind11 puts the signature first; the description follows it.
+            text = "\n".join(f.__doc__.splitlines()[1:]).strip()
+            assert len(text.split()) >= 8, f"{space.__name__}.{name} has no description: {f.__doc__!r}"
+    assert "counted from 1" in co.references.rigid_apex_height.__doc__
+    assert "[m]" in co.references.hooke_contact.__doc__
 
 
 def test_exact_linear_gives_the_closed_forms_and_refuses_a_nonlinear_law():

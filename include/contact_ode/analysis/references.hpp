@@ -60,8 +60,9 @@ namespace contact {
 struct RigidBounces {
   double g, e, V, T1;  // gravity, restitution, first impact speed, first impact time
   RigidBounces(double h0, double v0, double g, double e);
-  double impact_time(std::size_t n) const;  // n = 1, 2, ...
-  double apex_height(std::size_t n) const;  // after the n-th impact, n = 1, 2, ...
+  // n = 1, 2, ...: n = 0 is refused (std::invalid_argument).
+  double impact_time(std::size_t n) const;
+  double apex_height(std::size_t n) const;  // after the n-th impact
   double apex_time(std::size_t n) const;
   double zeno_time() const;  // +inf for e = 1
 };
