@@ -59,12 +59,10 @@ RigidBounces::RigidBounces(double h0, double v0, double g_, double e_)
 // The impacts and apexes are counted from 1 (apex n follows impact n). n = 0 was taken for 1 by
 // impact_time and gave V^2 / 2g from apex_height, so a 0-based loop in Python read the first impact
 // twice: refused, naming the count.
-static void require_counted_from_one(const char* what, std::size_t n) {
-  if (n == 0)
-    throw std::invalid_argument(fmt::format(
-        "rigid bounces: {} n: value 0 is out of range; accepted: whole numbers >= 1 (impacts and apexes "
-        "are counted from 1: apex n follows impact n)",
-        what));
+static void require_counted_from_one(const std::string& what, std::size_t n) {
+  static constexpr Range kCount{.lo = 1, .lo_open = false, .whole = true};
+  require_in("rigid bounces: " + what + " n (counted from 1: apex n follows impact n)",
+             static_cast<double>(n), kCount);
 }
 
 double RigidBounces::impact_time(std::size_t n) const {

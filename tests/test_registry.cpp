@@ -208,11 +208,12 @@ TEST(Registries, ClosedFormsRefuseArgumentsOutsideTheirDomain) {
   // Impacts and apexes are counted from 1: n = 0 was impact 1 to impact_time and V^2 / 2g to
   // apex_height, so a 0-based loop read the first impact twice.
   const RigidBounces drop(1, 0, 9.81, 0.8);
-  EXPECT_NE(refusal([&] { drop.impact_time(0); }).find("impact time n: value 0 is out of range"),
-            std::string::npos);
-  EXPECT_NE(refusal([&] { drop.apex_height(0); }).find("apex height n: value 0 is out of range"),
-            std::string::npos);
-  EXPECT_NE(refusal([&] { drop.apex_time(0); }).find("counted from 1"), std::string::npos);
+  const std::string counted =
+      " n (counted from 1: apex n follows impact n) = 0 is out of range; accepted "
+      "range whole numbers in [1, inf)";
+  EXPECT_NE(refusal([&] { drop.impact_time(0); }).find("impact time" + counted), std::string::npos);
+  EXPECT_NE(refusal([&] { drop.apex_height(0); }).find("apex height" + counted), std::string::npos);
+  EXPECT_NE(refusal([&] { drop.apex_time(0); }).find("apex time" + counted), std::string::npos);
   // Inside them, the edges are answers: V = 0 under gravity is a ball set down on the spring (a
   // full period 2 pi / w), and a critically damped contact gives e = 0 (zeta = 1).
   EXPECT_NEAR(hooke_contact(1, 1e4, 0, 9.81).duration, 2 * std::numbers::pi / 100, 1e-14);

@@ -369,7 +369,8 @@ def test_closed_forms_refuse_arguments_outside_their_domain():
     # Impacts and apexes are counted from 1, as the closed forms read (apex n follows impact n): n = 0
     # was impact 1 again, so [rigid_impact_time(..., n) for n in range(3)] gave T1 twice.
     for name in ("rigid_impact_time", "rigid_apex_height"):
-        with pytest.raises(ValueError, match="n: value 0 is out of range; accepted: whole numbers >= 1"):
+        with pytest.raises(ValueError, match=r"n \(counted from 1: apex n follows impact n\) = 0 is out of range; "
+                           r"accepted range whole numbers in \[1, inf\)"):
             getattr(co.references, name)(1.0, 0.0, 9.81, 0.8, 0)
 
 
