@@ -88,7 +88,8 @@ int program(int argc, char** argv) {
   app.add("--rtol", rtol, "CVODE relative tolerance", cli::real_in(0, 1, true, true));
   app.add("--atol", atol, "CVODE absolute tolerance [m, m/s]", cli::positive());
   app.add("--out", out, "results folder (written by rank 0)");
-  if (const int code = app.parse(argc, argv); code >= 0) return code;
+  // Every rank parses (each needs the values); rank 0 alone prints the help or the refusal.
+  if (const int code = app.parse(argc, argv, rank == 0); code >= 0) return code;
   // --out is replaced whole: only a new or empty folder or an earlier run's (its meta.json names
   // chain_mpi).
   if (const std::string refusal = check_output_dir(out, "chain_mpi"); !refusal.empty()) {

@@ -207,18 +207,21 @@ void Options::add_flag(const std::string& flag, bool& value, const std::string& 
   impl_->app.add_flag(flag, value, help);
 }
 
-int Options::parse(int argc, char** argv) {
+int Options::parse(int argc, char** argv, bool speak) {
   CLI::App& app = impl_->app;
+  std::ostream silent(nullptr);  // no buffer: what is written to it goes nowhere
+  std::ostream& out = speak ? std::cout : silent;
+  std::ostream& err = speak ? std::cerr : silent;
   try {
     app.parse(argc, argv);
     return -1;
   } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
+    return app.exit(e, out, err);
   } catch (const CLI::ExtrasError& e) {
-    std::cerr << app.get_name() << ": unknown option or argument: " << e.what()
-              << " (see --help for the accepted options)\n";
+    err << app.get_name() << ": unknown option or argument: " << e.what()
+        << " (see --help for the accepted options)\n";
   } catch (const CLI::ParseError& e) {
-    std::cerr << app.get_name() << ": " << e.what() << "\n";
+    err << app.get_name() << ": " << e.what() << "\n";
   }
   return kExitBadInput;
 }

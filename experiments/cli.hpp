@@ -67,8 +67,9 @@ class Options {
   void add_flag(const std::string& flag, bool& value, const std::string& help);
 
   // Parses argv. Returns -1 to go on, or the exit code to return: 0 after --help, 2 after an
-  // error (its one-line message already printed on stderr).
-  int parse(int argc, char** argv);
+  // error (its one-line message already printed on stderr). With `speak` false it prints nothing
+  // and returns the same: every MPI rank parses, one of them speaks for all.
+  int parse(int argc, char** argv, bool speak = true);
   bool given(const std::string& flag) const;
   const std::string& program() const { return program_; }
   // Every option with its value as given or its default, as JSON text ({"name": value, ...}).

@@ -122,6 +122,27 @@ TEST_F(ChainMpi, ToleranceOutOfRangeIsRefused) {
                  {{"--rtol 1", "--rtol", "'1'", "(0, 1)"}, {"--rtol 0", "--rtol", "'0'", "(0, 1)"}});
 }
 
+// Every rank parses the command line, and every rank printed the help (three times on three
+// ranks) and a refusal (as many times as ranks got to it before mpiexec ended the job). Rank 0
+// alone prints them now; the exit codes are as before.
+TEST_F(ChainMpi, OneRankSpeaksForAllOfThemAboutTheCommandLine) {
+  const auto count = [](const std::string& text, const std::string& what) {
+    std::size_t n = 0;
+    for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+    return n;
+  };
+  const std::string three = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 timeout 60 " MPIEXEC
+                            " --oversubscribe -np 3";
+  const Outcome help = run(CHAIN_MPI_EXE, "--help", three);
+  EXPECT_EQ(help.code, 0) << help.err;
+  EXPECT_EQ(count(help.out, "Usage: chain_mpi"), 1u) << help.out;
+  const Outcome refused = run(CHAIN_MPI_EXE, "--balls 1 --out none", three);
+  EXPECT_EQ(refused.code, 2) << refused.err;
+  EXPECT_EQ(count(refused.err, "chain_mpi: --balls: value '1' is not a whole number in [2, 100000000]"), 1u)
+      << refused.err;
+  EXPECT_FALSE(fs::exists(dir_ / "none"));
+}
+
 TEST_F(ChainMpi, OneAndTwoRanksAgreeWithTheSerialBandSolver) {
   using namespace contact;
   const BallChainParams p{.n = 50, .law = Hooke{1e6}};
