@@ -39,7 +39,7 @@ void run_single(const BallDropOptions& o, OutputSet& out) {
   Series heights;
   for (const auto& name : methods) {
     progress.step(name);
-    const RunResult r = run_ball(o, name, o.k);
+    const RunResult r = run_ball(o, name, o.k, progress.follow(o.t_end));
     std::string rows;
     for (const auto& smp : r.samples) rows += fmt::format("{},{}\n", smp.t, smp.y[0]);
     heights.add(rows, fmt::format("using 1:2 with lines title '{}'", name));

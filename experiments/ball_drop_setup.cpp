@@ -56,10 +56,14 @@ Method method_for(const BallDropOptions& o, const std::string& name) {
   return m;
 }
 
-RunResult run_ball(const BallDropOptions& o, const std::string& method, double k) {
+RunResult run_ball(const BallDropOptions& o, const std::string& method, double k,
+                   std::function<void(double)> progress) {
   const BallDrop model({o.m, o.g, o.h0, o.v0, o.e, law_for(o, k)});
   return solve(model, method_for(o, method),
-               {.t_end = o.t_end, .sample_dt = o.sample_dt, .limits = {.max_records = o.max_records}});
+               {.t_end = o.t_end,
+                .sample_dt = o.sample_dt,
+                .limits = {.max_records = o.max_records},
+                .progress = std::move(progress)});
 }
 
 std::vector<std::string> ball_methods() { return methods_for(BallDrop({})); }

@@ -7,6 +7,7 @@
 #include "experiment.hpp"
 #include "output.hpp"
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -39,7 +40,9 @@ double scaled_atol(const BallDropOptions& o);
 void check_scales(const BallDropOptions& o);
 ContactLaw law_for(const BallDropOptions& o, double k);
 Method method_for(const BallDropOptions& o, const std::string& name);
-RunResult run_ball(const BallDropOptions& o, const std::string& method, double k);
+// `progress`: SolveOptions::progress of the run (Progress::follow), or none.
+RunResult run_ball(const BallDropOptions& o, const std::string& method, double k,
+                   std::function<void(double)> progress = {});
 // Every method that can run the ball drop (with the default law), and those that can run it with
 // o's law (a power law has no linear spring for XPBD or an engine's spring setting to match) and
 // linear solver (KLU: not penalty-dq, whose Jacobian is difference quotients).

@@ -6,6 +6,7 @@
 #include <sys/ioctl.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 
@@ -32,8 +33,22 @@ Progress::~Progress() {
 void Progress::step(const std::string& what) {
   throw_if_interrupted();  // every sweep passes here between runs
   ++done_;
-  if (!enabled_) return;
-  winsize size{};  // asked at every step: the window may have been resized
+  what_ = what;
+  if (enabled_) draw(what_);
+}
+
+std::function<void(double)> Progress::follow(double t_end) {
+  if (!enabled_ || !(t_end > 0)) return {};
+  return [this, t_end, shown = 0.0](double t) mutable {
+    const double percent = std::floor(100 * t / t_end);
+    if (!(percent > shown)) return;
+    shown = percent;
+    draw(fmt::format("{}: t = {:.4g} s of {:.4g} s", what_, t, t_end));
+  };
+}
+
+void Progress::draw(const std::string& what) const {
+  winsize size{};  // asked at every draw: the window may have been resized
   const std::size_t columns = ::ioctl(STDERR_FILENO, TIOCGWINSZ, &size) == 0 ? size.ws_col : 0;
   std::fflush(stdout);  // what the program printed before comes before the line
   fmt::print(stderr, "\r\033[K{}\r", progress_line(label_, done_, total_, what, columns));

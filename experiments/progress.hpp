@@ -1,6 +1,7 @@
 #pragma once
 // One-line progress for long sweeps: shown on a terminal, silent in CI or when stderr is a file.
 #include <cstddef>
+#include <functional>
 #include <string>
 
 namespace contact {
@@ -18,9 +19,16 @@ class Progress {
   Progress(const Progress&) = delete;
   Progress& operator=(const Progress&) = delete;
   void step(const std::string& what);
+  // For SolveOptions::progress of the run the last step() announced: the line gains how far the
+  // run has come ("penalty: t = 1.5 s of 3 s"), redrawn at each whole percent of t_end (at most 100 times a
+  // run), so that a long run shows it is moving. Empty where no line is shown: the run calls
+  // nothing.
+  std::function<void(double t)> follow(double t_end);
 
  private:
-  std::string label_;
+  void draw(const std::string& what) const;
+
+  std::string label_, what_;
   std::size_t total_, done_ = 0;
   bool enabled_;
 };

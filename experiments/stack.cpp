@@ -87,7 +87,8 @@ int program(int argc, char** argv) {
       progress.step(fmt::format("{} balls, {}", n, name));
       RunResult r;  // the timed solves' own (every method here is deterministic)
       const auto run = [&] {
-        r = solve(*column, {.name = name, .dt = dt}, {.t_end = t_end, .sample_dt = t_end / 200});
+        r = solve(*column, {.name = name, .dt = dt},
+                  {.t_end = t_end, .sample_dt = t_end / 200, .progress = progress.follow(t_end)});
         return r.stats.setup_cpu_s;
       };
       const CpuTiming cpu = time_cpu_excluding(run, 1, 5, kBudget);

@@ -64,8 +64,9 @@ int program(int argc, char** argv) {
     for (std::size_t mi = 0; mi < methods.size(); ++mi) {
       progress.step(methods[mi]);
       method.name = methods[mi];
-      const RunResult r =
-          require(solve(model, method, {.t_end = t_end, .sample_dt = kSampleDt}), methods[mi]);
+      const RunResult r = require(
+          solve(model, method, {.t_end = t_end, .sample_dt = kSampleDt, .progress = progress.follow(t_end)}),
+          methods[mi]);
       double rest = std::nan(""), lowest = INFINITY;
       for (std::size_t i = r.samples.size(); i-- > 0;) {
         if (std::abs(r.samples[i].y[1]) >= rest_speed) break;

@@ -22,6 +22,7 @@ RunRecorder::RunRecorder(const Dynamics& model, std::string method, const SolveO
       limits_(span.limits),
       sample_dt_(span.sample_dt),
       t_end_(span.t_end),
+      progress_(span.progress),
       open_(model.contact_count(), -1),
       last_(model.contact_count(), -1),
       start_(std::chrono::steady_clock::now()) {
@@ -47,6 +48,7 @@ void RunRecorder::sample(double t, ConstVectorRef y, double dissipated) {
   const double e = energy(y);
   result_.samples.push_back({t, y, e, dissipated});
   check_diverged(t, y, e + dissipated - result_.energy0);  // after the push: the last sample shows it
+  if (progress_) progress_(t);
   // Fixed-step methods sample at step ends: skip every grid time this sample stands for, in one
   // jump (a step may stand for many grid times).
   if (next_sample_ < 0) return;

@@ -458,3 +458,20 @@ TEST(Scenes, BatchedGapsAndSwitchingAreEachContactsOwn) {
   // registry that lost scenes or laws would check fewer than 10.
   EXPECT_GE(checked, 10) << checked;
 }
+
+// SolveOptions::progress hears of every sample as it is recorded, in order, the last at t_end:
+// what an experiment's progress line shows of a long run. Every method of the ball drop, each
+// family's sampling (the fixed steps', the adaptive drivers', the event loop's, the engines').
+TEST(Registries, ARunsProgressHearsOfEverySampleInOrder) {
+  const auto ball = make_scene("ball-drop", {}, "kelvin-voigt");
+  for (const auto& name : methods_for(*ball)) {
+    std::vector<double> heard;
+    const RunResult r =
+        solve(*ball, {.name = name},
+              {.t_end = 1.0, .sample_dt = 0.1, .progress = [&](double t) { heard.push_back(t); }});
+    ASSERT_TRUE(r.ok()) << name << ": " << r.message;
+    ASSERT_EQ(heard.size(), r.samples.size()) << name;
+    for (std::size_t i = 0; i < heard.size(); ++i) EXPECT_EQ(heard[i], r.samples[i].t) << name << " " << i;
+    EXPECT_EQ(heard.back(), 1.0) << name;
+  }
+}

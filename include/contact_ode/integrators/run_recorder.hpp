@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <string>
@@ -55,6 +56,9 @@ struct SolveOptions {
   double t_end = 3.0;       // the run covers [0, t_end] [s]
   double sample_dt = 0.01;  // output spacing [s] (fixed-step methods: rounded to whole steps)
   RunLimits limits;
+  // Called with the time of each sample as it is recorded: a front end's display of how far a
+  // long run has come (an experiment's line on a terminal). It must not throw; empty: not called.
+  std::function<void(double t)> progress;
 };
 
 // Fixed steps of dt that cover [0, t_end], the last one shortened to land on t_end: at least one
@@ -150,6 +154,7 @@ class RunRecorder {
   RunResult result_;
   RunLimits limits_;
   double sample_dt_, t_end_;  // output grid t_j = j sample_dt, closed by t_end (computed, not stored)
+  std::function<void(double)> progress_;
   double dissipated_ = 0.0;
   double state_scale_ = 1.0;  // the initial state's largest entry, at least 1
   long next_sample_ = 0;
