@@ -10,6 +10,7 @@
 #include "contact_ode/models/scene_registry.hpp"
 #include "integrator_driver.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -251,9 +252,20 @@ TEST(RunBounds, PenaltyStepsBeyondTheRunLimitFailTyped) {
   const BallDrop model({});
   PenaltyOptions o{};
   SolveOptions o_span{.t_end = 3.0};
-  o_span.limits.max_steps = 50;  // the default run takes ~800 steps
+  o_span.limits.max_steps = 5;  // the default run takes ~300 steps, the fall to the floor ~20
   const RunResult r = run_penalty(model, o, o_span);
   EXPECT_EQ(r.status, Status::WorkLimit);
+  EXPECT_EQ(r.message, "more than 5 steps in the run");  // before the first contact
+  // Past contacts, the message says how many were recorded and when the last began: where the
+  // steps went (a run of ever more bounces reads as a hang until the limit).
+  o_span.limits.max_steps = 100;
+  const RunResult later = run_penalty(model, o, o_span);
+  ASSERT_EQ(later.status, Status::WorkLimit);
+  ASSERT_FALSE(later.contacts.empty());
+  EXPECT_EQ(later.message,
+            fmt::format("more than 100 steps in the run (contacts recorded by then: {}, the last "
+                        "begun at t = {:.6g} s)",
+                        later.contacts.size(), later.contacts.back().t_begin));
 }
 
 // A dense Jacobian beyond 4 GiB is refused before it is allocated (SUNDenseMatrix returned NULL
