@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 
 namespace contact {
 
@@ -43,7 +44,11 @@ std::function<void(double)> Progress::follow(double t_end) {
     const double percent = std::floor(100 * t / t_end);
     if (!(percent > shown)) return;
     shown = percent;
-    draw(fmt::format("{}: t = {:.4g} s of {:.4g} s", what_, t, t_end));
+    try {
+      draw(fmt::format("{}: t = {:.4g} s of {:.4g} s", what_, t, t_end));
+    } catch (const std::exception&) {
+      // A line that cannot be drawn (a terminal gone) is no reason to end the run it follows.
+    }
   };
 }
 
