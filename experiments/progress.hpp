@@ -20,9 +20,9 @@ class Progress {
   Progress& operator=(const Progress&) = delete;
   void step(const std::string& what);
   // For SolveOptions::progress of the run the last step() announced: the line gains how far the
-  // run has come ("penalty: t = 1.5 s of 3 s"), redrawn at each whole percent of t_end (at most
-  // 100 times a run), so that a long run shows it is moving. Empty where no line is shown: the
-  // run calls nothing.
+  // run has come ("penalty: t = 1.5 s of 3 s"), redrawn at whole percents of t_end, at most five
+  // times a second and never in a run's first 0.2 s (which a fast run's timing would pay for),
+  // so that a long run shows it is moving. Empty where no line is shown: the run calls nothing.
   std::function<void(double t)> follow(double t_end);
 
  private:
