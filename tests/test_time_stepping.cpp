@@ -440,6 +440,22 @@ TEST(ImplicitSpring, TheKeptMatrixStillSolvesEveryStep) {
   }
 }
 
+// Newton's stop where the correction stalls at rounding: an off-centre hit on the box (0.009 kg
+// ball, k = 1e10 N/m, e = 0, w h = 8.6) cycled at t = 1.6 ms between two iterates whose spin
+// component of 5e-19 moved by 8e-29, against its correction bound of 1e-12 of its row's terms
+// (9e-31): that component's corrections are the LU's mixing of the other rows' rounding. Every
+// row's residual was then below 1e-12 of its terms, which now ends the iteration; the run failed
+// ('Newton did not converge in 50 iterations') and now reaches its end.
+TEST(ImplicitSpring, NewtonStopsWhereEveryRowsResidualIsAtItsRounding) {
+  const auto hit =
+      make_scene("off-centre", {{"m", 0.009134}, {"radius", 0.04777}, {"elasticity", 0.0}, {"k", 1.075e10}});
+  const RunResult r =
+      solve(*hit, {.name = "game-implicit-spring", .dt = 7.902e-6}, {.t_end = 2e-3, .sample_dt = 2e-3});
+  ASSERT_TRUE(r.ok()) << r.message;
+  EXPECT_EQ(r.t_reached, 2e-3);
+  EXPECT_FALSE(r.contacts.empty());
+}
+
 // Every new method refuses what it cannot run, by name: XPBD needs a linear law.
 TEST(TimeStepping, XpbdRefusesANonlinearLaw) {
   const auto hertz = make_scene("ball-drop", {}, "hertz");
