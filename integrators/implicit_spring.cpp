@@ -5,18 +5,19 @@
 // 1 / (1 + w^2 h^2) (tests), the mirror of explicit Euler's 1 + w^2 h^2.
 // Solved by Newton's method with the scene's Jacobian (difference quotients where it has none)
 // and an LU, to 1e-12 of the state's size (where the correction stalls at rounding: each
-// component's correction within 1e-12 of the state's size or of its own row's terms), each contact's mode
-// read off the iterate: sparse on the Jacobian's fixed pattern (analysed once) where the scene declares a
-// narrow band (a chain, a column), dense otherwise (a 1000-ball column's dense 2001 x 2001 LU, formed
-// whenever a contact engaged, made its 2 s take over 5 minutes; the sparse one, 1 s). The LU of I - h J is
-// kept across iterations and steps (a chord method, as CVODE keeps its Newton matrix): forming it costs a
-// Jacobian, n right-hand sides by difference quotients, and an O(n^3) factorization, against one right-hand
-// side per iteration. It is formed again when the modes differ from those it was formed with (the Jacobian
-// jumps where a law engages), when the step differs, when an iteration fails to halve the correction, and
-// after 20 steps; the converged step is the same to the 1e-12 tolerance. Where the modes keep switching (the
-// step's end sits on a switching surface: 20 iterations without convergence) they are frozen at the last
-// iterate's and Newton finishes on that smooth system; 50 iterations in all without convergence
-// are a typed ConvergenceFailure.
+// component's correction within 1e-12 of the state's size or of its own row's terms), each
+// contact's mode read off the iterate: sparse on the Jacobian's fixed pattern (analysed once)
+// where the scene declares a narrow band (a chain, a column), dense otherwise (a 1000-ball
+// column's dense 2001 x 2001 LU, formed whenever a contact engaged, made its 2 s take over 5
+// minutes; the sparse one, 1 s). The LU of I - h J is kept across iterations and steps (a chord
+// method, as CVODE keeps its Newton matrix): forming it costs a Jacobian, n right-hand sides by
+// difference quotients, and an O(n^3) factorization, against one right-hand side per iteration.
+// It is formed again when the modes differ from those it was formed with (the Jacobian jumps
+// where a law engages), when the step differs, when an iteration fails to halve the correction,
+// and after 20 steps; the converged step is the same to the 1e-12 tolerance. Where the modes keep
+// switching (the step's end sits on a switching surface: 20 iterations without convergence) they
+// are frozen at the last iterate's and Newton finishes on that smooth system; 50 iterations in
+// all without convergence are a typed ConvergenceFailure.
 #include "contact_ode/integrators/capabilities.hpp"
 #include "contact_ode/integrators/method_registry.hpp"
 #include "contact_ode/integrators/status.hpp"
@@ -117,8 +118,8 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
       // units, and a drop scaled to picometres (h0 = 1e-12 m, g scaled alike) stopped at a first
       // iterate of its size: its contacts moved by 26 ms and its exit speed by 12 %.
       const double size = dz.lpNorm<Eigen::Infinity>();
-      if (size <= kNewtonTolerance * std::max(z.lpNorm<Eigen::Infinity>(), y.lpNorm<Eigen::Infinity>()))
-        break;
+      const double state = std::max(z.lpNorm<Eigen::Infinity>(), y.lpNorm<Eigen::Infinity>());
+      if (size <= kNewtonTolerance * state) break;
       // A correction that no longer halves may be the residual's rounding, which the state's size
       // does not bound: at rest on a spring, gravity and the spring cancel in f, and the velocity
       // part of G rounds at the size of h g and h k x / m, not of the state. A drop sped up 1000
@@ -126,17 +127,16 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
       // 4.6e-16 against a bound of 1e-16 and the run failed. Each component is then measured
       // against the larger of the state's size and its own residual's terms, |y| + |I - h J| |z|,
       // at the same 1e-12: a component far smaller than the state need not be resolved below the
-      // state's tolerance (its own terms alone stopped an off-centre hit at k = 1e10 N/m, w h =
-      // 8.6, where a spin component of 5e-19 moved by 8e-29, the LU's mixing of the other rows'
-      // rounding, against a bound of 9e-31, while the largest correction was at its own row's
-      // rounding: 50 iterations, and the run failed).
+      // state's tolerance. Measured against its own terms alone, such a component kept an
+      // off-centre hit at k = 1e10 N/m, w h = 8.6, from stopping: a spin component of 5e-19 moved
+      // by 8e-29, the LU's mixing of the other rows' rounding, against a bound of 9e-31, while the
+      // largest correction was at its own row's rounding (50 iterations, and the run failed).
       if (size > 0.5 * previous) {
         if (sparse)
           terms = S.cwiseAbs() * z.cwiseAbs();
         else
           terms.noalias() = A.cwiseAbs() * z.cwiseAbs();
         terms += y.cwiseAbs();
-        const double state = std::max(z.lpNorm<Eigen::Infinity>(), y.lpNorm<Eigen::Infinity>());
         if ((dz.array().abs() <= kNewtonTolerance * terms.array().max(state)).all()) break;
       }
       if (it == kMaxNewton || !z.allFinite())
