@@ -206,11 +206,16 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
                                       e_after - e_before, e_before, e_after));
     y = z;
     report.dissipated += switches.released(geo, y);
-    for (std::size_t i = 0; i < nc; ++i)  // the laws that acted: the modes y was solved with
-      if (modes[i] == ContactMode::Penalty) {
-        report.dissipated += h * geo.dissipated_power(i, y);
-        report.push[i] = 1.0;  // the law acts: the contact is engaged
-      }
+    // The laws that acted are those of the modes y was solved with: a contact engaged and let go
+    // within the step pushed. Its dashpot's work is booked only where its law is on at y: a
+    // solve engaged that ends apart holds its contact in tension, and h c v^2 at the separating
+    // speed is not what it lost (a rubber ball at k = 1e10 N/m, h = 1e-4 s booked 5 times its
+    // energy).
+    geo.modes_from_state(nc, y, live);
+    for (std::size_t i = 0; i < nc; ++i) {
+      if (modes[i] == ContactMode::Penalty) report.push[i] = 1.0;
+      if (live[i] == ContactMode::Penalty) report.dissipated += h * geo.dissipated_power(i, y);
+    }
   };
   return run_time_stepping(scene, m.name, m.dt, step, span, true, &m);
 }
