@@ -47,8 +47,11 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
           normal.apply_normal_impulse(i, dlambda / h, y);
           report.push[i] += w * dlambda / h;
           // The dashpot's loss over the sub-step at the corrected rate (the rectangle rule of
-          // implicit Euler), where it acted.
-          const double rate = geo.gap_rate(i, y);
+          // implicit Euler), where it acted. It acts on the overlap, which over a sub-step that
+          // began apart grew from zero: at C+/h, not at the gap's whole change. The gap's rate
+          // there is mostly the approach's free flight: a ball dropped at k = 1e10 N/m, dt = 1 ms
+          // booked 24 J of its 9.8 J, and rubber-steel 112 J of 3.3 J.
+          const double rate = gap_before[i] >= 0 ? geo.gap(i, y) / h : geo.gap_rate(i, y);
           if (dlambda > 0) report.dissipated += h * law.c * rate * rate;
         }
         // A contact that does not push (the clamp: it lets go while the bodies overlap) does no
