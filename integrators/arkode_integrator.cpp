@@ -24,6 +24,7 @@ class ErkIntegrator final : public sundials::IntegratorBase {
  public:
   ErkIntegrator(const IntegratorOptions& o, OdeSystem system, double t0, ConstVectorRef y0)
       : IntegratorBase(std::move(system), t0, y0) {
+    failure_at_last_return_ = true;
     mem_.reset(ERKStepCreate(sundials::rhs, t0, y_.get(), ctx_.get()));
     if (!mem_) throw SolverFailure(Status::SolverError, t0, "ERKStepCreate failed");
     void* m = mem_.get();
@@ -72,6 +73,7 @@ class ArkIntegrator final : public sundials::IntegratorBase {
  public:
   ArkIntegrator(const IntegratorOptions& o, OdeSystem system, double t0, ConstVectorRef y0)
       : IntegratorBase(std::move(system), t0, y0), imex_(o.method == "arkode-imex") {
+    failure_at_last_return_ = true;
     if (imex_ && !data_.sys.implicit_rhs)
       throw std::invalid_argument(
           "arkode-imex needs a system with an implicit part (OdeSystem::implicit_rhs)");

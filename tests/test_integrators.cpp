@@ -50,6 +50,12 @@ OdeSystem free_ode(const Dynamics& model) {
   return mechanical_ode(model, [modes](ConstVectorRef) -> const ContactModes& { return *modes; });
 }
 
+// Advances to t_end by outputs every `sample` seconds, as a run does (drive()): a failure is
+// reported at a time the integrator reached, ARKODE's at the last output it returned.
+void advance_by_samples(Integrator& integrator, double t_end, double sample) {
+  for (long k = 1; k * sample <= t_end; ++k) integrator.advance(static_cast<double>(k) * sample);
+}
+
 double final_error(const std::string& method, double dt, double rtol, OdeSystem sys, const Vector& y0,
                    double T, const Vector& exact) {
   IntegratorOptions o;
@@ -350,7 +356,7 @@ TEST_P(FailurePaths, NonFiniteRightHandSideIsReportedNotPropagated) {
   o.max_steps = 1000000;
   auto integrator = make_integrator(o, std::move(sys), 0.0, Vector{{1.0, 1.0}});
   try {
-    integrator->advance(2.0);
+    advance_by_samples(*integrator, 2.0, 1e-3);
     FAIL() << info.name << " integrated through a NaN";
   } catch (const SolverFailure& f) {
     if (is_exact(info)) {  // the cubic right-hand side is refused before the first step
@@ -364,6 +370,51 @@ TEST_P(FailurePaths, NonFiniteRightHandSideIsReportedNotPropagated) {
     EXPECT_NEAR(f.t_reached(), 0.999, 0.01) << info.name;
   }
   EXPECT_TRUE(integrator->y().allFinite()) << info.name;
+}
+
+// A failure's time is one the solver reached, that of the state it leaves. ARKODE returns the state
+// of the last step it completed but left its current time where the failed step stopped, at a
+// stage up to a step further: a fixed-step ARKStep run asked for 0.0116 s failed "at t = 0.019 s",
+// a stage of its first step, with the state of t = 0. Uniform motion x = t (every method integrates
+// it exactly), refused past t = 0.5 s, outputs every 0.01 s: at a fixed step of 0.3 s a run fails
+// in the step from 0.3 s (or from 0.6 s for the Euler methods, which evaluate only the step's
+// start); an adaptive run fails before 0.5 s.
+TEST_P(FailurePaths, AFailuresTimeIsThatOfTheStateLeft) {
+  const IntegratorInfo& info = integrator_info(GetParam());
+  if (is_exact(info)) GTEST_SKIP() << "solves affine systems in closed form, refusing no time";
+  OdeSystem sys;
+  sys.size = 2;
+  sys.positions = Mask{{true, false}};
+  sys.rhs = [](double t, ConstVectorRef y, VectorRef yd) {
+    yd << y[1], t > 0.5 ? std::numeric_limits<double>::quiet_NaN() : 0.0;
+  };
+  sys.jacobian = [](double, ConstVectorRef, SparseMatrix& J) {
+    const Triplet t[] = {{0, 1, 1.0}};
+    J.resize(2, 2);
+    J.setFromTriplets(std::begin(t), std::end(t));
+  };
+  sys.implicit_rhs = [](double, ConstVectorRef, VectorRef yd) { yd.setZero(); };
+  sys.implicit_jacobian = [](double, ConstVectorRef, SparseMatrix& J) { J.resize(2, 2); };
+  for (const double dt : {0.3, 0.0}) {
+    if ((dt > 0 && !info.fixed_step_capable) || (dt == 0 && needs_step(info))) continue;
+    IntegratorOptions o;
+    o.method = info.name;
+    o.dt = dt;
+    auto integrator = make_integrator(o, sys, 0.0, Vector{{0.0, 1.0}});
+    try {
+      advance_by_samples(*integrator, 2.0, 0.01);
+      ADD_FAILURE() << info.name << " integrated through a NaN";
+    } catch (const SolverFailure& f) {
+      const double t = f.t_reached(), x = integrator->y()[0];
+      if (dt > 0)
+        EXPECT_TRUE(t == 0.3 || t == 0.6) << info.name << ": " << f.what();
+      else
+        EXPECT_LE(t, 0.5) << info.name << ": " << f.what();
+      // x - t: the sum of the steps against the time's, a few rounding errors, and an implicit
+      // method's Newton error, within its tolerance (atol + rtol x, 1e-10 here).
+      EXPECT_NEAR(x, t, 1e-10) << info.name << ": " << f.what();
+    }
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryIntegrator, FailurePaths, ::testing::ValuesIn(integrator_names()),
