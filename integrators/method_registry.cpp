@@ -157,10 +157,21 @@ RunResult solve(const Dynamics& scene, const Method& method, const SolveOptions&
     throw std::invalid_argument(
         fmt::format("--dt: value '{}' is out of range; accepted range (0, inf)", method.dt));
   check_method_settings(method);
+  // Every energy a run reports is a double: a scene whose initial energy is not (a drop from 1e308 m,
+  // m g h0 overflowed) 'succeeded' with an infinite energy at every sample.
+  if (const double e0 = scene.energy(scene.initial_state()); !std::isfinite(e0))
+    throw std::invalid_argument(fmt::format(
+        "scene '{}': its initial energy is {} J, beyond the doubles; accepted: parameters whose energy "
+        "(as m g h0 + m v0^2 / 2 for a drop) is finite",
+        scene.name(), e0));
   refuse_what_cannot_fit(scene, info, method, options);
   if (const auto why = work_refusal(method, options)) {  // a work limit at t = 0, its initial state kept
     RunRecorder refused(scene, info.name, options);
-    refused.sample(0.0, scene.initial_state());
+    try {
+      refused.sample(0.0, scene.initial_state());
+    } catch (const SolverFailure& f) {  // more samples than kept: that refusal, as every method's run gives
+      return refused.fail(f, {});
+    }
     return refused.fail(SolverFailure(Status::WorkLimit, 0.0, *why), {});
   }
   RunResult r = info.run(scene, method, options);

@@ -463,22 +463,26 @@ TEST(EventDriven, APlasticImpulseLeftApproachingByRoundingIsNotStruckAgain) {
 }
 
 // A state beyond the doubles ends a run as non-finite-state, whatever the method checks itself. The
-// exact bounces of a 1e308 kg ball (an impulse of 8e308 N s at its first impact) and of one thrown
-// up at 1e308 m/s (past 1.8e308 m after 1.8 s) reported success with a state of inf: the first
-// ends at its impact, naming the impulse; the second at its first sample that is not finite (solve()
-// looks at every method's samples), keeping only those before it.
+// exact bounces of a 1.5e308 kg ball (an impulse of 2.7e308 N s at its first impact, at 1 m/s: under
+// g = 1 m/s^2 from 0.5 m, its energy 7.5e307 J a double) and of one thrown at 1e154 m/s without
+// gravity (past 1.8e308 m after 1.8e154 s; the state-growth line, which would end it first, drawn
+// off) reported success with a state of inf: the first ends at its impact, naming the impulse; the
+// second at its first sample that is not finite (solve() looks at every method's samples), keeping
+// only those before it.
 TEST(EventDriven, AStateBeyondTheDoublesEndsTheRunInsteadOfSucceeding) {
   const Method exact{.name = "event-exact"};
-  const SolveOptions span{.t_end = 3.0, .sample_dt = 0.015};
-  const RunResult heavy = solve(BallDrop({.m = 1e308}), exact, span);
+  const RunResult heavy = solve(BallDrop({.m = 1.5e308, .g = 1.0, .h0 = 0.5}), exact, {.t_end = 3.0});
   EXPECT_EQ(heavy.status, Status::NonFiniteState) << heavy.message;
-  EXPECT_NEAR(heavy.t_reached, RigidBounces(1.0, 0.0, 9.81, 0.8).T1, 1e-12);
+  EXPECT_NEAR(heavy.t_reached, 1.0, 1e-12);  // sqrt(2 h0 / g)
   EXPECT_NE(heavy.message.find("contact 0's impulse (inf N s) left the state not finite"), std::string::npos)
       << heavy.message;
-  const RunResult thrown = solve(BallDrop({.v0 = 1e308}), exact, span);
+  const RunResult thrown = solve(BallDrop({.g = 0.0, .v0 = 1e154}), exact,
+                                 {.t_end = 3e154,
+                                  .sample_dt = 1e152,
+                                  .limits = {.max_state_growth = std::numeric_limits<double>::infinity()}});
   EXPECT_EQ(thrown.status, Status::NonFiniteState) << thrown.message;
-  EXPECT_NEAR(thrown.t_reached, 1.8, 1e-12);  // 1 + 1e308 t passes DBL_MAX at t = 1.797 s
-  EXPECT_NE(thrown.message.find("the state is not finite at t = 1.8 s (sample 120 of 201)"),
+  EXPECT_NEAR(thrown.t_reached, 1.8e154, 1e152);  // 1 + 1e154 t passes DBL_MAX at t = 1.797e154 s
+  EXPECT_NE(thrown.message.find("the state is not finite at t = 1.8e+154 s (sample 180 of 301)"),
             std::string::npos)
       << thrown.message;
   for (const RunResult* r : {&heavy, &thrown}) {

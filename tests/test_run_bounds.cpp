@@ -248,6 +248,37 @@ TEST(RunBounds, SamplesBeyondTheRunLimitFailTypedWithoutAllocatingTheGrid) {
   EXPECT_NE(r.message.find("sample"), std::string::npos) << r.message;
 }
 
+// A run that cannot fit its samples is a WorkLimit result for every method, as solve() promises.
+// A fixed-step method refused for its steps (1e9 of them) first sampled its initial state, and
+// that sample's own refusal (6.7e10 samples) escaped solve() as an exception: in Python a
+// RuntimeError, not the SolverError the other methods raise.
+TEST(RunBounds, SamplesBeyondTheRunLimitAreAWorkLimitResultForEveryMethod) {
+  const BallDrop model({});
+  for (const std::string& name : methods_for(model)) {
+    Method method{.name = name};
+    if (method_info(name).fixed_step) method.dt = 1.0;
+    RunResult r;
+    ASSERT_NO_THROW(r = solve(model, method, {.t_end = 1e9, .sample_dt = 0.015})) << name;
+    EXPECT_EQ(r.status, Status::WorkLimit) << name << ": " << r.message;
+    EXPECT_NE(r.message.find("sample"), std::string::npos) << name << ": " << r.message;
+  }
+}
+
+// A drop from 1e308 m has the energy m g h0 = 9.8e308 J, beyond the doubles: every method
+// 'succeeded' with an infinite energy at every sample (the CLI refused it; Python did not).
+TEST(RunBounds, ASceneWhoseEnergyIsNotADoubleIsRefused) {
+  const BallDrop model({.h0 = 1e308});
+  for (const std::string& name : {"penalty", "event-exact", "game-euler"}) {
+    Method method{.name = name, .dt = 1e-3};
+    try {
+      solve(model, method, {.t_end = 1.0, .sample_dt = 0.1});
+      ADD_FAILURE() << name << " ran a scene of infinite energy";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("initial energy is inf J"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(RunBounds, PenaltyStepsBeyondTheRunLimitFailTyped) {
   const BallDrop model({});
   PenaltyOptions o{};
