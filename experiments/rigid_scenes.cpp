@@ -30,6 +30,24 @@
 using namespace contact;
 using namespace contact::rigid;
 
+namespace {
+
+// The scene the options describe. A body refuses numbers it cannot hold, naming its own quantity
+// (--radius 1e-300 gave the cue ball an inverse inertia of inf): the refusal names the options.
+RigidScene scene_from_options(const std::string& name, const SceneParams& p,
+                              const std::vector<double>& half) {
+  try {
+    return rigid_scene(name).make(p);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(fmt::format(
+        "--m, --radius, --half-extents: values '{}', '{}' and '{}' cannot make scene '{}' ({}); accepted: "
+        "masses and sizes whose inertias and inverse inertias are finite and positive doubles",
+        p.m, p.radius, fmt::join(half, " "), name, e.what()));
+  }
+}
+
+}  // namespace
+
 int program(int argc, char** argv) {
   std::string scenes = "all",
               methods =
@@ -74,10 +92,11 @@ int program(int argc, char** argv) {
                 "wall_time_s"});
     Table observables({"scene", "method", "quantity", "value"});
     const auto scene_list = cli::chosen(scenes, rigid_scene_names());
-    for (const auto& name : scene_list)  // before any run: a ball placed inside the cuboid is bad input
-      require_bodies_apart(rigid_scene(name).make(p),
+    for (const auto& name : scene_list) {  // before any run: a ball inside the cuboid is bad input
+      require_bodies_apart(scene_from_options(name, p, half),
                            fmt::format("--radius {:g}, --half-extents {:g}, --quaternion {:g}", p.radius,
                                        fmt::join(half, " "), fmt::join(quat, " ")));
+    }
     const auto method_list = cli::split_list(methods);
     Progress progress("rigid_scenes", scene_list.size() * method_list.size());
     const std::size_t per_scene = method_list.size();

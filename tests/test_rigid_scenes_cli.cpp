@@ -102,6 +102,9 @@ TEST_F(RigidScenesCli, BadInputIsRefused) {
                                        {"--m 0", "--m", "'0'", "(0, inf)"},
                                        {"--m -1", "--m", "'-1'", "(0, inf)"},
                                        {"--radius 0", "--radius", "'0'", "(0, inf)"},
+                                       // Accepted alone, beyond a body's doubles in its inertia: it was
+                                       // refused as 'cue inverse inertia', no option named.
+                                       {"--radius 1e-300", "--radius", "'1e-300'", "finite and positive"},
                                        {"--half-extents 0.1 0 0.1", "--half-extents", "'0'", "(0, inf)"},
                                        {"--elasticity -0.5", "--elasticity", "'-0.5'", "[0, 1]"},
                                        // A restitution (the product of the pair's) above one.
