@@ -93,10 +93,29 @@ RigidScene wedge(const SceneParams& p) {
   return RigidScene("wedge", {striker, upper, lower}, Vec3::Zero(), law_for(p));
 }
 
+// A body refuses numbers it cannot hold, naming its own quantity (a radius of 1e-300 m gave the
+// cue ball an inverse inertia of inf, refused as 'cue inverse inertia'): the refusal names the
+// scene's sizes and masses as well.
+std::vector<SceneInfo> naming_parameters(std::vector<SceneInfo> scenes) {
+  for (SceneInfo& info : scenes) {
+    info.make = [name = info.name, make = info.make](const SceneParams& p) {
+      try {
+        return make(p);
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument(fmt::format(
+            "scene '{}' cannot be made of m '{}', radius '{}' and half extents '{} {} {}' ({}); accepted: "
+            "masses and sizes whose inertias and inverse inertias are finite and positive doubles",
+            name, p.m, p.radius, p.half_extents.x(), p.half_extents.y(), p.half_extents.z(), e.what()));
+      }
+    };
+  }
+  return scenes;
+}
+
 }  // namespace
 
 const std::vector<SceneInfo>& rigid_scene_registry() {
-  static const std::vector<SceneInfo> scenes = {
+  static const std::vector<SceneInfo> scenes = naming_parameters({
       {"snooker", "cue ball into a resting red ball of equal mass", 0.05,
        [](const SceneParams& p) { return snooker(p, p.m, p.radius); }},
       {"planet", "cue ball into a planet 1e6 times heavier", 0.05,
@@ -107,7 +126,7 @@ const std::vector<SceneInfo>& rigid_scene_registry() {
       {"cradle", "Newton's cradle: a striker into four touching balls", 0.05, cradle},
       {"wedge", "a striker meets two balls at once, symmetric about its path (order-dependence)", 0.05,
        wedge},
-  };
+  });
   return scenes;
 }
 

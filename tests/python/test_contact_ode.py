@@ -207,6 +207,16 @@ def test_bad_arguments_raise_value_error_naming_them():
     # The scene as the caller named it, not the model's internal name ("spring_mass").
     with pytest.raises(ValueError, match="cannot run scene 'spring-mass'"):
         co.solve("spring-mass", "event-ode")
+    # Parameters each in range that together are not a double: the refusal names them, where it
+    # named a body's inner quantity ("cue inverse inertia") or none (a drop's infinite energy).
+    with pytest.raises(ValueError, match=re.escape("scene 'snooker' cannot be made of m '0.17', radius '1e-300'")):
+        co.solve("snooker", "penalty", radius=1e-300)
+    with pytest.raises(ValueError, match=re.escape("scene 'ball-drop': its initial energy is inf J")):
+        co.solve("ball-drop", "penalty", h0=1e308)
+    # A run refused for its samples is a SolverError under every method (a fixed-step one raised a
+    # RuntimeError).
+    with pytest.raises(co.SolverError, match="output samples"):
+        co.solve("ball-drop", "game-euler", t_end=1e9, dt=1.0)
 
 
 def test_scene_parameters_outside_their_range_raise_value_error():
