@@ -53,7 +53,8 @@ OdeSystem free_ode(const Dynamics& model) {
 // Advances to t_end by outputs every `sample` seconds, as a run does (drive()): a failure is
 // reported at a time the integrator reached, ARKODE's at the last output it returned.
 void advance_by_samples(Integrator& integrator, double t_end, double sample) {
-  for (long k = 1; k * sample <= t_end; ++k) integrator.advance(static_cast<double>(k) * sample);
+  for (long k = 1; static_cast<double>(k) * sample <= t_end; ++k)
+    integrator.advance(static_cast<double>(k) * sample);
 }
 
 double final_error(const std::string& method, double dt, double rtol, OdeSystem sys, const Vector& y0,

@@ -268,7 +268,7 @@ TEST(RunBounds, SamplesBeyondTheRunLimitAreAWorkLimitResultForEveryMethod) {
 // 'succeeded' with an infinite energy at every sample (the CLI refused it; Python did not).
 TEST(RunBounds, ASceneWhoseEnergyIsNotADoubleIsRefused) {
   const BallDrop model({.h0 = 1e308});
-  for (const std::string& name : {"penalty", "event-exact", "game-euler"}) {
+  for (const char* name : {"penalty", "event-exact", "game-euler"}) {
     Method method{.name = name, .dt = 1e-3};
     try {
       solve(model, method, {.t_end = 1.0, .sample_dt = 0.1});
