@@ -163,16 +163,15 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
       if (converged) {
         geo.modes_from_state(nc, z, live);
         if (live == modes) break;
-        if (const auto seen = std::find(settled.begin(), settled.end(), live); seen != settled.end()) {
+        if (std::find(settled.begin(), settled.end(), live) != settled.end()) {
           // No solve's modes are its own: a damped contact's force jumps where it engages, and
           // the ball ends apart when pushed, inside when not. Of the step's solutions, the one of
           // least energy: another stores a spring's energy that no force put there (a ball
           // drop's 9.8 J became 9e10 J in one step).
-          for (auto s = settled.begin(); s != settled.end(); ++s) {
-            const Vector& other = solutions[static_cast<std::size_t>(s - settled.begin())];
-            if (scene.energy(other) < scene.energy(z)) {
-              z = other;
-              modes = *s;
+          for (std::size_t s = 0; s < settled.size(); ++s) {
+            if (scene.energy(solutions[s]) < scene.energy(z)) {
+              z = solutions[s];
+              modes = settled[s];
             }
           }
           break;

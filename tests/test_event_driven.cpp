@@ -463,12 +463,13 @@ TEST(EventDriven, APlasticImpulseLeftApproachingByRoundingIsNotStruckAgain) {
 }
 
 // A state beyond the doubles ends a run as non-finite-state, whatever the method checks itself. The
-// exact bounces of a 1.5e308 kg ball (an impulse of 2.7e308 N s at its first impact, at 1 m/s: under
-// g = 1 m/s^2 from 0.5 m, its energy 7.5e307 J a double) and of one thrown at 1e154 m/s without
-// gravity (past 1.8e308 m after 1.8e154 s; the state-growth line, which would end it first, drawn
-// off) reported success with a state of inf: the first ends at its impact, naming the impulse; the
-// second at its first sample that is not finite (solve() looks at every method's samples), keeping
-// only those before it.
+// exact bounces of a 1e308 kg ball (an impulse of 8e308 N s) and of one thrown up at 1e308 m/s once
+// reported success with a state of inf. Their energies are beyond the doubles, which solve() now
+// refuses; the same two failures, with energies that are doubles: a 1.5e308 kg ball at 1 m/s
+// (g = 1 m/s^2 from 0.5 m: 7.5e307 J; its impulse 2.7e308 N s) ends at its impact, naming the
+// impulse; one thrown at 1e154 m/s without gravity (past 1.8e308 m after 1.8e154 s; the
+// state-growth line, which would end it first, drawn off) at its first sample that is not finite
+// (solve() looks at every method's samples), keeping only those before it.
 TEST(EventDriven, AStateBeyondTheDoublesEndsTheRunInsteadOfSucceeding) {
   const Method exact{.name = "event-exact"};
   const RunResult heavy = solve(BallDrop({.m = 1.5e308, .g = 1.0, .h0 = 0.5}), exact, {.t_end = 3.0});

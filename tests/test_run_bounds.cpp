@@ -264,8 +264,9 @@ TEST(RunBounds, SamplesBeyondTheRunLimitAreAWorkLimitResultForEveryMethod) {
   }
 }
 
-// A drop from 1e308 m has the energy m g h0 = 9.8e308 J, beyond the doubles: every method
-// 'succeeded' with an infinite energy at every sample (the CLI refused it; Python did not).
+// A drop from 1e308 m has the energy m g h0 = 9.8e308 J, beyond the doubles: the penalty method
+// 'succeeded' with an infinite energy at every sample (the CLI refused it; Python did not). Every
+// method is refused now, before it runs.
 TEST(RunBounds, ASceneWhoseEnergyIsNotADoubleIsRefused) {
   const BallDrop model({.h0 = 1e308});
   for (const char* name : {"penalty", "event-exact", "game-euler"}) {
