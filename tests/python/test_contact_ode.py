@@ -108,6 +108,10 @@ def test_advisor_meets_its_budget():
         co.advise(m=1e-310, v=5.0, e=0.8, max_penetration=1e-3)
     with pytest.raises(ValueError, match=re.escape("max_penetration: value '-1' is out of range")):
         co.advise(m=1.0, v=5.0, e=0.8, max_penetration=-1.0)
+    # A budget too small to check by simulation (it once came back "simulated" with an error of 0).
+    with pytest.raises(ValueError, match=re.escape("energy_error: value '1e-12' asks for a semi-implicit Euler "
+                                                   "step near")):
+        co.advise(m=1.0, v=5.0, e=0.8, max_penetration=1e-3, energy_error=1e-12)
 
 
 def test_advisor_is_the_contact_advisor_program_with_every_option(tmp_path):

@@ -30,7 +30,8 @@
 //                          relative error over the phases is (wh)^2 / (4 - (wh)^2) = eps at
 //                          h = 2 sqrt(eps / (1 + eps)) / w. Exact for Hooke; for other laws (a
 //                          dashpot breaks the conserved I) the step is checked by a scan over 32
-//                          entry phases and shrunk until it meets the budget.
+//                          entry phases and shrunk until it meets the budget (a dashpot's error
+//                          is of first order in h); a step too small to check is refused.
 #include "contact_ode/models/contact_law.hpp"
 #include "contact_ode/models/engine_conventions.hpp"
 
