@@ -118,6 +118,51 @@ Designed design(const ContactRequest& r) {
 // the contact: four undamped durations end a heavily damped Hunt–Crossley contact half-way (at
 // e = 0.014 it lasts 7.7 times as long; the error read there was the same to four digits, the
 // slow end of such a contact adding little, but it is the error after the contact that is asked).
+// Flores's and Gonthier's rules damp without bound as e -> 0 (chi V ~ 1 / e), and a dashpot near
+// critical damping holds on long: such a contact outlasts the 100 undamped durations its
+// measurement simulates. Its duration over the undamped one depends on e alone (at a fixed chi V or
+// zeta the contact is free of K, m and V: design()), so a bisection of e on a unit contact finds the
+// smallest e measured, and the refusal names it (it was a RuntimeError naming no option).
+[[noreturn]] void refuse_restitution(const ContactRequest& r, const std::string& reason) {
+  ContactRequest unit = r;
+  unit.m = unit.v = 1;
+  unit.max_penetration = 1e-3;
+  unit.duration = unit.radius = unit.young = unit.poisson = std::nullopt;
+  auto ends = [&](double e) {
+    unit.e = e;
+    try {
+      measure_isolated_contact(design(unit).law, unit.m, unit.v);
+      return true;
+    } catch (const ContactDidNotEnd&) {
+      return false;
+    }
+  };
+  double fails = r.e, lasts = 1;  // e = 1 is undamped
+  for (int i = 0; i < 60 && lasts > 1.0005 * fails; ++i) {
+    const double e = std::sqrt(fails * lasts);
+    (ends(e) ? lasts : fails) = e;
+  }
+  const double digit = std::pow(10.0, std::floor(std::log10(lasts)) - 2);
+  const double least = std::ceil(lasts / digit) * digit;  // three digits, rounded up: accepted
+  const std::string rule =
+      hunt_crossley_family(r.law)
+          ? fmt::format(" under the {} rule", to_string(r.rule.value_or(DampingRule::LankaraniNikravesh)))
+          : "";
+  bad("--e", r.e,
+      fmt::format("range [{:.3g}, 1] for {}{}: below it the contact lasts longer than the advisor's check "
+                  "simulates ({})",
+                  least, r.law, rule, reason));
+}
+
+template <class F>
+auto refusing_restitution(const ContactRequest& r, F&& f) {
+  try {
+    return f();
+  } catch (const ContactDidNotEnd& why) {
+    refuse_restitution(r, why.what());
+  }
+}
+
 // A check runs 32 phases of at most this many steps each (about 0.6 s in all): a budget of 1e-18
 // asked for steps of 1e-12 s, which the game loop refused for work, and the refusal's initial
 // state read as an error of 0.
@@ -135,6 +180,8 @@ double game_energy_error(const ContactLaw& law, double m, double V, double durat
     const RunResult r = run_game(
         model, {.dt = dt, .scheme = FixedStepScheme::SemiImplicitEuler, .resolution = GameResolution::Spring},
         {.t_end = t_end, .sample_dt = t_end});
+    // An unstable step's error is unbounded (the step a strong dashpot allows is below the bound's).
+    if (r.status == Status::Diverged || r.status == Status::NonFiniteState) return INFINITY;
     if (!r.ok())
       throw std::runtime_error(fmt::format("the game step's check at dt = {:g} s stopped at t = {:g} s: {}",
                                            dt, r.t_reached, r.message));
@@ -153,26 +200,32 @@ double game_energy_error(const ContactLaw& law, double m, double V, double durat
 // until the game loop refused it for work).
 // A step too small to check in kMaxCheckSteps is refused, naming the budget the check reaches.
 std::pair<double, double> advised_game_step(const ContactLaw& law, const ContactRequest& r, double omega,
-                                            double duration) {
+                                            double stable_dt, double duration) {
   const double budget = r.energy_error, smallest = 4 * duration / (kMaxCheckSteps - 2);
   auto check = [&](double dt) { return game_energy_error(law, r.m, r.v, duration, dt); };
   auto refuse = [&](double wanted, double at_smallest) {
+    // (an error of 1 or more, unstable included, is no budget: the range is (0, 1))
+    const std::string reached =
+        at_smallest < 1
+            ? fmt::format("accepted for this contact down to {:.3g}, the error the check measures",
+                          at_smallest)
+            : fmt::format("no budget below 1 is checked for this contact: the error is {:.3g}", at_smallest);
     throw std::invalid_argument(fmt::format(
         "--energy-error: value '{:g}' asks for a semi-implicit Euler step near {:.3g} s, {:.3g} steps per "
-        "contact, more than the {:g} the advisor simulates to check it; accepted for this contact down to "
-        "{:.3g}, the error the check measures at its smallest step, {:.3g} s",
-        budget, wanted, check_steps(duration, wanted), kMaxCheckSteps, at_smallest, smallest));
+        "contact, more than the {:g} the advisor simulates to check it; {} at its smallest step, {:.3g} s",
+        budget, wanted, check_steps(duration, wanted), kMaxCheckSteps, reached, smallest));
   };
-  // The bound's step, at least the smallest checked: the bound is the worst phase's, which the 32
-  // phases checked may not reach.
-  double dt = std::max(2 * std::sqrt(budget / (1 + budget)) / omega, smallest), error = check(dt),
-         order = 2.0;
+  // The bound's step, within the scheme's stability limit (a strong dashpot's limit is below it:
+  // Gonthier's rule at e = 2e-5 diverged at the bound's step), at least the smallest checked (the
+  // bound is the worst phase's, which the 32 phases checked may not reach).
+  double dt = std::max(std::min(2 * std::sqrt(budget / (1 + budget)) / omega, 0.95 * stable_dt), smallest),
+         error = check(dt), order = 2.0;
   for (int shrink = 0; shrink < 20 && error > budget; ++shrink) {
-    const double wanted = dt * 0.95 * std::pow(budget / error, 1 / order);
+    const double wanted = std::isinf(error) ? dt / 2 : dt * 0.95 * std::pow(budget / error, 1 / order);
     if (dt == smallest) refuse(wanted, error);
     const double dt_before = std::exchange(dt, std::max(wanted, smallest)),
                  error_before = std::exchange(error, check(dt));
-    if (error > 0 && error < error_before)
+    if (error > 0 && error < error_before && std::isfinite(error_before))
       order = std::clamp(std::log(error_before / error) / std::log(dt_before / dt), 1.0, 2.0);
   }
   if (error > budget)
@@ -235,7 +288,7 @@ void validate(const ContactRequest& r) {
     bad("--energy-error", r.energy_error, "range (0, 1)");
   if (!(finite(r.engine_step) && r.engine_step > 0)) bad("--engine-step", r.engine_step, "range (0, inf)");
   if (!(finite(r.g) && r.g > 0)) bad("--g", r.g, "range (0, inf)");
-  const Designed d = design(r);
+  const Designed d = refusing_restitution(r, [&] { return design(r); });
   // Extreme inputs (a mass of 1e-300 kg, a penetration of 1e300 m) give a design double precision
   // cannot hold or simulate: say so in terms of the inputs, before the check's own solver does.
   // (A stiffness that underflowed to 0 has no contact: NaN fails the checks below.)
@@ -272,8 +325,10 @@ ContactAdvice advise(const ContactRequest& r) {
   a.euler_max_dt =
       a.zeta < 1 ? 2 * a.zeta / a.omega : 2 / (a.omega * (a.zeta + std::sqrt(a.zeta * a.zeta - 1)));
   a.symplectic_max_dt = 2 * (std::sqrt(a.zeta * a.zeta + 1) - a.zeta) / a.omega;
-  const SpringContact measured = measure_isolated_contact(d.law, r.m, r.v);
-  std::tie(a.game_dt, a.game_energy_error) = advised_game_step(d.law, r, a.omega, measured.duration);
+  const SpringContact measured =
+      refusing_restitution(r, [&] { return measure_isolated_contact(d.law, r.m, r.v); });
+  std::tie(a.game_dt, a.game_energy_error) =
+      advised_game_step(d.law, r, a.omega, a.symplectic_max_dt, measured.duration);
   a.ode = to_ode(d.k_lin, d.c_lin, r.engine_step);
   a.mujoco = to_mujoco(d.k_lin, d.c_lin, r.m);
   a.mujoco_direct = to_mujoco_direct(d.k_lin, d.c_lin, r.m);

@@ -25,7 +25,7 @@ SpringContact measure_isolated_contact(const ContactLaw& law, double m, double V
       run_penalty(BallDrop({m, 0.0, h0, -V, 1.0, law}), o, {.t_end = t_end, .sample_dt = t_end});
   if (!r.ok()) throw std::runtime_error(fmt::format("contact simulation failed: {}", r.message));
   if (r.contacts.empty() || !r.contacts.front().closed())
-    throw std::runtime_error(
+    throw ContactDidNotEnd(
         fmt::format("the contact did not end within {:g} s, 100 times the undamped contact's {:g} s: the "
                     "law's damping holds the bodies together ({})",
                     t_end, t_contact, describe(law)));

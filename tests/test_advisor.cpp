@@ -289,6 +289,51 @@ TEST(Advisor, AGameStepTooSmallToCheckIsRefusedNamingTheBudgetItReaches) {
   }
 }
 
+// Flores's and Gonthier's rules damp without bound as e -> 0: at e = 1e-6 the contact outlasted the
+// check (a RuntimeError, no option named). The refusal names e and the least e the check sees end,
+// for this law and rule; that e is then not refused (the game step's check may refuse the budget: a
+// contact damped this hard lasts up to 100 undamped durations), and 2 % below it is (its three
+// digits are rounded up from a bisection to 5e-4).
+TEST(Advisor, ARestitutionTooLowForTheRuleIsRefusedNamingTheLeastAccepted) {
+  struct Case {
+    const char* law;
+    DampingRule rule;
+    bool by_duration;
+  };
+  for (const Case c : {Case{"hunt-crossley-linear", DampingRule::Gonthier, true},
+                       Case{"hertz", DampingRule::Flores, false}}) {
+    ContactRequest r;
+    r.law = c.law;
+    r.rule = c.rule;
+    r.e = 1e-6;
+    r.m = 3.0;
+    r.v = 2.0;
+    (c.by_duration ? r.duration : r.max_penetration) = 2e-3;
+    std::string message;
+    try {
+      advise(r);
+    } catch (const std::invalid_argument& refused) {
+      message = refused.what();
+    }
+    const std::string accepted = "--e: value '1e-06' is out of range; accepted range [";
+    ASSERT_EQ(message.rfind(accepted, 0), 0u) << c.law << ": " << message;
+    const double least = std::stod(message.substr(accepted.size()));
+    EXPECT_GT(least, 1e-6) << c.law;
+    EXPECT_LT(least, 0.1) << c.law;
+    auto refusal = [&](double e) {
+      r.e = e;
+      try {
+        advise(r);
+      } catch (const std::invalid_argument& refused) {
+        return std::string(refused.what());
+      }
+      return std::string();
+    };
+    EXPECT_NE(refusal(least).rfind("--e:", 0), 0u) << c.law << ": " << refusal(least);
+    EXPECT_EQ(refusal(0.98 * least).rfind("--e:", 0), 0u) << c.law;
+  }
+}
+
 // The stability limits, on the damped oscillator x'' + 2 zeta w x' + w^2 x = 0 itself: just below
 // each limit the state stays bounded over 10^4 steps, just above it grows without bound.
 TEST(Advisor, StableStepLimitsAreSharp) {

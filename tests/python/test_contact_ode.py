@@ -112,6 +112,9 @@ def test_advisor_meets_its_budget():
     with pytest.raises(ValueError, match=re.escape("energy_error: value '1e-12' asks for a semi-implicit Euler "
                                                    "step near")):
         co.advise(m=1.0, v=5.0, e=0.8, max_penetration=1e-3, energy_error=1e-12)
+    # Gonthier's rule at e = 1e-6 outlasts the check (a RuntimeError naming nothing).
+    with pytest.raises(ValueError, match=re.escape("e: value '1e-06' is out of range; accepted range [")):
+        co.advise(m=1.0, v=1.0, e=1e-6, law="hunt-crossley-linear", rule="gonthier", max_penetration=1e-3)
 
 
 def test_advisor_is_the_contact_advisor_program_with_every_option(tmp_path):

@@ -6,11 +6,18 @@
 #include "contact_ode/analysis/references.hpp"
 #include "contact_ode/models/contact_law.hpp"
 
+#include <stdexcept>
+
 namespace contact {
 
+// A contact that has not ended within 100 times the undamped contact's duration (a dashpot near
+// critical damping, a Hunt–Crossley rule's damping at low restitution).
+struct ContactDidNotEnd : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 // Duration [s], maximum penetration [m] and exit speed [m/s]; the restitution is exit / V.
-// Throws std::runtime_error if the contact does not end within 1000 undamped-Hooke periods' worth
-// of time or the solver fails.
+// Throws ContactDidNotEnd, or std::runtime_error if the solver fails.
 SpringContact measure_isolated_contact(const ContactLaw& law, double m, double V, double rtol = 1e-10);
 
 }  // namespace contact
