@@ -112,12 +112,6 @@ Designed design(const ContactRequest& r) {
           K * std::pow(dmax, n) * chi};  // K chi overflowed for a heavy, slow body
 }
 
-// The semi-implicit game loop on the isolated contact, with the spring: the worst energy drift
-// after the contact (ledger: E0 - E - dissipated) over 32 phases of the step grid against the
-// moment of impact. Each run spans four times the contact's measured duration, so that it is after
-// the contact: four undamped durations end a heavily damped Hunt–Crossley contact half-way (at
-// e = 0.014 it lasts 7.7 times as long; the error read there was the same to four digits, the
-// slow end of such a contact adding little, but it is the error after the contact that is asked).
 // Flores's and Gonthier's rules damp without bound as e -> 0 (chi V ~ 1 / e), and a dashpot near
 // critical damping holds on long: such a contact outlasts the 100 undamped durations its
 // measurement simulates. Its duration over the undamped one depends on e alone (at a fixed chi V or
@@ -170,6 +164,12 @@ constexpr double kMaxCheckSteps = 2e5;
 
 double check_steps(double duration, double dt) { return 2 + 4 * duration / dt; }
 
+// The semi-implicit game loop on the isolated contact, with the spring: the worst energy drift
+// after the contact (ledger: E0 - E - dissipated) over 32 phases of the step grid against the
+// moment of impact. Each run spans four times the contact's measured duration, so that it is after
+// the contact: four undamped durations end a heavily damped Hunt–Crossley contact half-way (at
+// e = 0.014 it lasts 7.7 times as long; the error read there was the same to four digits, the
+// slow end of such a contact adding little, but it is the error after the contact that is asked).
 double game_energy_error(const ContactLaw& law, double m, double V, double duration, double dt) {
   double worst = 0;
   constexpr int kPhases = 32;
