@@ -7,6 +7,7 @@
 #include "contact_ode/models/law_registry.hpp"
 #include "contact_ode/models/mechanical_system.hpp"
 #include "contact_ode/models/scene_registry.hpp"
+#include "refusal.hpp"
 
 #include <gtest/gtest.h>
 
@@ -18,20 +19,6 @@
 #include <set>
 
 using namespace contact;
-
-namespace {
-
-template <class F>
-std::string refusal(F&& f) {
-  try {
-    f();
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "";
-}
-
-}  // namespace
 
 TEST(Registries, NamesAreUniqueAndEveryEntryIsDescribed) {
   for (const auto& names : {method_names(), law_names(), scene_names()}) {
