@@ -163,6 +163,23 @@ void warn_of_ignored_settings(const Method& m, const py::kwargs& options) {
     throw py::error_already_set();
 }
 
+// A bool is a Python int, which pybind11 casts to 1.0 or 0: dt=True ran the game at a 1 s step.
+// Only the on/off settings take one.
+bool is_bool(const py::handle& value) {
+  return py::isinstance<py::bool_>(value) ||
+         py::isinstance(value, py::module_::import("numpy").attr("bool_"));
+}
+
+// A keyword whose value `kind` could not take, named like one out of range.
+[[noreturn]] void refuse_value(const std::string& name, const py::handle& value, Kind kind) {
+  // An int where a number is taken that does not fit the setting's C++ type (max_steps=2**63).
+  const bool too_large = py::isinstance<py::int_>(value) && !py::isinstance<py::bool_>(value) &&
+                         (kind == Kind::Number || kind == Kind::Whole);
+  throw std::invalid_argument(
+      fmt::format("{}: value '{}' {}; accepted: {}", name, py::str(value).cast<std::string>(),
+                  too_large ? "is out of range" : "has the wrong type", kind_text(kind)));
+}
+
 RunResult run(const std::string& scene, const std::string& method, const std::string& law,
               const py::kwargs& options, const py::object& error_type) {
   const SceneEntry& entry = scene_entry(scene);
@@ -185,11 +202,7 @@ RunResult run(const std::string& scene, const std::string& method, const std::st
                       : name == "max_records"                                ? Kind::Whole
                                               : method_settings().at(name).kind;
     try {  // a value of the wrong type is named like one out of range
-      // A bool is a Python int, which pybind11 casts to 1.0 or 0: dt=True ran the game at a 1 s
-      // step. Only the on/off settings take one.
-      const bool is_bool = py::isinstance<py::bool_>(value) ||
-                           py::isinstance(value, py::module_::import("numpy").attr("bool_"));
-      if (is_bool && kind != Kind::Switch) throw py::cast_error();
+      if (is_bool(value) && kind != Kind::Switch) throw py::cast_error();
       if (is_parameter)
         values[name] = value.cast<double>();
       else if (name == "t_end")
@@ -201,12 +214,7 @@ RunResult run(const std::string& scene, const std::string& method, const std::st
       else
         method_settings().at(name).set(m, value);
     } catch (const py::cast_error&) {
-      // An int where a number is taken that does not fit the setting's C++ type (max_steps=2**63).
-      const bool too_large = py::isinstance<py::int_>(value) && !py::isinstance<py::bool_>(value) &&
-                             (kind == Kind::Number || kind == Kind::Whole);
-      throw std::invalid_argument(
-          fmt::format("{}: value '{}' {}; accepted: {}", name, py::str(value).cast<std::string>(),
-                      too_large ? "is out of range" : "has the wrong type", kind_text(kind)));
+      refuse_value(name, value, kind);
     }
   }
   check_integrator(m);
@@ -473,14 +481,36 @@ PYBIND11_MODULE(contact_ode, mod) {
       },
       "The ODE integrators a penalty or event-ode run takes as integrator=, one dict each: name, family,\n"
       "order, adaptive (error-controlled), implicit and description.");
+  // Which methods run a scene can depend on its parameters (a Hunt-Crossley law is linear only at
+  // e = 1, and only a linear law runs under xpbd, mujoco-spring or ode-spring): the scene is made
+  // with the parameters solve() would be given, not only at its defaults.
   mod.def(
       "methods_for",
-      [](const std::string& scene, const std::string& law) {
-        return methods_for(*make_scene(scene, {}, law));
+      [](const std::string& scene, const std::string& law, const py::kwargs& parameters) {
+        const SceneEntry& entry = scene_entry(scene);
+        ParameterValues values;
+        for (const auto& [key, value] : parameters) {
+          const auto name = key.cast<std::string>();
+          if (std::none_of(entry.parameters.begin(), entry.parameters.end(),
+                           [&](const ParameterInfo& p) { return p.name == name; })) {
+            std::vector<std::string> accepted;
+            for (const auto& p : entry.parameters) accepted.push_back(p.name);
+            throw std::invalid_argument(fmt::format("{}: not a parameter of scene '{}'; accepted: {}", name,
+                                                    scene, fmt::join(accepted, ", ")));
+          }
+          try {
+            if (is_bool(value)) throw py::cast_error();
+            values[name] = value.cast<double>();
+          } catch (const py::cast_error&) {
+            refuse_value(name, value, Kind::Number);
+          }
+        }
+        return methods_for(*make_scene(scene, values, law));
       },
       py::arg("scene"), py::arg("law") = "",
-      "The names of the methods that can run `scene` (with contact law `law`; '': its default_law), in\n"
-      "methods() order: what solve(scene, method) accepts.");
+      "The names of the methods that can run `scene` (with contact law `law`; '': its default_law) with\n"
+      "the scene parameters given as keywords (the rest at their defaults), in methods() order: what\n"
+      "solve(scene, method, law, **parameters) accepts.");
 
   // Each closed form says what it computes, in which units, and where it holds: help() showed the
   // signatures alone, and a 0-based loop over the impacts read the first one twice.

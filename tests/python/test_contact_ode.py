@@ -38,6 +38,30 @@ def test_registries_list_every_entry_with_units():
     assert "event-ode" not in co.methods_for("spring-mass")
 
 
+def test_methods_for_answers_at_the_parameters_solve_is_given():
+    """Hunt-Crossley's law is linear only at e = 1, the chain's default, and the linear-only methods
+    (xpbd, mujoco-spring, ode-spring) run it only there: methods_for at e = 0.909 leaves out exactly
+    the methods solve() refuses with those parameters (it listed them from the defaults)."""
+    at_default = co.methods_for("ball-chain", "hunt-crossley-linear")
+    given = co.methods_for("ball-chain", "hunt-crossley-linear", e=0.909)
+    assert {"xpbd", "mujoco-spring", "ode-spring"} <= set(at_default) - set(given)
+    for method in at_default:
+        try:
+            co.solve("ball-chain", method, "hunt-crossley-linear", e=0.909, t_end=1e-3)
+            refused = False
+        except ValueError:
+            refused = True
+        except co.SolverError:  # ran and failed: not refused (ODE's LCP on the touching chain)
+            refused = False
+        assert refused == (method not in given), method
+    with pytest.raises(ValueError, match="^height: not a parameter of scene 'ball-drop'; accepted: m, g, h0"):
+        co.methods_for("ball-drop", height=1.0)
+    with pytest.raises(ValueError, match="^e: value 'True' has the wrong type"):
+        co.methods_for("ball-drop", e=True)
+    with pytest.raises(ValueError, match=re.escape("parameter 'e' = 2 is out of range; accepted range [0, 1]")):
+        co.methods_for("ball-drop", e=2.0)
+
+
 def test_a_scene_names_the_law_it_uses_when_none_is_given():
     """Without a law, the ball drop runs its default_law, Hooke's undamped spring: the penalty
     contact gives back the impact speed (restitution 1 to the solver's tolerance, rtol 1e-8) and
