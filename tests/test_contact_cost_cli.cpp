@@ -52,6 +52,22 @@ TEST_F(ContactCostCli, SoftSpringsGetTheTimeTheirContactTakes) {
   for (auto row : rows) EXPECT_LT(std::stod(row["first_apex_error_m"]), 1e3 * 1e-8) << row["integrator"];
 }
 
+// An undamped spring never holds the ball, but a loose tolerance can: on k = 0.002 N/m (a contact
+// of 138 s) at rtol 5.6e-3, arkode-erk's error leaves the ball below the spring's sag with too little
+// energy to come back. The program read the missing first apex and crashed (SIGSEGV); it now fails
+// saying why, and leaves no output.
+TEST_F(ContactCostCli, AnIntegratorsErrorThatHoldsTheBallFailsTheRunSayingSo) {
+  const Outcome r =
+      run(CONTACT_COST_EXE,
+          "--k-min 0.002047 --k-max 0.002047 --rtol 0.005639 --integrators arkode-erk --out held");
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_NE(r.err.find("arkode-erk at k = 0.002047: no first apex: the integrator's error held the ball"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("tighten --rtol"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "held"));
+}
+
 TEST_F(ContactCostCli, BadInputIsRefused) {
   expect_refused(CONTACT_COST_EXE, {
                                        {"--k-min 1e5 --k-max 1e3", "--k-max", "'1000'", "[k-min, inf)"},
