@@ -98,6 +98,10 @@ const std::map<std::string, Setting>& method_settings() {
           m.integrator.linear_solver = parse_linear_solver(v.cast<std::string>());
         }}},
       {"rest_speed", {Kind::Number, [](Method& m, const py::handle& v) { m.rest_speed = v.cast<double>(); }}},
+      // The bounce height below which an event-driven contact rests (< 0: 100 atol for a numerical
+      // flight, 0 for the exact one): the remedy an 'unresolved' run's message names.
+      {"rest_height",
+       {Kind::Number, [](Method& m, const py::handle& v) { m.rest_height = v.cast<double>(); }}},
       // The event-driven cap on impacts (ZenoLimit names it when a run reaches it).
       {"max_events", {Kind::Whole, [](Method& m, const py::handle& v) { m.max_events = v.cast<long>(); }}},
       {"iterations", {Kind::Whole, [](Method& m, const py::handle& v) { m.iterations = v.cast<int>(); }}},
