@@ -184,6 +184,12 @@ bool is_bool(const py::handle& value) {
                   too_large ? "is out of range" : "has the wrong type", kind_text(kind)));
 }
 
+// Whether `name` is one of the scene's parameters (solve() also takes settings; methods_for not).
+bool is_parameter_of(const SceneEntry& entry, const std::string& name) {
+  return std::any_of(entry.parameters.begin(), entry.parameters.end(),
+                     [&](const ParameterInfo& p) { return p.name == name; });
+}
+
 RunResult run(const std::string& scene, const std::string& method, const std::string& law,
               const py::kwargs& options, const py::object& error_type) {
   const SceneEntry& entry = scene_entry(scene);
@@ -192,8 +198,7 @@ RunResult run(const std::string& scene, const std::string& method, const std::st
   SolveOptions span{.t_end = entry.t_end, .sample_dt = entry.t_end / 200};
   for (const auto& [key, value] : options) {
     const auto name = key.cast<std::string>();
-    const bool is_parameter = std::any_of(entry.parameters.begin(), entry.parameters.end(),
-                                          [&](const ParameterInfo& p) { return p.name == name; });
+    const bool is_parameter = is_parameter_of(entry, name);
     if (!is_parameter && !method_settings().count(name) && name != "t_end" && name != "sample_dt" &&
         name != "max_records") {
       std::string accepted = "t_end, sample_dt, max_records";
@@ -495,8 +500,7 @@ PYBIND11_MODULE(contact_ode, mod) {
         ParameterValues values;
         for (const auto& [key, value] : parameters) {
           const auto name = key.cast<std::string>();
-          if (std::none_of(entry.parameters.begin(), entry.parameters.end(),
-                           [&](const ParameterInfo& p) { return p.name == name; })) {
+          if (!is_parameter_of(entry, name)) {
             std::vector<std::string> accepted;
             for (const auto& p : entry.parameters) accepted.push_back(p.name);
             throw std::invalid_argument(fmt::format("{}: not a parameter of scene '{}'; accepted: {}", name,
