@@ -141,6 +141,44 @@ TEST(RigidScene, QuaternionsStayUnit) {
   EXPECT_LT((L1 - L0).norm(), 1e-7 * L0.norm());
 }
 
+// A tumbling box's energy, angular momentum and Euler's equations at masses across the doubles'
+// range: I_k = m (s_j^2 + s_k^2) / 12 about its body axis k, E = (1/2) sum I_k w_k^2, L = R I w_b and
+// I_1 w_1' = (I_2 - I_3) w_2 w_3 (cyclically), whose ratios of inertias do not depend on m. The
+// world inertia was once the 3x3 closed-form inverse of the world inverse inertia, whose determinant
+// (a product of three entries) overflows past m ~ 1e-100 and underflows past m ~ 1e100 for a box of
+// decimetres: the energy came out NaN with every entry finite (`rigid_scenes --scene off-centre
+// --m 1e-300`). A few roundings of each quantity: 1e-13 of its size.
+TEST(RigidScene, TheEnergyAndEulersEquationsHoldAtEveryMassScale) {
+  const Vec3 sides(0.2, 0.4, 0.6), w(3, 7, -2);
+  for (const double m : {1e-300, 1e-150, 1e-50, 1.0, 1e50, 1e150, 1e300}) {
+    RigidBody box = RigidBody::cuboid("box", m, sides / 2, 1.0);
+    box.orientation = Quat(Eigen::AngleAxisd(0.7, Vec3(1, 2, -1).normalized()));
+    box.angular_velocity = w;
+    const Mat3 R = box.orientation.toRotationMatrix();
+    const Vec3 wb = R.transpose() * w;
+    Vec3 I, wb_dot;
+    for (int k = 0; k < 3; ++k) {
+      const int i = (k + 1) % 3, j = (k + 2) % 3;
+      I[k] = m * (sides[i] * sides[i] + sides[j] * sides[j]) / 12;
+    }
+    for (int k = 0; k < 3; ++k) {
+      const int i = (k + 1) % 3, j = (k + 2) % 3;
+      wb_dot[k] = (I[i] - I[j]) / I[k] * wb[i] * wb[j];
+    }
+    const double E = 0.5 * I.dot(wb.cwiseProduct(wb));
+    EXPECT_NEAR(box.kinetic_energy() / E, 1.0, 1e-13) << "m = " << m;
+    const Vec3 L = R * I.cwiseProduct(wb);
+    // stableNorm: |L|^2 overflows at 1e300 kg.
+    EXPECT_LT((box.angular_momentum(box.position) - L).stableNorm(), 1e-13 * L.stableNorm()) << "m = " << m;
+
+    const RigidScene s("tumble", {box}, Vec3::Zero(), Hooke{1e5});
+    const Vector y = s.initial_state();
+    Vector yd(y.size());
+    s.rhs(0, y, {}, yd);
+    EXPECT_LT((Vec3(yd.segment<3>(10)) - R * wb_dot).norm(), 1e-13 * w.squaredNorm()) << "m = " << m;
+  }
+}
+
 // Penalty -> impulse as k grows, on the head-on pair with e = 0.8: the Kelvin–Voigt spring gives
 // the impulse's exit velocities exactly (no gravity), so the trajectories differ only by where the
 // balls are after the contact, which lasts T_c ~ pi sqrt(m_eff / k): the red ball's position at

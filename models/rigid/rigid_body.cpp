@@ -88,18 +88,25 @@ Mat3 RigidBody::world_inverse_inertia() const {
   return R * inverse_inertia * R.transpose();
 }
 
+// I w by solving I^-1 x = w (LDLT: I^-1 is symmetric positive definite, validate() checks it). The
+// closed-form 3x3 inverse divides by a determinant, a product of three entries, which overflows or
+// underflows for bodies of 1e-100 or 1e100 kg of decimetres, making the energy NaN while every
+// entry was finite; the factorisation's pivots stay the size of the entries.
+Vec3 RigidBody::spin_momentum() const {
+  if (!rotates()) return Vec3::Zero();
+  return world_inverse_inertia().ldlt().solve(angular_velocity);
+}
+
 double RigidBody::kinetic_energy() const {
   double E = inverse_mass > 0 ? 0.5 * velocity.squaredNorm() / inverse_mass : 0.0;
-  if (rotates()) E += 0.5 * angular_velocity.dot(world_inverse_inertia().inverse() * angular_velocity);
-  return E;
+  return E + 0.5 * angular_velocity.dot(spin_momentum());
 }
 
 Vec3 RigidBody::momentum() const { return inverse_mass > 0 ? Vec3(velocity / inverse_mass) : Vec3::Zero(); }
 
 Vec3 RigidBody::angular_momentum(const Vec3& about) const {
   Vec3 L = (position - about).cross(momentum());
-  if (rotates()) L += world_inverse_inertia().inverse() * angular_velocity;
-  return L;
+  return L + spin_momentum();
 }
 
 void RigidBody::validate() const {

@@ -179,9 +179,7 @@ void RigidScene::rhs(double, ConstVectorRef y, const ContactModes& modes, Vector
     const Quat q(s[3], s[4], s[5], s[6]);
     const Quat wq = Quat(0, b.angular_velocity.x(), b.angular_velocity.y(), b.angular_velocity.z()) * q;
     d.segment<4>(3) << 0.5 * wq.w(), 0.5 * wq.x(), 0.5 * wq.y(), 0.5 * wq.z();
-    const Mat3 Iinv = b.world_inverse_inertia();
-    const Vec3 L = Iinv.inverse() * b.angular_velocity;
-    d.segment<3>(10) = Iinv * (torque[i] - b.angular_velocity.cross(L));
+    d.segment<3>(10) = b.world_inverse_inertia() * (torque[i] - b.angular_velocity.cross(b.spin_momentum()));
   }
 }
 

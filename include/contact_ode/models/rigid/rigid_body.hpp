@@ -50,6 +50,8 @@ struct RigidBody {
 
   bool rotates() const;
   Mat3 world_inverse_inertia() const;
+  // I w, the spin's angular momentum (zero for a body that does not turn).
+  Vec3 spin_momentum() const;
   // Velocity of the material point at world offset r from the centre: v + w x r.
   Vec3 point_velocity(const Vec3& r) const { return velocity + angular_velocity.cross(r); }
   double kinetic_energy() const;
