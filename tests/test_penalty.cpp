@@ -339,3 +339,44 @@ TEST(PenaltyHertz, AnOverflowingTrialStepIsRetriedShorter) {
     EXPECT_NEAR(r.contacts[0].t_end, reference.contacts[0].t_end, 1e-8) << method;
   }
 }
+
+// A contact stiffer than the run resolves fails, Status::Unresolved, and one it resolves keeps the
+// energy and its ledger. The undamped ball returns to its energy after every bounce; a switch is
+// taken at 1e-3 atol of overlap and located in time to ~100 u t, and the spring starts from the
+// energy it stores there, so past k ~ 1e20 N/m (contacts of 3e-10 s) that energy is the contact's
+// error: at k = 1e29 the ball once left with 6 times its energy, a 'success'. In the contact's own
+// time, sqrt(m / k), every stiff k is the same problem (only gravity's share, g / (w V), changes),
+// so a resolved run's error in E and in the ledger E + D is the softest run's at that tolerance
+// (measured within 0.2 to 2 times it): each run here either fails so or stays within 10 times
+// it. The switch off, a little past touching, once left the spring's pull there out of D (half k
+// thr^2: 70 times the softest run's ledger error at k = 1e20, rtol 1e-6). No contact of a
+// material's stiffness (k <= 1e16 here) is refused.
+TEST(PenaltyHooke, AContactTooStiffToResolveFailsAndOneResolvedKeepsItsEnergy) {
+  for (const auto& [rtol, atol] : {std::pair{1e-6, 1e-8}, {1e-8, 1e-10}, {1e-10, 1e-12}}) {
+    PenaltyOptions o;
+    o.integrator.rtol = rtol;
+    o.integrator.atol = atol;
+    o.integrator.max_steps = 1000000;
+    double soft_error = NAN, soft_ledger = NAN;
+    for (double k = 1e8; k <= 1e30; k *= 100) {
+      const RunResult r = run_penalty(BallDrop({1.0, 9.81, 1.0, 0.0, 1.0, Hooke{k}}), o, {.t_end = 2.5});
+      const std::string at = fmt::format("k = {:g}, rtol = {:g}", k, rtol);
+      if (r.status == Status::Unresolved) {
+        EXPECT_GT(k, 1e16) << at;
+        EXPECT_NE(r.message.find("too short or too shallow"), std::string::npos) << r.message;
+        continue;
+      }
+      ASSERT_EQ(r.status, Status::Success) << at << ": " << r.message;
+      ASSERT_GE(r.contacts.size(), 3u) << at;
+      const Sample& end = r.samples.back();
+      const double error = std::abs(end.energy - r.energy0);
+      const double ledger = std::abs(end.energy + end.dissipated - r.energy0);
+      if (k == 1e8) {
+        soft_error = error;
+        soft_ledger = ledger;
+      }
+      EXPECT_LE(error, 10 * soft_error) << at;
+      EXPECT_LE(ledger, 10 * soft_ledger) << at;
+    }
+  }
+}

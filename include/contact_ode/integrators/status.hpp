@@ -14,7 +14,8 @@ enum class Status {
   NonFiniteState,      // the state or right-hand side became NaN or infinite
   Diverged,            // the state or energy grew past RunLimits::max_state_growth or max_energy_gain
   ZenoLimit,           // event-driven: more impacts than allowed before reaching rest
-  Unresolved,          // event-driven: an impact below what the flight's tolerance resolves
+  Unresolved,          // an impact below what the flight's tolerance resolves (event-driven), or a
+                       // penalty contact too short or shallow for its located switch
   NoProgress,          // the solver kept returning at the same time without advancing
   WorkLimit,           // the run's bound on steps, samples or records (RunLimits) was reached
   Interrupted,         // a stop was requested (request_stop: a stop signal)

@@ -12,7 +12,11 @@
 //   releases_while_overlapping()  whether the switching function can fall to zero while the
 //                           overlap d is still positive (a clamped law); when not, its sign is
 //                           the overlap's and the overlap's closing needs no root of its own;
-//   stored_energy(d)        elastic energy held in the spring [J];
+//   stored_energy(d)        elastic energy held in the spring [J], the potential of its force also
+//                           for d < 0: a located switch turns a spring off a little past touching
+//                           (contact_threshold), where its force has pulled; a spring counted as
+//                           holding nothing there left that work out of the energy ledger, half k
+//                           times the threshold squared per contact;
 //   dissipated_power(d, dd) power the law's damping removes while it pushes [W] (energy ledger).
 #include <algorithm>
 #include <array>
@@ -33,7 +37,7 @@ struct Hooke {
   double dforce_drate(double, double) const { return 0.0; }
   double switching(double d, double) const { return d; }
   bool releases_while_overlapping() const { return false; }
-  double stored_energy(double d) const { return d > 0 ? 0.5 * k * d * d : 0.0; }
+  double stored_energy(double d) const { return 0.5 * k * d * d; }
   double dissipated_power(double, double) const { return 0.0; }
 };
 
@@ -55,7 +59,7 @@ struct KelvinVoigt {
   // condition k d + c dd > 0 is written as d + (c/k) dd > 0 so that both are lengths.
   double switching(double d, double dd) const { return no_pull ? std::min(d, d + (c / k) * dd) : d; }
   bool releases_while_overlapping() const { return no_pull; }
-  double stored_energy(double d) const { return d > 0 ? 0.5 * k * d * d : 0.0; }
+  double stored_energy(double d) const { return 0.5 * k * d * d; }
   // Power the dashpot takes out while the law is on [W]: c delta_dot^2. (Unclamped, the dashpot
   // also acts at small negative delta near the end; the ledger counts it where the law is on.)
   double dissipated_power(double, double dd) const { return c * dd * dd; }
@@ -81,7 +85,7 @@ struct HuntCrossley {
   // scaled by 1 mm only to read as a length (a root's location does not depend on the scale).
   double switching(double d, double dd) const { return std::min(d, 1e-3 * (1.0 + chi * dd)); }
   bool releases_while_overlapping() const { return chi != 0.0; }
-  double stored_energy(double d) const { return d > 0 ? k * std::pow(d, n + 1.0) / (n + 1.0) : 0.0; }
+  double stored_energy(double d) const { return k * std::pow(std::abs(d), n + 1.0) / (n + 1.0); }
   double dissipated_power(double d, double dd) const { return d > 0 ? k * pow_n(d) * (chi * dd) * dd : 0.0; }
 
  private:
