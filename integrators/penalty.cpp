@@ -27,9 +27,9 @@ namespace {
 // at the contact's deepest it is the switch's share of the contact's error: above 1000 rtol (BDF's
 // own energy error per contact measures 10 to 100 rtol at rtol 1e-6 and 1e-8, about 1000 at 1e-10,
 // so the switch's would match or pass it) or half the contact's energy whatever the tolerance, the
-// contact is not resolved and the run fails, Status::Unresolved. Only where a tolerance controls the error (an
-// adaptive integrator), and only for contacts that begin at a located switch (not those engaged at
-// the start, whose overlap is the scene's).
+// contact is not resolved and the run fails, Status::Unresolved. Only where a tolerance controls
+// the error (an adaptive integrator), and only for contacts that begin at a located switch (not
+// those engaged at the start, whose overlap is the scene's).
 class SwitchResolution {
  public:
   SwitchResolution(std::size_t contacts, const PenaltyOptions& opt)
