@@ -350,7 +350,10 @@ TEST(PenaltyHertz, AnOverflowingTrialStepIsRetriedShorter) {
 // (measured within 0.2 to 2 times it): each run here either fails so or stays within 10 times
 // it. The switch off, a little past touching, once left the spring's pull there out of D (half k
 // thr^2: 70 times the softest run's ledger error at k = 1e20, rtol 1e-6). No contact of a
-// material's stiffness (k <= 1e16 here) is refused.
+// material's stiffness (k <= 1e16 here) is refused. exact-linear, exact to rounding between
+// switches, is held to the default rtol's bound, 1e-5 of a contact's energy: its ledger closes to
+// rounding and its energy within that bound per contact (it let the ball at k = 1e29 leave with 28
+// times its energy).
 TEST(PenaltyHooke, AContactTooStiffToResolveFailsAndOneResolvedKeepsItsEnergy) {
   for (const auto& [rtol, atol] : {std::pair{1e-6, 1e-8}, {1e-8, 1e-10}, {1e-10, 1e-12}}) {
     PenaltyOptions o;
@@ -378,5 +381,25 @@ TEST(PenaltyHooke, AContactTooStiffToResolveFailsAndOneResolvedKeepsItsEnergy) {
       EXPECT_LE(error, 10 * soft_error) << at;
       EXPECT_LE(ledger, 10 * soft_ledger) << at;
     }
+  }
+}
+
+TEST(PenaltyExactLinear, AContactTooStiffToResolveFailsAndOneResolvedKeepsItsEnergy) {
+  PenaltyOptions o;
+  o.integrator.method = "exact-linear";
+  const double bound = 1000 * o.integrator.rtol;
+  for (double k = 1e8; k <= 1e30; k *= 100) {
+    const RunResult r = run_penalty(BallDrop({1.0, 9.81, 1.0, 0.0, 1.0, Hooke{k}}), o, {.t_end = 2.5});
+    const std::string at = fmt::format("k = {:g}", k);
+    if (r.status == Status::Unresolved) {
+      EXPECT_GT(k, 1e16) << at;
+      continue;
+    }
+    ASSERT_EQ(r.status, Status::Success) << at << ": " << r.message;
+    ASSERT_GE(r.contacts.size(), 3u) << at;
+    const Sample& end = r.samples.back();
+    const double contacts = static_cast<double>(r.contacts.size());
+    EXPECT_LT(std::abs(end.energy - r.energy0), contacts * bound * r.energy0) << at;
+    EXPECT_LT(std::abs(end.energy + end.dissipated - r.energy0), 1e-12 * r.energy0) << at;
   }
 }
