@@ -58,15 +58,14 @@ class SwitchResolution {
     if (!checked_ || std::isnan(on) || !(on > bound_ * peak_[i]) || !(on > visible_)) return;
     throw SolverFailure(
         Status::Unresolved, t,
-        fmt::format(
-            "contact {} was switched on {:.3g} m into its overlap, its spring storing {:.3g} J there "
-            "against {:.3g} J at the contact's deepest ({:.2g} of it, above {:.2g}: 1000 rtol, the "
-            "default's for a method without error control, at most 1/2): the contact is too short or too "
-            "shallow for the run to resolve. A switch is "
-            "taken at 1e-3 atol = {:.3g} m of overlap (a tighter atol lowers it) and located in time "
-            "to about 100 u |t| = {:.3g} s (no tolerance shortens that; a softer contact lasts longer)",
-            i, overlap_[i], on, peak_[i], on / peak_[i], bound_, threshold_,
-            100 * std::numeric_limits<double>::epsilon() * std::abs(t)));
+        fmt::format("contact {} was switched on {:.3g} m into its overlap, its spring storing {:.3g} J there "
+                    "against {:.3g} J at the contact's deepest ({:.2g} of it, above {:.2g}: 1000 rtol, the "
+                    "default's for a method without error control, at most 1/2): the contact is too short "
+                    "or too shallow for the run to resolve. A switch is taken at 1e-3 atol = {:.3g} m of "
+                    "overlap (a tighter atol lowers it) and located in time to about 100 u |t| = {:.3g} s "
+                    "(no tolerance shortens that; a softer contact lasts longer)",
+                    i, overlap_[i], on, peak_[i], on / peak_[i], bound_, threshold_,
+                    100 * std::numeric_limits<double>::epsilon() * std::abs(t)));
   }
 
  private:
