@@ -157,6 +157,15 @@ RunResult solve(const Dynamics& scene, const Method& method, const SolveOptions&
     throw std::invalid_argument(
         fmt::format("--dt: value '{}' is out of range; accepted range (0, inf)", method.dt));
   check_method_settings(method);
+  // exact-linear integrates y' = A y + b with the scene's Jacobian as A; a scene without one (the
+  // rigid scenes) was a run that failed at t = 0 as 'solver-error', naming no setting.
+  const auto& uses = info.settings;
+  if (method.integrator.method == "exact-linear" && !scene.has_jacobian() &&
+      std::find(uses.begin(), uses.end(), "integrator") != uses.end())
+    throw std::invalid_argument(fmt::format(
+        "--integrator: value 'exact-linear' needs the scene's Jacobian (the A of y' = A y + b), and scene "
+        "'{}' has none; accepted for it: the other integrators",
+        scene.name()));
   // Every energy a run reports is a double: a scene whose initial energy is not (a drop from 1e308 m,
   // m g h0 overflowed) 'succeeded' with an infinite energy at every sample.
   if (const double e0 = scene.energy(scene.initial_state()); !std::isfinite(e0))
