@@ -101,14 +101,18 @@ void check_method_settings(const Method& m) {
 // the game loops). A run whose lower bound passes the limit is refused before it starts: a chain of 1e8
 // balls, or 1e5 balls sampled every 10 us for 0.1 s (16 GB), filled the machine, which ends in the
 // kernel's OOM killer rather than an error.
+// Whether the method runs one of the ODE integrators (its `integrator` setting): penalty, event-ode.
+bool integrates(const MethodInfo& info) {
+  return std::ranges::find(info.settings, "integrator") != info.settings.end();
+}
+
 void refuse_what_cannot_fit(const Dynamics& scene, const MethodInfo& info, const Method& method,
                             const SolveOptions& options) {
   const double entries = static_cast<double>(scene.state_size());
   double samples = options.t_end / options.sample_dt;
   if (info.fixed_step) samples = std::min(samples, steps_to_cover(options.t_end, method.dt));
   samples = std::min(samples + 1, static_cast<double>(options.limits.max_samples));
-  const bool integrates = std::ranges::find(info.settings, "integrator") != info.settings.end();
-  const double vectors = integrates ? 16 : 8;
+  const double vectors = integrates(info) ? 16 : 8;
   const double dense = info.dense_state_matrix ? entries : 0.0;  // a dense n x n matrix: n more vectors
   const double bytes = 8 * entries * (vectors + dense + samples);
   if (bytes <= options.limits.max_memory_bytes) return;
@@ -159,9 +163,7 @@ RunResult solve(const Dynamics& scene, const Method& method, const SolveOptions&
   check_method_settings(method);
   // exact-linear integrates y' = A y + b with the scene's Jacobian as A; a scene without one (the
   // rigid scenes) was a run that failed at t = 0 as 'solver-error', naming no setting.
-  const auto& uses = info.settings;
-  if (method.integrator.method == "exact-linear" && !scene.has_jacobian() &&
-      std::find(uses.begin(), uses.end(), "integrator") != uses.end())
+  if (integrates(info) && method.integrator.method == "exact-linear" && !scene.has_jacobian())
     throw std::invalid_argument(fmt::format(
         "--integrator: value 'exact-linear' needs the scene's Jacobian (the A of y' = A y + b), and scene "
         "'{}' has none; accepted for it: the other integrators",

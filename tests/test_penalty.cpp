@@ -350,10 +350,7 @@ TEST(PenaltyHertz, AnOverflowingTrialStepIsRetriedShorter) {
 // (measured within 0.2 to 2 times it): each run here either fails so or stays within 10 times
 // it. The switch off, a little past touching, once left the spring's pull there out of D (half k
 // thr^2: 70 times the softest run's ledger error at k = 1e20, rtol 1e-6). No contact of a
-// material's stiffness (k <= 1e16 here) is refused. exact-linear, exact to rounding between
-// switches, is held to the default rtol's bound, 1e-5 of a contact's energy: its ledger closes to
-// rounding and its energy within that bound per contact (it let the ball at k = 1e29 leave with 28
-// times its energy).
+// material's stiffness (k <= 1e16 here) is refused.
 TEST(PenaltyHooke, AContactTooStiffToResolveFailsAndOneResolvedKeepsItsEnergy) {
   for (const auto& [rtol, atol] : {std::pair{1e-6, 1e-8}, {1e-8, 1e-10}, {1e-10, 1e-12}}) {
     PenaltyOptions o;
@@ -374,7 +371,7 @@ TEST(PenaltyHooke, AContactTooStiffToResolveFailsAndOneResolvedKeepsItsEnergy) {
       const Sample& end = r.samples.back();
       const double error = std::abs(end.energy - r.energy0);
       const double ledger = std::abs(end.energy + end.dissipated - r.energy0);
-      if (k == 1e8) {
+      if (std::isnan(soft_error)) {  // the softest run, k = 1e8 (never refused, as asserted above)
         soft_error = error;
         soft_ledger = ledger;
       }
@@ -384,6 +381,11 @@ TEST(PenaltyHooke, AContactTooStiffToResolveFailsAndOneResolvedKeepsItsEnergy) {
   }
 }
 
+// The same drop under exact-linear, exact to rounding between switches: it is held to the default
+// rtol's bound, 1e-5 of a contact's energy, so a resolved run's energy is within that bound per
+// contact, and its ledger closes to rounding, 1e-12 (measured 5e-16 to 5e-14: the switches' energy is
+// booked exactly). It let the ball at k = 1e29 leave with 28 times its energy, and at 1e24 lose
+// 2.3e-3 of it, both 'success'.
 TEST(PenaltyExactLinear, AContactTooStiffToResolveFailsAndOneResolvedKeepsItsEnergy) {
   PenaltyOptions o;
   o.integrator.method = "exact-linear";
