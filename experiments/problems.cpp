@@ -191,11 +191,23 @@ double damped_period(const BallDropParams& p) {
   return 2 * std::numbers::pi / std::sqrt(law.k / p.m - std::pow(law.c / (2 * p.m), 2));
 }
 
-std::string first_bounce(const RunResult& r, const BallDropParams& p, const std::string& what) {
+std::string first_bounce(const RunResult& r, const BallDropParams& p, const std::string& what,
+                         std::string_view remedy) {
   const double t_end = r.samples.empty() ? r.t_reached : r.samples.back().t;
   if (!r.contacts.empty() && r.contacts.front().closed() && !r.apexes.empty()) return "bounced";
-  if (r.contacts.size() == 1 && held_for_good(r, p)) return "held";
   const double k = linear_law(p.law).k;
+  // A law with no force on the rate gives back all the energy it takes: it cannot hold the ball,
+  // whatever its k, and a run in which it did was held by the integrator's error.
+  if (dforce_drate(p.law, 1.0, 0.0) == 0.0)
+    throw std::runtime_error(fmt::format(
+        "{}: no first apex by t = {:.3g} s: an undamped spring gives back the energy it takes{}, so "
+        "the integrator's error held the ball on it{}",
+        what, t_end,
+        std::isfinite(k) ? fmt::format(" (its contact lasts {:.3g} s)",
+                                       hooke_contact(p.m, k, impact_speed(p.h0, p.v0, p.g), p.g).duration)
+                         : std::string(),
+        remedy));
+  if (r.contacts.size() == 1 && held_for_good(r, p)) return "held";
   throw std::runtime_error(fmt::format(
       "{}: no complete first bounce by t = {:.3g} s{}", what, t_end,
       std::isfinite(k)

@@ -14,6 +14,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace contact {
@@ -105,9 +106,11 @@ bool held_for_good(const RunResult& r, const BallDropParams& p);
 // excursions toward the surface are smaller).
 double damped_period(const BallDropParams& p);
 // How a ball-drop run's first bounce went: "bounced" (its first contact closed and its first apex
-// reached) or "held" (held_for_good, no bounce at all). Anything else throws std::runtime_error
-// saying by when and how deep the spring sags (m g / k).
-std::string first_bounce(const RunResult& r, const BallDropParams& p, const std::string& what);
+// reached) or, under a damped law, "held" (held_for_good, no bounce at all). Anything else throws
+// std::runtime_error saying by when and how deep the spring sags (m g / k), or, under an undamped
+// law (which returns every ball), that the integrator's error held it, followed by `remedy`.
+std::string first_bounce(const RunResult& r, const BallDropParams& p, const std::string& what,
+                         std::string_view remedy = "");
 
 // The scenes the engines are compared on (experiments/engines.cpp), each scored against its
 // exact rigid answer:

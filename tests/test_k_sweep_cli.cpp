@@ -162,6 +162,40 @@ TEST(HeldForGood, TheCertificatesEdgeIsItsForceBound) {
   }
 }
 
+// An undamped spring gives back all it takes: a ball on it in a state that would certify a damped
+// law's hold (at the sag, slower than the edge above) was held by the integrator's error, not by
+// the spring. first_bounce answered "held" for it (contact_cost's own message caught that case
+// alone; a k_sweep row would have said "held"); it now fails saying so, with the caller's remedy.
+// The damped law in the same state is held, and just above the edge is neither, with the hint.
+TEST(FirstBounce, AnUndampedSpringNeverHoldsTheBall) {
+  const auto outcome = [](const contact::ContactLaw& law, double speed_over_edge) -> std::string {
+    const contact::BallDropParams p{1.0, 9.81, 1.0, 0.0, 0.8, law};
+    const contact::LinearLaw kc = contact::linear_law(law);
+    const double s = p.m * p.g / kc.k, edge = kc.k * s / std::sqrt(p.m * kc.k);
+    contact::RunResult r;
+    r.contacts = {
+        {.contact = 0, .t_begin = 0.45, .t_end = NAN, .max_penetration = s, .v_in = -4.4, .v_out = NAN}};
+    contact::Vector y(2);
+    y << -s, -speed_over_edge * edge;
+    r.samples = {{.t = 1.0, .y = y, .energy = 0.0, .dissipated = 0.0}};
+    try {
+      return contact::first_bounce(r, p, "case", "; remedy");
+    } catch (const std::runtime_error& e) {
+      return e.what();
+    }
+  };
+  const contact::ContactLaw kv = contact::make_law("kelvin-voigt", {.k = 6.34, .m = 1.0, .e = 0.8});
+  EXPECT_EQ(outcome(kv, 0.5), "held");
+  EXPECT_NE(outcome(kv, 1.001).find("a soft damped spring can hold the ball"), std::string::npos);
+  // Hooke's law, and Kelvin–Voigt tuned to e = 1 (no dashpot).
+  for (const char* law : {"hooke", "kelvin-voigt"}) {
+    const std::string held = outcome(contact::make_law(law, {.k = 6.34, .m = 1.0, .e = 1.0}), 0.5);
+    EXPECT_NE(held.find("an undamped spring gives back the energy it takes"), std::string::npos) << held;
+    const std::string tail = "the integrator's error held the ball on it; remedy";
+    EXPECT_TRUE(held.ends_with(tail)) << held;
+  }
+}
+
 TEST_F(KSweepCli, BadInputIsRefused) {
   expect_refused(K_SWEEP_EXE, {
                                   {"--k-min 0", "--k-min", "'0'", "(0, inf)"},
