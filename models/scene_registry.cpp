@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace contact {
@@ -47,12 +48,22 @@ void require_bodies_apart(const Dynamics& scene, const std::string& settings) {
   // of rounding a touching pair's gap has and far below an overlap any method would notice.
   const double positions = y0.size() > 0 ? scene.position_mask().select(y0.cwiseAbs(), 0.0).maxCoeff() : 0.0;
   const double touching = 1e-12 * std::max(1.0, positions);
-  for (std::size_t i = 0; i < scene.contact_count(); ++i)
-    if (const double gap = geometry->gap(i, y0); gap < -touching)
+  for (std::size_t i = 0; i < scene.contact_count(); ++i) {
+    const double gap = geometry->gap(i, y0);
+    // A gap that is not finite means sizes the geometry cannot hold: squared distances past 1.8e308
+    // (a wedge of balls of radius 1e300 m) gave gaps of inf, and the game methods ran the striker
+    // through both balls without a contact, answering 'success'.
+    if (!std::isfinite(gap))
+      throw std::invalid_argument(fmt::format(
+          "scene '{}' at {}: contact {} starts with a gap of {} m, which the geometry cannot compute at "
+          "these sizes; accepted: sizes and positions whose squares are finite doubles (below 1e154 m)",
+          scene.name(), settings, i, gap));
+    if (gap < -touching)
       throw std::invalid_argument(fmt::format(
           "scene '{}' at {}: contact {} starts with its bodies {:.3g} m inside each other; bodies must start "
           "apart or touching",
           scene.name(), settings, i, -gap));
+  }
 }
 
 }  // namespace contact
