@@ -105,7 +105,9 @@ RunResult run_penalty(const Dynamics& model, const PenaltyOptions& opt, const So
   // maximum penetration) and, where a clamped law can let go while the bodies overlap, the gap
   // (the overlap closing after the release). Where no law can, the switch is the closing, and a
   // gap root would only stop the integrator once more per contact (a third of the root work of a
-  // long chain).
+  // long chain). The rate's roots in both directions also catch bodies that meet and part within
+  // one step: the search that brackets the rate's turn at their closest approach meets the overlap
+  // and locates the switch first (event_driven.cpp).
   bool releasing = false;
   for (std::size_t i = 0; i < nc; ++i) releasing = releasing || geo.releases_while_overlapping(i);
   const std::size_t per = releasing ? 3 : 2;
@@ -145,6 +147,22 @@ RunResult run_penalty(const Dynamics& model, const PenaltyOptions& opt, const So
   // an overlap: energy the law takes back), since energy() counts only engaged springs.
   double booked = 0.0;  // spring energy booked at switches [J], beside the ledger state
   SwitchResolution resolution(nc, opt, model.energy(y0));
+  // A spring too soft for its bodies lets them overlap until their centres cross: two balls'
+  // normal then turns about, and the spring pushes the cue ball on through the red one (radius
+  // 1e-6 m at k = 1e6 N/m: 'success', the cue leaving at 1.995 m/s of its 2). The gap rate jumps
+  // there from approach to parting, a root of the rate located at the crossing, where the overlap
+  // is the extent to the root's resolution; a smooth deepest point within 1e-3 of it is a contact
+  // whose normal is about to turn, as wrong.
+  const auto require_normal_kept = [&](std::size_t i, double t, ConstVectorRef y) {
+    const double overlap = -geo.gap(i, y), extent = geo.overlap_extent(i);
+    if (overlap < (1 - 1e-3) * extent) return;
+    throw SolverFailure(
+        Status::Unresolved, t,
+        fmt::format("contact {}'s bodies passed through each other: they overlapped by {:.3g} m "
+                    "of the {:.3g} m at which the contact's normal turns about (the centres "
+                    "cross); the spring is too soft to stop them within their size: raise k",
+                    i, overlap, extent));
+  };
   EventHandling drive;
   drive.on_roots = [&](double t, Vector& y_full, const std::vector<int>& roots) {
     const auto y = y_full.head(n);
@@ -153,6 +171,7 @@ RunResult run_penalty(const Dynamics& model, const PenaltyOptions& opt, const So
       const int sw = roots[per * i], rate = roots[per * i + 1], closing = releasing ? roots[per * i + 2] : 0;
       const bool engaged = modes_at(y)[i] == ContactMode::Penalty;
       if (rate > 0 && engaged) {
+        require_normal_kept(i, t, y);
         rec.observe_penetration(i, -geo.gap(i, y));
         resolution.observe(i, geo.elastic_energy(i, y));
         resolution.check(i, t);

@@ -1,6 +1,7 @@
 #include "contact_ode/models/rigid/rigid_contacts.hpp"
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace contact::rigid {
@@ -96,6 +97,17 @@ std::size_t candidate_count(const RigidBody& a, const RigidBody& b) {
   if (is_sphere(a) || is_sphere(b)) return 1;  // against any shape: one closest point
   if ((is_cuboid(a) && is_plane(b)) || (is_plane(a) && is_cuboid(b))) return 8;  // one per vertex
   return 0;                                                                      // not needed
+}
+
+double overlap_extent(const RigidBody& a, const RigidBody& b) {
+  const auto* sa = std::get_if<Sphere>(&a.shape);
+  const auto* sb = std::get_if<Sphere>(&b.shape);
+  const auto* ca = std::get_if<Cuboid>(&a.shape);
+  const auto* cb = std::get_if<Cuboid>(&b.shape);
+  if (sa && sb) return sa->radius + sb->radius;
+  if (sa && cb) return sa->radius + cb->half_extents.minCoeff();
+  if (ca && sb) return sb->radius + ca->half_extents.minCoeff();
+  return std::numeric_limits<double>::infinity();
 }
 
 RigidContact contact_candidate(std::span<const RigidBody> bodies, std::size_t a, std::size_t b,

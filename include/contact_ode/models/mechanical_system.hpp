@@ -19,6 +19,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <string>
 #include <vector>
@@ -87,6 +88,9 @@ class ContactGeometry {
   // Whether contact i's law can let go while the bodies still overlap (see contact_law.hpp);
   // if no contact's can, a penalty run needs no root for the overlap's closing.
   virtual bool releases_while_overlapping(std::size_t) const { return true; }
+  // The overlap at which contact i's normal turns about [m]: two spheres' centres cross at the sum
+  // of their radii. Infinite where it never does (a plane's normal, a signed gap along a line).
+  virtual double overlap_extent(std::size_t) const { return std::numeric_limits<double>::infinity(); }
   // Power contact i's penalty law dissipates while in Penalty mode [W] (the energy ledger).
   virtual double dissipated_power(std::size_t i, ConstVectorRef y) const = 0;
   // Elastic energy contact i's law holds at the present overlap, whether or not it pushes [J].

@@ -28,6 +28,10 @@ struct RigidContact {
 // How many candidates bodies a and b have: 1 for a pair with a sphere, 8 for cuboid-plane, 0 for
 // pairs no scene needs (cuboid-cuboid, plane-plane).
 std::size_t candidate_count(const RigidBody& a, const RigidBody& b);
+// The overlap at which a's and b's contact normal turns about [m]: two spheres' centres cross at
+// ra + rb, a sphere's centre reaches a cuboid's middle at r plus its smallest half extent (or
+// sooner, its nearest face changing); a plane's never does (inf).
+double overlap_extent(const RigidBody& a, const RigidBody& b);
 
 // Candidate k < candidate_count of bodies a and b (indices into `bodies`): what one contact's
 // queries need, without computing the pair's others.

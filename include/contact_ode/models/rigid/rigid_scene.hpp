@@ -62,6 +62,9 @@ class RigidScene final : public MechanicalSystem, public NormalImpulses {
   double gap(std::size_t i, ConstVectorRef y) const override { return -contact(i, y).penetration; }
   double gap_rate(std::size_t i, ConstVectorRef y) const override;
   double switching(std::size_t i, ConstVectorRef y) const override;
+  double overlap_extent(std::size_t i) const override {
+    return rigid::overlap_extent(bodies_[candidates_[i].a], bodies_[candidates_[i].b]);
+  }
   bool releases_while_overlapping(std::size_t i) const override {
     return contact::releases_while_overlapping(candidates_[i].law);
   }
