@@ -12,6 +12,7 @@
 #include "contact_ode/analysis/references.hpp"
 #include "contact_ode/integrators/event_driven.hpp"
 #include "contact_ode/integrators/penalty.hpp"
+#include "contact_ode/models/ball_chain.hpp"
 #include "contact_ode/models/ball_drop.hpp"
 
 #include <fmt/format.h>
@@ -403,5 +404,37 @@ TEST(PenaltyExactLinear, AContactTooStiffToResolveFailsAndOneResolvedKeepsItsEne
     const double contacts = static_cast<double>(r.contacts.size());
     EXPECT_LT(std::abs(end.energy - r.energy0), contacts * bound * r.energy0) << at;
     EXPECT_LT(std::abs(end.energy + end.dissipated - r.energy0), 1e-12 * r.energy0) << at;
+  }
+}
+
+// Two balls of 0.1 kg meeting at 1 m/s under a Kelvin–Voigt law damped to e = 0 (k = 1e6 N/m,
+// m_eff = 0.05 kg): the damping rate c / m_eff = 2 omega = 8944 1/s bounds an explicit step at
+// a few 1e-4 s (the real stability interval of a fourth-order Runge–Kutta is about 2.8 / 8944).
+// Below it the fixed-step ERK run ends as the exact one does: one contact, the balls moving on
+// together at 0.5 m/s each (momentum shared; to rounding, since every step conserves it). Beyond
+// it each step crosses the contact without resolving it, and the contact ends (its overlap
+// closing) with the balls still approaching, which no trajectory does: the gap rises through
+// zero there, so its rate is not negative. Main answered 'success' at dt = 3e-3 s with 35843
+// such 'contacts'.
+TEST(PenaltyFixedStep, AStepBeyondTheContactsStabilityFailsInsteadOfChattering) {
+  const BallChain chain({.n = 2, .e = 0.0, .law = kelvin_voigt_for_restitution(1e6, 0.05, 0.0, false)});
+  PenaltyOptions o;
+  o.integrator.method = "arkode-erk";
+  for (const double dt : {1e-5, 1e-4, 1e-3, 3e-3}) {
+    o.integrator.dt = dt;
+    const RunResult r = run_penalty(chain, o, {.t_end = 0.05, .sample_dt = 0.05});
+    const std::string at = fmt::format("dt = {:g}", dt);
+    if (dt < 3e-4) {
+      ASSERT_EQ(r.status, Status::Success) << at << ": " << r.message;
+      EXPECT_EQ(r.contacts.size(), 1u) << at;
+      EXPECT_NEAR(r.samples.back().y[1], 0.5, 1e-12) << at;
+      EXPECT_NEAR(r.samples.back().y[3], 0.5, 1e-12) << at;
+      continue;
+    }
+    EXPECT_EQ(r.status, Status::Unresolved) << at << ": " << r.message;
+    EXPECT_NE(r.message.find("still approaching"), std::string::npos) << r.message;
+    EXPECT_NE(r.message.find(fmt::format("a fixed step of dt = {:g} s is too long", dt)), std::string::npos)
+        << r.message;
+    EXPECT_NEAR(r.t_reached, 0.01, 2 * dt) << at;  // at the first contact, 1 cm away at 1 m/s
   }
 }

@@ -106,6 +106,10 @@ class RunRecorder {
     open_[i] = last_[i] = static_cast<long>(result_.contacts.size());
     result_.contacts.push_back({i, t, kNaN, 0.0, v_in, kNaN});
   }
+  // The gap rate contact i's open record began with; NaN when none is open.
+  double open_v_in(std::size_t i) const {
+    return open_[i] < 0 ? kNaN : result_.contacts[static_cast<std::size_t>(open_[i])].v_in;
+  }
   void contact_end(std::size_t i, double t, double v_out) {
     if (open_[i] < 0) return;
     auto& c = result_.contacts[static_cast<std::size_t>(open_[i])];
