@@ -5,6 +5,7 @@
 #include "collision_list.hpp"
 #include "contact_ode/integrators/capabilities.hpp"
 #include "contact_ode/integrators/run_recorder.hpp"
+#include "normal_kept.hpp"
 #include "time_stepping.hpp"
 
 #include <fmt/format.h>
@@ -118,6 +119,7 @@ RunResult run_game(const Dynamics& model, const GameOptions& opt, const SolveOpt
           if (!rec.contact_open(i) && !rec.reopen_contact(i, t0))
             rec.contact_begin(i, t0 + crossing(d_prev[i], d) * h, geo.gap_rate(i, y));
           rec.observe_penetration(i, -geo.gap(i, y));
+          if (spring) require_normal_kept(geo, i, t, y, std::max(-geo.gap_rate(i, y), 0.0) * h, opt.dt);
           if (project) map->project(i, y);
           if (const double u = geo.gap_rate(i, y); impulse && u < 0) {
             // What the impulse takes, -J (u- + u+) / 2 (ImpulseMap): the scene's whole energy

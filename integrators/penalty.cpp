@@ -4,6 +4,7 @@
 
 #include "contact_ode/integrators/capabilities.hpp"
 #include "integrator_driver.hpp"
+#include "normal_kept.hpp"
 
 #include <fmt/format.h>
 
@@ -178,22 +179,6 @@ RunResult run_penalty(const Dynamics& model, const PenaltyOptions& opt, const So
   // an overlap: energy the law takes back), since energy() counts only engaged springs.
   double booked = 0.0;  // spring energy booked at switches [J], beside the ledger state
   SwitchResolution resolution(nc, opt, model.energy(y0));
-  // A spring too soft for its bodies lets them overlap until their centres cross: two balls'
-  // normal then turns about, and the spring pushes the cue ball on through the red one (radius
-  // 1e-6 m at k = 1e6 N/m: 'success', the cue leaving at 1.995 m/s of its 2). The gap rate jumps
-  // there from approach to parting, a root of the rate located at the crossing, where the overlap
-  // is the extent to the root's resolution; a smooth deepest point within 1e-3 of it is a contact
-  // whose normal is about to turn, as wrong.
-  const auto require_normal_kept = [&](std::size_t i, double t, ConstVectorRef y) {
-    const double overlap = -geo.gap(i, y), extent = geo.overlap_extent(i);
-    if (overlap < (1 - 1e-3) * extent) return;
-    throw SolverFailure(
-        Status::Unresolved, t,
-        fmt::format("contact {}'s bodies passed through each other: they overlapped by {:.3g} m "
-                    "of the {:.3g} m at which the contact's normal turns about (the centres "
-                    "cross); the spring is too soft to stop them within their size: raise k",
-                    i, overlap, extent));
-  };
   const Mask velocities = !model.position_mask();
   const auto end_contact = [&](std::size_t i, double t, ConstVectorRef y) {
     const double rate = geo.gap_rate(i, y);
@@ -209,7 +194,11 @@ RunResult run_penalty(const Dynamics& model, const PenaltyOptions& opt, const So
       const int sw = roots[per * i], rate = roots[per * i + 1], closing = releasing ? roots[per * i + 2] : 0;
       const bool engaged = modes_at(y)[i] == ContactMode::Penalty;
       if (rate > 0 && engaged) {
-        require_normal_kept(i, t, y);
+        // A spring too soft for its bodies (radius 1e-6 m at k = 1e6 N/m: 'success', the cue
+        // leaving at 1.995 m/s of its 2): the gap rate jumps from approach to parting where the
+        // centres cross, a root of the rate located there, at the extent to the root's resolution;
+        // a smooth deepest point within 1e-3 of it is a contact whose normal is about to turn.
+        require_normal_kept(geo, i, t, y, 0.0, 0.0);
         rec.observe_penetration(i, -geo.gap(i, y));
         resolution.observe(i, geo.elastic_energy(i, y));
         resolution.check(i, t);

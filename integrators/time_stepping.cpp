@@ -1,6 +1,7 @@
 #include "time_stepping.hpp"
 
 #include "collision_list.hpp"
+#include "normal_kept.hpp"
 
 #include "contact_ode/integrators/capabilities.hpp"
 #include "contact_ode/integrators/status.hpp"
@@ -152,6 +153,7 @@ RunResult run_time_stepping(const Dynamics& model, const std::string& method, do
         }
         if (touching && !rec.contact_open(i)) rec.contact_begin(i, t0, r0);
         if (touching) rec.observe_penetration(i, -geo.gap(i, y));
+        if (touching && springs) require_normal_kept(geo, i, t, y, std::max(-r1, 0.0) * h, dt);
         if (touching && listed) listed->detected(i);
       }
       if (listed) listed->end_step(n, t, rec);
