@@ -17,6 +17,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <cmath>
 #include <iostream>
 
 using namespace contact;
@@ -73,7 +74,12 @@ int program(int argc, char** argv) {
         fmt::format("semi-implicit Euler step for an energy error of {:g} per contact", r.energy_error));
     row("ode_erp", a.ode.erp, "", fmt::format("ODE/Bullet at step {:g} s", r.engine_step));
     row("ode_cfm", a.ode.cfm, "m/(N s)", fmt::format("ODE/Bullet at step {:g} s", r.engine_step));
-    row("mujoco_timeconst", a.mujoco.timeconst, "s", "solref[0], impedance 1");
+    // solref = (timeconst, dampratio) puts k = 1 / (timeconst dampratio)^2 and b = 2 / timeconst: an
+    // undamped contact is their limit, timeconst -> inf at dampratio 0, which no model can be given.
+    row("mujoco_timeconst", a.mujoco.timeconst, "s",
+        std::isinf(a.mujoco.timeconst)
+            ? "solref[0]: none for an undamped contact; use solref = (-stiffness, 0)"
+            : "solref[0], impedance 1");
     row("mujoco_dampratio", a.mujoco.dampratio, "", "solref[1]");
     row("mujoco_stiffness", a.mujoco_direct.stiffness, "1/s^2", "solref = (-stiffness, -damping)");
     row("mujoco_damping", a.mujoco_direct.damping, "1/s", "");

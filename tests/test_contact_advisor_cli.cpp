@@ -45,6 +45,23 @@ TEST_F(ContactAdvisorCli, WritesTheAdviceTable) {
   EXPECT_TRUE(fs::exists(dir_ / "advice" / "meta.json"));
 }
 
+// MuJoCo's solref = (timeconst, dampratio) sets b = 2 / timeconst and k = 1 / (timeconst dampratio)^2:
+// an undamped contact (Hooke, e = 1) is timeconst = inf at dampratio 0, which the table gave as
+// 'inf' with the note for a damped one. Its note now points to the direct form, whose stiffness is
+// k / m (1e6 1/s^2 for a 1 mm penetration at 1 m/s: k = m v^2 / x^2).
+TEST_F(ContactAdvisorCli, AnUndampedContactsSolrefIsTheDirectForm) {
+  const Outcome r =
+      run(CONTACT_ADVISOR_EXE, "--m 1 --v 1 --e 1 --law hooke --max-penetration 1e-3 --out advice");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string csv = slurp(dir_ / "advice" / "advice.csv");
+  EXPECT_NE(
+      csv.find(
+          "mujoco_timeconst,inf,s,\"solref[0]: none for an undamped contact; use solref = (-stiffness, 0)\""),
+      std::string::npos)
+      << csv;
+  EXPECT_NE(csv.find("mujoco_stiffness,1000000"), std::string::npos) << csv;
+}
+
 // The README's worked question is the program's answer, as printed.
 TEST_F(ContactAdvisorCli, TheReadmeSampleIsWhatItPrints) {
   const Outcome r = run(CONTACT_ADVISOR_EXE, "--m 1 --v 5 --e 0.8 --max-penetration 1e-3");
