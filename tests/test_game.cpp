@@ -269,6 +269,24 @@ TEST(GameProjection, ProjectionAndImpulsesCountNoSpringEnergy) {
     }
 }
 
+// Projection alone never changes a velocity: the dropped ball it holds on the floor keeps falling
+// in its state, v = -g t exactly under semi-implicit Euler (v += g dt each step), at y = 0. Its
+// energy m g^2 t^2 / 2 grows without bound and passes E0 + 1e6 |E0| (E0 = m g h0) at
+// t* = sqrt(2 (1e6 + 1) h0 / g) = 451.5 s, where the run ends 'diverged' at the first sample past
+// it: the README's 'projection's is not bounded'.
+TEST(GameProjection, AHeldBallsSpeedGrowsUntilTheRunDiverges) {
+  const auto drop = make_scene("ball-drop", {{"h0", 1.0}, {"g", 9.81}, {"m", 1.0}});
+  const double t_star = std::sqrt(2 * (1e6 + 1) * 1.0 / 9.81);
+  const RunResult r =
+      solve(*drop, {.name = "game-symplectic-projection", .dt = 1e-3}, {.t_end = 1000, .sample_dt = 0.5});
+  ASSERT_EQ(r.status, Status::Diverged) << r.message;
+  EXPECT_GE(r.t_reached, t_star);
+  EXPECT_LE(r.t_reached, t_star + 0.5 + 1e-9);
+  const Vector& y = r.samples.back().y;  // the last sample before the line
+  EXPECT_EQ(y[0], 0.0);
+  EXPECT_NEAR(y[1], -9.81 * r.samples.back().t, 1e-9 * 9.81 * r.samples.back().t);
+}
+
 // Projection by inverse-mass share undoes a normal displacement: pushed together along contact i
 // (body a by w_a d, body b by w_b d, apply_normal_displacement) from touching, the bodies are moved
 // back by exactly as much, so the state returns to the touching one (to rounding of the

@@ -44,9 +44,10 @@ struct RunLimits {
   // than this many times |E0| (or 1 J) above E0 also ends the run as Status::Diverged. Energy is
   // quadratic in the speeds, so this is a 1e3-fold gain in the state's energy norm: an unstable
   // run that saturates (MuJoCo's soft springs on a 16-ball column at 1 ms: 5e8 E0, its top ball
-  // 238 m up) or grows slowly never reaches the state line above and 'succeeded'. The bounded
-  // gains the study measures stay below it: projection's 392 E0 on a resting ball over 2 s,
-  // explicit Euler's 5e4 E0 over the ball drop's coarsest steps.
+  // 238 m up) or grows slowly never reaches the state line above and 'succeeded'. The gains the
+  // study measures over its spans stay below it: projection's 392 E0 on a resting ball over 2 s
+  // (unbounded in time: the ball it holds keeps its speed g t), explicit Euler's 5e4 E0 over the
+  // ball drop's coarsest steps.
   double max_energy_gain = 1e6;
 };
 
