@@ -157,3 +157,23 @@ TEST(SignChange, AWrongModelCannotBreakTheBracket) {
     EXPECT_LE(b.evals, 60) << answer;  // bisection's 46 plus its safeguard's slack
   }
 }
+
+// A root function that sits exactly at its old sign's value over a stretch before its root: a gap
+// computed from positions far larger than it (|x_a - x_b| - 2r at 200 m) rounds to exactly zero,
+// plus the touch offset of 1e-150, for ~3e-14 s around the root. The secant on two equal values
+// landed on the plateau's start and then crept on by tol/2 an evaluation, 2300 of them for the
+// plateau, and the narrowing gave up at 200 returning the bracket's far end: the event-driven
+// wedge took its impacts at the step's end, 45 us late and 3.9e-5 m deep. A nudge that does not
+// cross is doubled: a plateau of 1e-9 is crossed in log2(1e-9 / tol) = 16 nudges, and the root
+// found to tol in no more evaluations than bisection's 46 (20 here).
+TEST(SignChange, APlateauAtTheOldSignIsCrossedNotCrept) {
+  const double root = 0.6, plateau = 1e-9, tol = 100 * kEps;
+  const auto g = [&](double t) {
+    return t < root - plateau ? (root - plateau - t) : t < root ? 1e-150 : root - t;
+  };
+  const auto b = narrow_sign_change(g, bracket(g, 0, 1), tol);
+  expect_valid(b, g, 1);
+  EXPECT_LE(b.hi - b.lo, tol);
+  EXPECT_NEAR(b.hi, root, tol);
+  EXPECT_LE(b.evals, 46);
+}
