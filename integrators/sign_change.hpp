@@ -2,8 +2,9 @@
 // Narrowing a sign change of a scalar function g on [lo, hi] to a bracket of width tol: the root
 // location used by SteppingIntegrator. Secant steps on the two latest points (superlinear near a
 // simple root), kept inside the bracket and at least tol/2 from its ends, so that once a point
-// lands within tol/2 of the root the next one straddles it; bisection whenever two evaluations did
-// not halve the bracket. An optional first guess (e.g. from an interpolant that costs nothing to
+// lands within tol/2 of the root the next one straddles it (doubling that step while g stays
+// exactly at its value, a plateau at the old sign); bisection whenever two evaluations did not
+// halve the bracket. An optional first guess (e.g. from an interpolant that costs nothing to
 // evaluate) saves the first, coarse steps, and an estimate of g' there (from the same interpolant)
 // turns the first step into a Newton step instead of a secant through a far end of the bracket.
 // An optional `refine`, called after each evaluation with the bracket and the point just evaluated,
