@@ -47,6 +47,7 @@ class PoisonedBall final : public MechanicalSystem {
   }
   double energy(ConstVectorRef y) const override { return ball_.energy(y); }
   double energy_without_springs(ConstVectorRef y) const override { return ball_.energy_without_springs(y); }
+  double mean_mass() const override { return ball_.mean_mass(); }
   std::size_t contact_count() const override { return 1; }
   double gap(std::size_t i, ConstVectorRef y) const override { return ball_.gap(i, y); }
   double gap_rate(std::size_t i, ConstVectorRef y) const override { return ball_.gap_rate(i, y); }

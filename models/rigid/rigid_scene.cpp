@@ -226,6 +226,14 @@ double RigidScene::energy_without_springs(ConstVectorRef y) const {
   return E;
 }
 
+double RigidScene::mean_mass() const {
+  double sum = 0;
+  int moving = 0;
+  for (const auto& b : bodies_)
+    if (b.inverse_mass > 0) sum += 1.0 / b.inverse_mass, ++moving;
+  return moving ? sum / moving : 1.0;  // nothing moves: nothing to scale, kilograms do
+}
+
 double RigidScene::elastic_energy(std::size_t i, ConstVectorRef y) const {
   return stored_energy(candidates_[i].law, local(i, y).contact.penetration);
 }

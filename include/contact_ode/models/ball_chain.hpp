@@ -52,6 +52,7 @@ class BallChain final : public OneLawSystem,
   Bandwidth jacobian_bandwidth() const override { return {3, 2}; }
   double energy(ConstVectorRef y) const override;
   double energy_without_springs(ConstVectorRef y) const override;
+  double mean_mass() const override { return p_.m; }
 
   std::size_t contact_count() const override { return p_.n - 1; }
   double gap(std::size_t i, ConstVectorRef y) const override { return p_.spacing + (u(y, i + 1) - u(y, i)); }

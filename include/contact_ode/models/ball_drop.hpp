@@ -48,6 +48,7 @@ class BallDrop final : public MechanicalSystem,
   void jacobian(double t, ConstVectorRef y, const ContactModes& modes, SparseMatrix& J) const override;
   double energy(ConstVectorRef y) const override;
   double energy_without_springs(ConstVectorRef y) const override;
+  double mean_mass() const override { return p_.m; }
 
   std::size_t contact_count() const override { return 1; }
   double gap(std::size_t, ConstVectorRef y) const override { return y[0]; }

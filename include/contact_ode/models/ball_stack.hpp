@@ -39,6 +39,7 @@ class BallStack final : public OneLawSystem, public NormalImpulses, public Spher
   Bandwidth jacobian_bandwidth() const override { return {3, 3}; }
   double energy(ConstVectorRef y) const override;
   double energy_without_springs(ConstVectorRef y) const override;
+  double mean_mass() const override { return p_.m; }
 
   double gap(std::size_t i, ConstVectorRef y) const override { return u(y, i) - (i ? u(y, i - 1) : 0.0); }
   double gap_rate(std::size_t i, ConstVectorRef y) const override {

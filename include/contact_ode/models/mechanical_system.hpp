@@ -70,6 +70,10 @@ class Dynamics {
   // springs' 1e268 J would swallow the motion's 0.05 J in the subtraction. A scene without contact
   // springs has nothing to leave out.
   virtual double energy_without_springs(ConstVectorRef y) const { return energy(y); }
+  // The mean mass of the moving bodies [kg]: the unit in which a method keeps an energy it
+  // integrates (the penalty's ledger, per kilogram), so that its error test, like the state's,
+  // does not depend on the unit of mass.
+  virtual double mean_mass() const = 0;
 
   ContactModes all_modes(ContactMode m) const { return ContactModes(contact_count(), m); }
 };

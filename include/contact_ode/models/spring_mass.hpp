@@ -28,6 +28,7 @@ class SpringMass final : public Dynamics {
     J.resize(2, 2);
     J.setFromTriplets(std::begin(entries), std::end(entries));
   }
+  double mean_mass() const override { return m_; }
   double energy(ConstVectorRef y) const override { return 0.5 * (m_ * y[1] * y[1] + k_ * y[0] * y[0]); }
 
  private:

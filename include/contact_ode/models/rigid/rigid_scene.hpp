@@ -57,6 +57,7 @@ class RigidScene final : public MechanicalSystem, public NormalImpulses {
   void normalize(VectorRef y) const override;
   double energy(ConstVectorRef y) const override;
   double energy_without_springs(ConstVectorRef y) const override;
+  double mean_mass() const override;  // of the bodies of finite mass
 
   std::size_t contact_count() const override { return candidates_.size(); }
   double gap(std::size_t i, ConstVectorRef y) const override { return -contact(i, y).penetration; }
