@@ -92,7 +92,7 @@ Designed design(const ContactRequest& r) {
   // and T^(n+1) = m V^(1-n) / K make the contact K-free, so the duration goes as K^(-1/(n+1)), and
   // one measured contact at a trial K gives the K that lasts as asked.
   const double n = r.law == "hertz" ? 1.5 : 1.0;
-  const double chi = damping_factor(r.rule.value_or(DampingRule::LankaraniNikravesh), r.e, V);
+  const double chi = damping_factor(r.rule.value_or(kDefaultDampingRule), r.e, V);
   double K;
   if (r.radius) {
     K = hertz_stiffness(*r.radius, effective_modulus(*r.young, *r.poisson, INFINITY, 0.0));
@@ -140,7 +140,7 @@ Designed design(const ContactRequest& r) {
   const double least = std::ceil(lasts / digit) * digit;  // three digits, rounded up: accepted
   const std::string rule =
       hunt_crossley_family(r.law)
-          ? fmt::format(" under the {} rule", to_string(r.rule.value_or(DampingRule::LankaraniNikravesh)))
+          ? fmt::format(" under the {} rule", to_string(r.rule.value_or(kDefaultDampingRule)))
           : "";
   bad("--e", r.e,
       fmt::format("range [{:.3g}, 1] for {}{}: below it the contact lasts longer than the advisor's check "

@@ -261,28 +261,6 @@ SpringContact power_law_contact(double m, double K, double n, double V) {
 
 double hunt_crossley_small_damping_loss(double chi, double V) { return 4.0 / 3.0 * chi * V; }
 
-double hunt_crossley_restitution(double a) {
-  require_in("hunt_crossley_restitution: chi V", a, kNonNegative);
-  // Small a: the relation fixes 1 - e only through its a^3 terms, below the rounding of its a^2
-  // ones (e's error ~ eps / a), so the series e = 1 - 2a/3 + 4a^2/9 - 44a^3/135 + O(a^4) instead:
-  // both errors are ~2e-13 at a = 1e-3.
-  if (a < 1e-3) return 1.0 + a * (-2.0 / 3.0 + a * (4.0 / 9.0 - a * 44.0 / 135.0));
-  // In L = ln(1 - a e) the relation a e + ln(1 - a e) + a - ln(1 + a) = 0 reads
-  // h(L) = c - (exp(L) - 1 - L) = 0 with c = a - ln(1 + a) > 0: h rises from -inf to h(0) = c,
-  // one root in (-(2 + c), 0). Solved in L, not e: past a ~ 40 the root's 1 - a e is below
-  // 1e-15 (about (1 + a) exp(-1 - a)), which e cannot resolve; e = -expm1(L) / a keeps it. (expm1:
-  // at small a the root L ~ -a, and 1 - exp(L) would lose it to the rounding of 1.)
-  const double c = a - std::log1p(a);
-  auto h = [c](double L) { return c - (std::expm1(L) - L); };
-  double lo = -(2.0 + c), hi = 0.0;
-  for (int i = 0; i < 2200; ++i) {  // to adjacent doubles: at most ~1100 halvings
-    const double mid = 0.5 * (lo + hi);
-    if (mid <= lo || mid >= hi) break;
-    (h(mid) < 0 ? lo : hi) = mid;
-  }
-  return -std::expm1(0.5 * (lo + hi)) / a;
-}
-
 double hunt_crossley_approach_factor(double a) {
   require_in("hunt_crossley_approach_factor: chi V", a, kNonNegative);
   // Small a: a - ln(1 + a) cancels to a^2 / 2, so the series 1/2 - a/3 + a^2/4 - a^3/5 (its error

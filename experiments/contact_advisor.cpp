@@ -25,7 +25,7 @@ using namespace contact;
 int program(int argc, char** argv) {
   ContactRequest r;
   double max_penetration = 0, duration = 0, radius = 0, young = 0, poisson = 0;
-  std::string rule = "lankarani-nikravesh";
+  std::string rule{to_string(kDefaultDampingRule)};
   Experiment app("contact_advisor",
                  "Contact parameters and steps for a required penetration or duration and restitution, "
                  "in this project's laws and in popular engines' conventions.",

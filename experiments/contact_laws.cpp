@@ -2,7 +2,8 @@
 // One isolated contact (no gravity, mass --m, impact speed --v) per law and target e, integrated
 // to rtol 1e-10 (analysis/contact_measurement.hpp). Laws: Kelvin–Voigt unclamped and clamped (damping
 // from the linear-dashpot formula), and the Hunt–Crossley family F = K delta^n (1 + chi delta_dot),
-// n = 1 and 3/2, with the damping rules of Hunt–Crossley, Lankarani–Nikravesh, Flores, Gonthier.
+// n = 1 and 3/2, with the damping rules of Hunt–Crossley, Lankarani–Nikravesh, Flores, Gonthier and the
+// exact one.
 // K is chosen so that the undamped contact would penetrate --depth; the restitution does not
 // depend on K or V for these laws (dimensional analysis: e depends on chi V and n only).
 // Outputs in --out (default results/contact_laws): restitution.{csv,md,tex},

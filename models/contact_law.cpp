@@ -5,7 +5,9 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include <numbers>
@@ -78,6 +80,44 @@ std::string describe(const ContactLaw& law) {
   return std::visit(Describe{}, law);
 }
 
+double hunt_crossley_restitution(double a) {
+  require_in("hunt_crossley_restitution: chi V", a, kNonNegative);
+  // Small a: the relation fixes 1 - e only through its a^3 terms, below the rounding of its a^2
+  // ones (e's error ~ eps / a), so the series e = 1 - 2a/3 + 4a^2/9 - 44a^3/135 + O(a^4) instead:
+  // both errors are ~2e-13 at a = 1e-3.
+  if (a < 1e-3) return 1.0 + a * (-2.0 / 3.0 + a * (4.0 / 9.0 - a * 44.0 / 135.0));
+  // In L = ln(1 - a e) the relation a e + ln(1 - a e) + a - ln(1 + a) = 0 reads
+  // h(L) = c - (exp(L) - 1 - L) = 0 with c = a - ln(1 + a) > 0: h rises from -inf to h(0) = c,
+  // one root in (-(2 + c), 0). Solved in L, not e: past a ~ 40 the root's 1 - a e is below
+  // 1e-15 (about (1 + a) exp(-1 - a)), which e cannot resolve; e = -expm1(L) / a keeps it. (expm1:
+  // at small a the root L ~ -a, and 1 - exp(L) would lose it to the rounding of 1.)
+  const double c = a - std::log1p(a);
+  auto h = [c](double L) { return c - (std::expm1(L) - L); };
+  double lo = -(2.0 + c), hi = 0.0;
+  for (int i = 0; i < 2200; ++i) {  // to adjacent doubles: at most ~1100 halvings
+    const double mid = 0.5 * (lo + hi);
+    if (mid <= lo || mid >= hi) break;
+    (h(mid) < 0 ? lo : hi) = mid;
+  }
+  return -std::expm1(0.5 * (lo + hi)) / a;
+}
+
+double hunt_crossley_chi_v(double e) {
+  require_in("hunt_crossley_chi_v: e", e, kUnitInterval);
+  if (e >= 1.0) return 0.0;
+  if (e <= 0.0) return std::numeric_limits<double>::infinity();
+  // hunt_crossley_restitution falls from 1 at a = 0, and below 1 / a everywhere (1 - a e > 0), so
+  // at a = 1 / e it is below e: the root lies in (0, 1 / e). Bisected to adjacent doubles; the
+  // forward relation's own accuracy (~1e-13) then sets a's.
+  double lo = 0.0, hi = 1.0 / e;
+  for (int i = 0; i < 2200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    if (mid <= lo || mid >= hi) break;
+    (hunt_crossley_restitution(mid) > e ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
 double damping_factor(DampingRule rule, double e, double v) {
   switch (rule) {
     case DampingRule::HuntCrossley:
@@ -88,6 +128,8 @@ double damping_factor(DampingRule rule, double e, double v) {
       return 8.0 * (1.0 - e) / (5.0 * e * v);
     case DampingRule::Gonthier:
       return (1.0 - e * e) / (e * v);
+    case DampingRule::Exact:
+      return hunt_crossley_chi_v(e) / v;
   }
   return 0.0;
 }
@@ -115,6 +157,8 @@ std::string_view to_string(DampingRule rule) {
       return "flores";
     case DampingRule::Gonthier:
       return "gonthier";
+    case DampingRule::Exact:
+      return "exact";
   }
   return "?";
 }

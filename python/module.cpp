@@ -647,7 +647,7 @@ PYBIND11_MODULE(contact_ode, mod) {
       "The stiffness advisor, as the contact_advisor program: a law, its linearisation, stable steps and\n"
       "the engines' parameters for a requirement (exactly one of max_penetration and duration, or for\n"
       "hertz a material: radius, young and poisson), each checked by simulation. rule: the damping rule\n"
-      "of the Hunt-Crossley laws (hertz, hunt-crossley-linear); energy_error: the energy error per\n"
-      "contact game_dt may cost; engine_step: the step of ODE's and Bullet's ERP and CFM; g: gravity\n"
-      "for Drake's penetration allowance.");
+      "of the Hunt-Crossley laws (hertz, hunt-crossley-linear), exact (meets e) by default; energy_error:\n"
+      "the energy error per contact game_dt may cost; engine_step: the step of ODE's and Bullet's ERP\n"
+      "and CFM; g: gravity for Drake's penetration allowance.");
 }

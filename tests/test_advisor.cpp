@@ -155,10 +155,18 @@ TEST(Advisor, HertzDesignFromPenetrationOrMaterial) {
   // it was designed for the undamped one, and damping made it shallower): the measurement at
   // rtol 1e-10 locates the maximum within 3e-9 (measured), 1e-8 allowed.
   EXPECT_NEAR(a.achieved_penetration / 5e-4, 1.0, 1e-8);
-  // The restitution the Lankarani–Nikravesh damping really gives, exactly (references.hpp);
-  // the measurement integrates at rtol 1e-10.
+  // The restitution the damping really gives, exactly (references.hpp), is the e asked: the
+  // default rule is the exact one (Lankarani–Nikravesh's before it answered e = 0.1 with a law of
+  // e = 0.67). The measurement integrates at rtol 1e-10; 1e-7 allowed.
   const double chi = std::get<HuntCrossley>(a.law).chi;
   EXPECT_NEAR(a.achieved_restitution, hunt_crossley_restitution(chi * r.v), 1e-7);
+  EXPECT_NEAR(a.achieved_restitution, r.e, 1e-7);
+  for (const std::string law : {"hertz", "hunt-crossley-linear"}) {
+    ContactRequest low = r;
+    low.law = law;
+    low.e = 0.1;
+    EXPECT_NEAR(advise(low).achieved_restitution, 0.1, 1e-7) << law;
+  }
   // A 10 mm steel ball on a rigid flat: K = (4/3) E/(1 - nu^2) sqrt(R).
   r.max_penetration.reset();
   r.radius = 0.01;

@@ -9,6 +9,8 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <stdexcept>
+#include <string>
 
 using namespace contact;
 
@@ -208,6 +210,26 @@ TEST(HuntCrossleyContact, ExactRestitutionHoldsForEveryChiV) {
   const double m = 1.0, V = 1.0;
   const auto c = measure_isolated_contact(HuntCrossley{1e8, 1.5, 50.0 / V}, m, V);
   EXPECT_NEAR(c.exit_speed / V, hunt_crossley_restitution(50.0), 1e-8);
+}
+
+// The exact rule inverts that relation: its chi V gives back e to the forward relation's 1e-12
+// (both bisect to adjacent doubles), from nearly elastic to 1e-6, with the ends in closed form.
+// It is the default rule: a Hertz law built without one, asked for e = 0.3, bounced at 0.68 under
+// Lankarani-Nikravesh's (ball_drop --law hertz --e 0.3); a simulated contact now leaves at e (CVODE
+// at rtol 1e-10: 1e-8 allowed, as above), for n = 3/2 and 1.
+TEST(HuntCrossleyContact, TheExactRuleMeetsItsTargetAndIsTheDefault) {
+  for (double e : {1e-6, 0.01, 0.1, 0.3, 0.5, 0.8, 0.99, 0.999999})
+    EXPECT_NEAR(hunt_crossley_restitution(hunt_crossley_chi_v(e)), e, 1e-12 * e) << e;
+  EXPECT_EQ(hunt_crossley_chi_v(1.0), 0.0);
+  EXPECT_EQ(hunt_crossley_chi_v(0.0), std::numeric_limits<double>::infinity());
+  EXPECT_THROW(hunt_crossley_chi_v(1.5), std::invalid_argument);
+  EXPECT_EQ(LawSpec{}.rule, DampingRule::Exact);
+  const double m = 1.0, V = 1.0;
+  for (const std::string law : {"hertz", "hunt-crossley-linear"})
+    for (double e : {0.1, 0.3, 0.8}) {
+      const ContactLaw made = make_law(law, LawSpec{.k = 1e8, .m = m, .e = e, .v = V});
+      EXPECT_NEAR(measure_isolated_contact(made, m, V).exit_speed / V, e, 1e-8) << law << " e = " << e;
+    }
 }
 
 // The exact maximum penetration of a damped Hunt–Crossley contact (references.hpp): the undamped

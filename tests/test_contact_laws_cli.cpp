@@ -16,8 +16,8 @@ TEST_F(ContactLawsCli, WritesTableAndFigureWithTheDeclaredColumns) {
   ASSERT_EQ(r.code, 0) << r.err;
   const std::string csv = slurp(dir_ / "laws" / "restitution.csv");
   EXPECT_EQ(csv.rfind("law,target_e,achieved_e,miss\n", 0), 0u);
-  // 10 laws x 4 targets + header.
-  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 41);
+  // 12 laws (Kelvin-Voigt, clamped, five rules x two exponents) x 4 targets + header.
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 49);
   for (const char* f : {"restitution.png", "restitution.pdf", "restitution.gp", "restitution.md",
                         "restitution.tex", "meta.json"})
     EXPECT_GT(fs::file_size(dir_ / "laws" / f), 100u) << f;
@@ -42,7 +42,8 @@ TEST_F(ContactLawsCli, HuntCrossleyRowsMatchTheExactRestitution) {
       {"hunt-crossley", contact::DampingRule::HuntCrossley},
       {"lankarani-nikravesh", contact::DampingRule::LankaraniNikravesh},
       {"flores", contact::DampingRule::Flores},
-      {"gonthier", contact::DampingRule::Gonthier}};
+      {"gonthier", contact::DampingRule::Gonthier},
+      {"exact", contact::DampingRule::Exact}};
   int checked = 0;
   for (const auto& c : csv_rows(slurp(dir_ / "laws" / "restitution.csv"))) {
     for (const auto& [name, rule] : rules) {
@@ -51,10 +52,11 @@ TEST_F(ContactLawsCli, HuntCrossleyRowsMatchTheExactRestitution) {
       const double a = contact::damping_factor(rule, target, 1.0) * 1.0;  // chi V at the default V = 1 m/s
       const double e = contact::hunt_crossley_restitution(a);
       EXPECT_NEAR(achieved, e, 1e-7) << c[0] << " target " << target;
+      if (rule == contact::DampingRule::Exact) EXPECT_NEAR(achieved, target, 1e-7) << c[0];
       ++checked;
     }
   }
-  EXPECT_GE(checked, 24);  // 4 rules x 2 exponents x the targets below 1 and 1 itself
+  EXPECT_GE(checked, 30);  // 5 rules x 2 exponents x the targets below 1 and 1 itself
 }
 
 TEST_F(ContactLawsCli, BadInputIsRefused) {

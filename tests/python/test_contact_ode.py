@@ -166,7 +166,7 @@ def test_advisor_is_the_contact_advisor_program_with_every_option(tmp_path):
             assert a[quantity] == value, quantity
     assert a["law"].startswith("hunt-crossley")
     with pytest.raises(ValueError, match=re.escape("rule: value 'x' is not one of: hunt-crossley, "
-                                                   "lankarani-nikravesh, flores, gonthier")):
+                                                   "lankarani-nikravesh, flores, gonthier, exact")):
         co.advise(**{**options, "rule": "x"})
     with pytest.raises(ValueError, match=re.escape("radius, young, poisson: give all three")):
         co.advise(m=1.0, v=1.0, e=0.8, law="hertz", radius=0.1)

@@ -48,8 +48,8 @@ struct ContactRequest {
   std::optional<double> max_penetration;  // [m] (exactly one of these two, or a Hertz material)
   std::optional<double> duration;         // [s]
   std::string law = "kelvin-voigt";       // a name from law_names() (law_registry.hpp)
-  // The damping rule of the Hunt–Crossley laws (hertz, hunt-crossley-linear), Lankarani–Nikravesh
-  // when unset; the other laws have none, and validate() refuses one given with them.
+  // The damping rule of the Hunt–Crossley laws (hertz, hunt-crossley-linear), kDefaultDampingRule
+  // (exact) when unset; the other laws have none, and validate() refuses one given with them.
   std::optional<DampingRule> rule;
   // Hertz from a material instead of a requirement: sphere radius [m], Young's modulus [Pa],
   // Poisson ratio, against a rigid flat.

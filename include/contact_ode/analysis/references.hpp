@@ -107,14 +107,7 @@ double power_law_time_factor(double n);
 // Small-damping restitution loss 1 - e^2 of a Hunt–Crossley contact: (4/3) chi V.
 double hunt_crossley_small_damping_loss(double chi, double V);
 
-// Hunt–Crossley restitution, exact (no gravity, no clamp acting): with u the overlap rate,
-// m u du / (1 + chi u) = -K delta^n d(delta); over the whole contact delta returns to 0, so the
-// right side integrates to zero and, with a = chi V and e = u_out / V,
-//   a - ln(1 + a) = -a e - ln(1 - a e),
-// whatever n, K and m: the restitution depends on chi V alone (1 + chi u > 0 throughout: u = -1/chi
-// is where the velocity stops changing, so 1 - a e > 0 and the clamp F >= 0 never acts). Solved by
-// bisection in ln(1 - a e), for every a >= 0 (e -> 1/a as a grows).
-double hunt_crossley_restitution(double chi_v);
+// Hunt–Crossley restitution, exact: hunt_crossley_restitution (models/contact_law.hpp).
 // Hunt–Crossley maximum penetration, exact (no gravity): the same first integral over the approach,
 // u from V to 0, gives K delta_max^(n+1) / (n+1) = m (a - ln(1 + a)) / chi^2 with a = chi V, i.e.
 // the undamped m V^2 / 2 times 2 (a - ln(1 + a)) / a^2, which damping lowers from 1 (a = 0).

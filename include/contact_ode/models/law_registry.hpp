@@ -13,11 +13,11 @@ namespace contact {
 
 // What a law is built from. Each law reads the fields that apply to it.
 struct LawSpec {
-  double k = 1e5;  // stiffness [N/m], or K [N/m^n] for the power laws
-  double m = 1.0;  // effective mass of the contact [kg] (damping tuned for it)
-  double e = 0.8;  // target restitution (undamped laws ignore it)
-  double v = 1.0;  // impact speed the Hunt–Crossley damping is tuned at [m/s]
-  DampingRule rule = DampingRule::LankaraniNikravesh;  // Hunt–Crossley damping rule
+  double k = 1e5;                          // stiffness [N/m], or K [N/m^n] for the power laws
+  double m = 1.0;                          // effective mass of the contact [kg] (damping tuned for it)
+  double e = 0.8;                          // target restitution (undamped laws ignore it)
+  double v = 1.0;                          // impact speed the Hunt–Crossley damping is tuned at [m/s]
+  DampingRule rule = kDefaultDampingRule;  // Hunt–Crossley damping rule
 };
 
 struct LawInfo {
