@@ -52,7 +52,9 @@ TEST_F(ContactLawsCli, HuntCrossleyRowsMatchTheExactRestitution) {
       const double a = contact::damping_factor(rule, target, 1.0) * 1.0;  // chi V at the default V = 1 m/s
       const double e = contact::hunt_crossley_restitution(a);
       EXPECT_NEAR(achieved, e, 1e-7) << c[0] << " target " << target;
-      if (rule == contact::DampingRule::Exact) EXPECT_NEAR(achieved, target, 1e-7) << c[0];
+      if (rule == contact::DampingRule::Exact) {
+        EXPECT_NEAR(achieved, target, 1e-7) << c[0];
+      }
       ++checked;
     }
   }
