@@ -58,7 +58,7 @@ TEST_F(ContactLawsCli, HuntCrossleyRowsMatchTheExactRestitution) {
       ++checked;
     }
   }
-  EXPECT_GE(checked, 30);  // 5 rules x 2 exponents x the targets below 1 and 1 itself
+  EXPECT_EQ(checked, 40);  // 5 rules x 2 exponents x the 4 targets of --points 4
 }
 
 TEST_F(ContactLawsCli, BadInputIsRefused) {
