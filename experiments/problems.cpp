@@ -161,6 +161,12 @@ std::vector<std::string> work_panels(const std::string& paradigm, const std::str
   return panels;
 }
 
+PanelAxis work_panel_axis(const std::string& problem, const std::string& panel) {
+  if (panel == "paradigms") return {true, "error against the rigid body"};
+  return {false, problem == "ball" ? "error against the spring solution (closed form)"
+                                   : "error against the spring chain at rtol 10^{-12}"};
+}
+
 double first_apex_error(const BallDropParams& p, const RunResult& r) {
   if (!r.ok() || r.apexes.empty()) return NAN;
   return std::abs(r.apexes.front().gap - RigidBounces(p.h0, p.v0, p.g, p.e).apex_height(1));

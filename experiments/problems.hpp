@@ -85,6 +85,17 @@ std::vector<WorkJob> work_precision_jobs(const std::vector<Problem>& problems,
 // "peers" (SciPy, paradigm "scipy", beside CVODE BDF and Adams and GSL RKF45).
 std::vector<std::string> work_panels(const std::string& paradigm, const std::string& integrator);
 
+// What a work-precision panel of `problem` ("ball" or "chain") plots against CPU time. The
+// paradigms panel: each run's physical error, against the rigid body. The others compare codes
+// that integrate one model, the penalty spring, whose physical errors are all its modelling error
+// (0.21 for the ball at k = 1e4, at every tolerance), a flat line that says nothing of the codes:
+// they plot the model error, against the spring's own solution.
+struct PanelAxis {
+  bool physical;
+  std::string label;
+};
+PanelAxis work_panel_axis(const std::string& problem, const std::string& panel);
+
 // A ball drop's first apex against the rigid one, |apex - e^2 h0| for a ball dropped at rest
 // (RigidBounces in general) [m]; NaN when the run failed or did not bounce.
 double first_apex_error(const BallDropParams& p, const RunResult& r);

@@ -19,8 +19,8 @@
 // from 1/16 of a contact's duration (w dt = pi/16: 2.0e-3 s for the ball, 4.4e-5 s for the chain).
 // Under mpirun the runs are dealt over the ranks.
 // Outputs in --out (default results/work_precision): work_precision.{csv,md,tex}, per problem the
-// panels (work_panels) {ball,chain}_{explicit,implicit,paradigms,peers}.{png,pdf,gp} of physical
-// error against CPU time, meta.json. Exit codes: 0, 1 solver failure, 2 bad input.
+// panels (work_panels) {ball,chain}_{explicit,implicit,paradigms,peers}.{png,pdf,gp} of error
+// (work_panel_axis) against CPU time, meta.json. Exit codes: 0, 1 solver failure, 2 bad input.
 #include "contact_ode/analysis/cpu_time.hpp"
 #include "contact_ode/analysis/table.hpp"
 #include "experiment.hpp"
@@ -103,18 +103,18 @@ int program(int argc, char** argv) {
     std::map<std::string, std::map<std::string, std::map<std::string, std::string>>> panels;
     const auto add = [&](const std::string& problem, const std::string& paradigm,
                          const std::string& integrator, const std::vector<Table::Cell>& row, double cpu,
-                         double err) {
+                         double physical, double model) {
       table.add_row(row);
       for (const auto& panel : work_panels(paradigm, integrator))
-        panels[problem][panel][paradigm + " " + integrator] +=
-            fmt::format("{},{}\n", cpu, std::max(err, kFloor));
+        panels[problem][panel][paradigm + " " + integrator] += fmt::format(
+            "{},{}\n", cpu, std::max(work_panel_axis(problem, panel).physical ? physical : model, kFloor));
     };
     for (std::size_t i = 0; i < jobs.size(); ++i) {
       const WorkJob& job = jobs[i];
       const auto& r = (*results)[i];
       std::vector<Table::Cell> row{job.problem->name, job.paradigm, job.integrator, job.setting, job.value};
       for (auto& cell : row_from_json(r)) row.push_back(std::move(cell));
-      add(job.problem->name, job.paradigm, job.integrator, row, r[4].get<double>(), r[0].get<double>());
+      add(job.problem->name, job.paradigm, job.integrator, row, r[4], r[0], r[1]);  // cpu, errors
     }
     for (const Problem& ball : problems_run) {
       if (ball.name != "ball") continue;
@@ -128,7 +128,7 @@ int program(int argc, char** argv) {
         add("ball", "scipy", p.method,
             {std::string("ball"), std::string("scipy"), p.method, std::string("rtol"), p.rtol, physical, err,
              p.nfev, std::nan(""), p.cpu_s, p.cpu_min_s, p.cpu_max_s, p.repeats},
-            p.cpu_s, physical);
+            p.cpu_s, physical, err);
     }
     files.add_table("work_precision", table);
     for (const auto& [problem, by_panel] : panels)
@@ -138,7 +138,7 @@ int program(int argc, char** argv) {
           figure.add(rows, fmt::format("using 1:2 with linespoints {} title '{}'",
                                        series_style(figure.count()), name));
         render({problem + "_" + panel, figure.data(),
-                loglog("CPU time per solve [s]", "error against the rigid body") +
+                loglog("CPU time per solve [s]", work_panel_axis(problem, panel).label) +
                     "set key outside right font ',9'\nplot " + figure.plot()},
                files);
       }
