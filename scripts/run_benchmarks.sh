@@ -2,7 +2,8 @@
 # Builds in Release, runs the Google Benchmark programs (each case repeated: medians and ranges of
 # CPU time), the SciPy peer on problem P1 in the same run, the study and the paper (their wall
 # time), and writes benchmarks/RESULTS.md (the table the README shows) with every target's
-# verdict computed from these measurements. Takes about ten minutes on 2 cores.
+# verdict computed from these measurements, and benchmarks/HISTORY.md (every committed run's
+# targets, this one last). Takes about ten minutes on 2 cores.
 #   bash scripts/run_benchmarks.sh                 as above
 #   bash scripts/run_benchmarks.sh --fresh-build   also times a fresh Release build (about 5 more minutes)
 set -euo pipefail
@@ -86,4 +87,5 @@ build/benchmarks/bench_report --build-type "$build_type" --load "$load" "${scipy
   "$out/column.json" >benchmarks/RESULTS.md.tmp
 mv benchmarks/RESULTS.md.tmp benchmarks/RESULTS.md
 echo "wrote benchmarks/RESULTS.md"
+/usr/bin/python3 scripts/bench_history.py  # this run as the last row of benchmarks/HISTORY.md
 grep -A30 '^## Targets' benchmarks/RESULTS.md
