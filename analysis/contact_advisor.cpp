@@ -58,6 +58,20 @@ struct Designed {
   double k_lin, c_lin;
 };
 
+// Extreme inputs (a mass of 1e-300 kg, a penetration of 1e300 m) give a design double precision
+// cannot hold or simulate: the refusal says so in terms of the inputs that made it.
+[[noreturn]] void unresolvable(const ContactRequest& r, double k, const std::string& k_unit, double duration,
+                               double penetration) {
+  const std::string inputs =
+      r.radius ? "--m, --v, --radius/--young/--poisson" : "--m, --v, --max-penetration/--duration";
+  throw std::invalid_argument(
+      fmt::format("{}: m = {:g} kg, v = {:g} m/s give k = {:g} {}, a contact of {:g} s and {:g} m and an "
+                  "energy m v^2 / 2 of {:g} J, outside what double precision resolves; accepted: inputs "
+                  "giving a finite, positive stiffness, duration, penetration and 1e4 times the energy "
+                  "above 1e-300",
+                  inputs, r.m, r.v, k, k_unit, duration, penetration, 0.5 * r.m * r.v * r.v));
+}
+
 // The laws design() builds as Hunt–Crossley laws (every one but the linear spring-dashpots), the
 // ones a damping rule applies to.
 bool hunt_crossley_family(const std::string& law) {
@@ -93,6 +107,7 @@ Designed design(const ContactRequest& r) {
   // one measured contact at a trial K gives the K that lasts as asked.
   const double n = r.law == "hertz" ? 1.5 : 1.0;
   const double chi = damping_factor(r.rule.value_or(kDefaultDampingRule), r.e, V);
+  const std::string unit = fmt::format("N/m^{:g}", n);  // K's
   double K;
   if (r.radius) {
     K = hertz_stiffness(*r.radius, effective_modulus(*r.young, *r.poisson, INFINITY, 0.0));
@@ -104,9 +119,13 @@ Designed design(const ContactRequest& r) {
     // The trial: the undamped contact that lasts as asked.
     const double dmax = *r.duration * V / (2 * power_law_time_factor(n));
     const double trial = (n + 1) * m * (V / dmax) * (V / dmax) * std::pow(dmax, 1 - n) / 2;
+    if (!(std::isfinite(trial) && trial > 0)) unresolvable(r, trial, unit, *r.duration, dmax);
     const double lasted = measure_isolated_contact(HuntCrossley{trial, n, chi}, m, V).duration;
     K = trial * std::pow(lasted / *r.duration, n + 1);
   }
+  // A stiffness out of the doubles' range has no contact to measure: refused here, in terms of the
+  // inputs, before the closed form refuses it in terms of its own arguments.
+  if (!(std::isfinite(K) && K > 0)) unresolvable(r, K, unit, NAN, NAN);
   const double dmax = hunt_crossley_max_penetration(m, K, n, chi, V);
   return {HuntCrossley{K, n, chi}, n * K * std::pow(dmax, n - 1),
           K * std::pow(dmax, n) * chi};  // K chi overflowed for a heavy, slow body
@@ -304,12 +323,7 @@ void validate(const ContactRequest& r) {
   if (!std::all_of(std::begin(scales), std::end(scales),
                    [](double x) { return std::isfinite(x) && x > 1e-300; }) ||
       !std::isfinite(d.c_lin) || !(undamped.duration < 1e12))
-    throw std::invalid_argument(
-        fmt::format("--m, --v, --max-penetration/--duration: m = {:g} kg, v = {:g} m/s give k = {:g} N/m, "
-                    "a contact of {:g} s and {:g} m and an energy m v^2 / 2 of {:g} J, outside what double "
-                    "precision resolves; accepted: inputs giving a finite, positive stiffness, duration, "
-                    "penetration and 1e4 times the energy above 1e-300",
-                    r.m, r.v, d.k_lin, undamped.duration, undamped.max_penetration, 0.5 * r.m * r.v * r.v));
+    unresolvable(r, d.k_lin, "N/m", undamped.duration, undamped.max_penetration);
 }
 
 ContactAdvice advise(const ContactRequest& r) {

@@ -418,6 +418,47 @@ TEST(Advisor, RefusesNonPhysicalRequests) {
   EXPECT_NE(message(bad).find("give all three"), std::string::npos) << message(bad);
 }
 
+// A requirement whose stiffness leaves the doubles' range (1e300 m/s into 1e-300 m, and the
+// reverse) is refused in terms of the options that made it, by every law and by either
+// requirement or a material. The Hunt-Crossley laws refused it in the closed form's own terms
+// ("hunt_crossley_max_penetration: K = inf", "power_law_contact: K = inf"), naming no option.
+TEST(Advisor, AStiffnessBeyondTheDoublesIsRefusedNamingTheOptions) {
+  const auto refusal = [](ContactRequest r) {
+    try {
+      validate(r);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  for (const char* law : {"hooke", "kelvin-voigt", "kelvin-voigt-clamped", "hertz", "hunt-crossley-linear"})
+    for (const bool by_penetration : {true, false})
+      for (const double v : {1e300, 1e-300}) {
+        ContactRequest r;
+        r.law = law;
+        r.e = std::string(law) == "hooke" ? 1.0 : 0.5;
+        r.v = v;
+        if (by_penetration)
+          r.max_penetration = 1 / v;
+        else
+          r.duration = 1 / v;
+        const std::string m = refusal(r);
+        EXPECT_EQ(m.rfind("--m, --v, --max-penetration/--duration: m = 1 kg, v = ", 0), 0u)
+            << law << " " << by_penetration << " " << v << ": " << m;
+        EXPECT_NE(m.find("outside what double precision resolves"), std::string::npos) << m;
+      }
+  for (const double scale : {1e300, 1e-300}) {  // a material's stiffness: E* sqrt(R) of 1e450, 1e-450
+    ContactRequest r;
+    r.law = "hertz";
+    r.e = 0.5;
+    r.radius = scale;
+    r.young = scale;
+    r.poisson = 0.3;
+    const std::string m = refusal(r);
+    EXPECT_EQ(m.rfind("--m, --v, --radius/--young/--poisson: m = 1 kg, v = 1 m/s give k = ", 0), 0u) << m;
+  }
+}
+
 // A heavy, slow body: m = 2^700 kg at 5 2^-540 m/s into 1e-3 2^-540 m is the 1 kg body at 5 m/s into
 // 1 mm in other units of length and mass (time unchanged), so the contact's frequency, damping ratio,
 // duration, restitution and game step are the same numbers. Its speed's square underflows: the
