@@ -34,7 +34,7 @@ void check_scales(const BallDropOptions& o) {
   if (!(o.t_end / o.sample_dt < static_cast<double>(kept)))
     throw std::invalid_argument(fmt::format(
         "--t-end, --sample-dt: values '{}' and '{}' ask for {:.3g} output samples; at most {} are "
-        "kept: accepted --sample-dt >= --t-end / {} = {:.3g}",
+        "kept: accepted --sample-dt > --t-end / {} = {:.3g}",
         o.t_end, o.sample_dt, o.t_end / o.sample_dt, kept, kept, o.t_end / static_cast<double>(kept)));
 }
 

@@ -58,8 +58,11 @@ TEST_F(BallDropCli, BadInputIsRefusedWithOptionValueAndRangeAndWritesNothing) {
       // The impact speed overflows through g alone; the refusal named --h0 and --v0 only.
       {"--g 1e308", "--g", "'1e+308'", "both finite"},
       // More output samples than a run keeps: every method failed at t = 0 (exit 1, a row each).
-      {"--sample-dt 1e-300", "--sample-dt", "'1e-300'", "--sample-dt >= --t-end / 10000000 = 3e-07"},
-      {"--t-end 1e300", "--t-end", "'1e+300'", "--sample-dt >= --t-end / 10000000"},
+      {"--sample-dt 1e-300", "--sample-dt", "'1e-300'", "--sample-dt > --t-end / 10000000 = 3e-07"},
+      {"--t-end 1e300", "--t-end", "'1e+300'", "--sample-dt > --t-end / 10000000"},
+      // The bound itself is refused (its grid has one point more than is kept), so the accepted
+      // range is open: it read ">= ... = 1e-09" while refusing 1e-09.
+      {"--t-end 0.01 --sample-dt 1e-9", "--sample-dt", "'1e-09'", "--sample-dt > --t-end / 10000000 = 1e-09"},
   };
   expect_refused(BALL_DROP_EXE, cases);
 }
