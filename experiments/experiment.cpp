@@ -12,9 +12,11 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <iostream>
 #include <stdexcept>
+#include <tuple>
 
 namespace contact {
 
@@ -111,6 +113,24 @@ RunResult require(RunResult r, const std::string& what) {
 bool report(const RunResult& r, const std::string& what) {
   if (!r.ok()) std::cerr << failure(r, what) << "\n";
   return r.ok();
+}
+
+void refuse_dt_beyond_work_limit(const std::vector<PlannedRun>& runs) {
+  const PlannedRun* worst = nullptr;
+  double least = 0;  // the dt the worst run needs: its work goes as 1 / dt
+  for (const PlannedRun& run : runs) {
+    const SolveOptions span{.t_end = run.t_end};
+    if (!work_refusal(run.method, span)) continue;
+    const double needs =
+        run.method.dt * fixed_step_work(run.method, span) / static_cast<double>(span.limits.max_steps);
+    if (needs > least) std::tie(worst, least) = std::pair{&run, needs};
+  }
+  if (!worst) return;
+  const SolveOptions span{.t_end = worst->t_end};
+  const double unit = std::pow(10.0, std::floor(std::log10(least)) - 2);  // rounded up: accepted as printed
+  throw std::invalid_argument(fmt::format(
+      "--dt: value '{}' makes {} over {:g} s take {}; accepted --dt >= {:g}", worst->method.dt, worst->what,
+      worst->t_end, *work_refusal(worst->method, span), std::ceil(least / unit) * unit));
 }
 
 bool reads_option(const std::string& method, const std::string& option) {

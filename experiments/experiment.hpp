@@ -15,6 +15,7 @@
 #include "output.hpp"
 
 #include "contact_ode/analysis/table.hpp"
+#include "contact_ode/integrators/method_registry.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -64,6 +65,18 @@ RunResult require(RunResult r, const std::string& what);
 // For sweeps, where a failed run is a row rather than the end: prints that same line on stderr
 // when r failed, and returns whether it succeeded.
 bool report(const RunResult& r, const std::string& what);
+
+// A run a sweep will make, for the checks before its first.
+struct PlannedRun {
+  std::string what;  // how a message names it
+  Method method;
+  double t_end;
+};
+// Before a sweep's first run: throws std::invalid_argument naming --dt when a run would take more
+// steps at its dt than a run may (solve() refuses such a run only when its turn comes, after the
+// runs before it: zeno's game run, after half a minute of the others), with the least --dt at
+// which every run fits (the run that needs the largest named).
+void refuse_dt_beyond_work_limit(const std::vector<PlannedRun>& runs);
 
 // Whether `method` reads the command-line option (a method setting such as --dt or --max-steps by
 // the registry's list; --k and --law when it uses a contact law).

@@ -67,6 +67,27 @@ int program(int argc, char** argv) {
     for (const char* c : {"last_ball_energy_share", "energy_error_rel", "contacts", "rhs_evals"})
       columns.emplace_back(c);
     Table table(columns);
+    // The pulse's time to the last ball and ten of the longest contacts per ball to cross the row.
+    const auto span_for = [&](double spacing) {
+      return (approach + static_cast<double>(n) * spacing) / v0 +
+             10.0 * static_cast<double>(n) * contact_time;
+    };
+    // The rows' labels name the law for the penalty runs; the registry's methods run them.
+    const auto method_for = [&](const std::string& method) {
+      Method mt{.name = method == "event"                ? "event-ode"
+                        : method == "game"               ? "game-symplectic"
+                        : method.starts_with("penalty-") ? "penalty"
+                                                         : method,
+                .dt = dt};
+      if (mt.name == "penalty") mt.integrator = {.rtol = 1e-10, .atol = 1e-14, .max_steps = 10000000};
+      return mt;
+    };
+    std::vector<PlannedRun> planned;
+    for (const std::string& method : methods)
+      for (const double spacing : spacings)
+        planned.push_back(
+            {fmt::format("{} (spacing {:g} m)", method, spacing), method_for(method), span_for(spacing)});
+    refuse_dt_beyond_work_limit(planned);
     const std::size_t per_method = spacings.size();
     Progress progress("newton_cradle", methods.size() * per_method);
     const auto results = app.share(methods.size() * per_method, [&](std::size_t i) -> nlohmann::json {
@@ -80,15 +101,8 @@ int program(int argc, char** argv) {
                              .spacing = spacing,
                              .law = method == "penalty-hertz" ? ContactLaw{HuntCrossley{hertz_k, 1.5, 0.0}}
                                                               : ContactLaw{Hooke{k}}});
-      const double t_end =
-          (approach + static_cast<double>(n) * spacing) / v0 + 10.0 * static_cast<double>(n) * contact_time;
-      // The rows' labels name the law for the penalty runs; the registry's methods run them.
-      Method mt{.name = method == "event"                ? "event-ode"
-                        : method == "game"               ? "game-symplectic"
-                        : method.starts_with("penalty-") ? "penalty"
-                                                         : method,
-                .dt = dt};
-      if (mt.name == "penalty") mt.integrator = {.rtol = 1e-10, .atol = 1e-14, .max_steps = 10000000};
+      const double t_end = span_for(spacing);
+      const Method mt = method_for(method);
       const RunResult r = require(solve(chain, mt, {.t_end = t_end, .sample_dt = t_end}),
                                   fmt::format("{} (spacing {:g} m)", method, spacing));
       // Final velocities: every contact open again, or balls left touching at one velocity (a game

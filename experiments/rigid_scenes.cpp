@@ -89,6 +89,13 @@ int program(int argc, char** argv) {
                                        fmt::join(half, " "), fmt::join(quat, " ")));
     }
     const auto method_list = cli::split_list(methods);
+    std::vector<PlannedRun> planned;
+    for (const auto& name : scene_list)
+      for (const auto& method : method_list) {
+        Method each{.name = method, .dt = dt};  // (braced inside the push, GCC 12 warned it uninitialised)
+        planned.push_back({fmt::format("{} on {}", method, name), each, rigid_scene(name).t_end});
+      }
+    refuse_dt_beyond_work_limit(planned);
     Progress progress("rigid_scenes", scene_list.size() * method_list.size());
     const std::size_t per_scene = method_list.size();
     const auto results = app.share(scene_list.size() * per_scene, [&](std::size_t i) -> nlohmann::json {

@@ -60,6 +60,9 @@ int program(int argc, char** argv) {
     Series heights;
     const std::vector<std::string> methods = {"event-exact", "event-ode", "penalty", "game-symplectic",
                                               "game-symplectic-spring"};
+    std::vector<PlannedRun> planned;
+    for (const std::string& name : methods) planned.push_back({name, {.name = name, .dt = dt}, t_end});
+    refuse_dt_beyond_work_limit(planned);
     Progress progress("zeno", methods.size());
     for (std::size_t mi = 0; mi < methods.size(); ++mi) {
       progress.step(methods[mi]);

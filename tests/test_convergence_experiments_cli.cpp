@@ -107,5 +107,8 @@ TEST_F(ConvergenceExperimentsCli, BadInputIsRefused) {
                                {"--t-end -6", "--t-end", "'-6'", "(0, 10000)"},
                                // every run failed at t = 0 on the 1 ms samples it may keep (exit 1)
                                {"--t-end 1e300", "--t-end", "'1e300'", "(0, 10000)"},
+                               // 1e13 game steps: refused at t = 0 after the other runs' half a
+                               // minute, exit 1; now before any run (9999 s / 1e8 steps).
+                               {"--t-end 9999 --dt 1e-9", "--dt", "'1e-09'", "accepted --dt >= 0.0001"},
                            });
 }

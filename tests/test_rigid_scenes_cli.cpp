@@ -98,19 +98,25 @@ TEST_F(RigidScenesCli, OffCentreSpinIsTheSameInEveryOrientation) {
 }
 
 TEST_F(RigidScenesCli, BadInputIsRefused) {
-  expect_refused(RIGID_SCENES_EXE, {
-                                       {"--m 0", "--m", "'0'", "(0, inf)"},
-                                       {"--m -1", "--m", "'-1'", "(0, inf)"},
-                                       {"--radius 0", "--radius", "'0'", "(0, inf)"},
-                                       // Accepted alone, beyond a body's doubles in its inertia: it was
-                                       // refused as 'cue inverse inertia', no option named.
-                                       {"--radius 1e-300", "--radius", "'1e-300'", "finite and positive"},
-                                       {"--half-extents 0.1 0 0.1", "--half-extents", "'0'", "(0, inf)"},
-                                       {"--elasticity -0.5", "--elasticity", "'-0.5'", "[0, 1]"},
-                                       // A restitution (the product of the pair's) above one.
-                                       {"--elasticity 40", "--elasticity", "'40'", "[0, 1]"},
-                                       {"--quaternion 0 0 0 0", "--quaternion", "'0 0 0 0'", "non-zero"},
-                                       {"--quaternion 1 nan 0 0", "--quaternion", "'nan'", "(-inf, inf)"},
-                                       {"--scene pool", "--scene", "'pool'", "snooker"},
-                                   });
+  expect_refused(
+      RIGID_SCENES_EXE,
+      {
+          {"--m 0", "--m", "'0'", "(0, inf)"},
+          // Refused before any run, by the run that needs the longest
+          // step: 0.05 s / 1e8 of 10 sweeps a step, rounded up.
+          {"--scene snooker --dt 1e-12", "--dt", "'1e-12'", "sequential-impulses on snooker over 0.05 s"},
+          {"--scene snooker --dt 1e-12", "--dt", "'1e-12'", "accepted --dt >= 5.01e-09"},
+          {"--m -1", "--m", "'-1'", "(0, inf)"},
+          {"--radius 0", "--radius", "'0'", "(0, inf)"},
+          // Accepted alone, beyond a body's doubles in its inertia: it was
+          // refused as 'cue inverse inertia', no option named.
+          {"--radius 1e-300", "--radius", "'1e-300'", "finite and positive"},
+          {"--half-extents 0.1 0 0.1", "--half-extents", "'0'", "(0, inf)"},
+          {"--elasticity -0.5", "--elasticity", "'-0.5'", "[0, 1]"},
+          // A restitution (the product of the pair's) above one.
+          {"--elasticity 40", "--elasticity", "'40'", "[0, 1]"},
+          {"--quaternion 0 0 0 0", "--quaternion", "'0 0 0 0'", "non-zero"},
+          {"--quaternion 1 nan 0 0", "--quaternion", "'nan'", "(-inf, inf)"},
+          {"--scene pool", "--scene", "'pool'", "snooker"},
+      });
 }
