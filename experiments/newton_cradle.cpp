@@ -1,18 +1,15 @@
-// newton_cradle — where the striker's momentum and energy go in a row of --balls equal balls.
-// The 1D chain (models/ball_chain.hpp): steel balls of m = 0.1 kg (radius 14.5 mm), the striker
-// at 1 m/s from 1 cm away, the others at rest --spacings apart (0 = touching). Methods:
-//   event          sequential impulses (Newton's law, e = 1), CVODE flight
-//   game           semi-implicit Euler at dt = --dt with projection + impulse
-//   penalty-linear Hooke springs k = --k under CVODE BDF (rtol 1e-10, switches located)
-//   penalty-hertz  Hertz springs F = K delta^(3/2), K = (4/3) E* sqrt(R*) for steel on steel
-//                  (E = 200 GPa, nu = 0.3, R* = r/2), under the same CVODE settings
-// Reported at the end (every contact open): each ball's velocity, the last ball's share of the
-// initial kinetic energy, and the run's energy error. Sequential impulses give the textbook answer
-// (the last ball leaves at 1 m/s, the rest stop) whatever the spacing; touching linear springs
-// disperse the pulse; Hertz contacts come close to the textbook; a gap larger than the compression
-// separates the collisions into binary, exact exchanges. Outputs in --out (default results/newton_cradle):
-// velocities.{csv,md,tex}, final_velocities.{png,pdf,gp} (touching balls), energy_share.{png,pdf,gp}
-// (against spacing), meta.json; mpirun deals the runs over ranks. Exit codes: 0, 1 failure, 2 bad input.
+// newton_cradle — where the striker's momentum and energy go in a row of --balls equal balls of the
+// 1D chain (models/ball_chain.hpp): steel, m = 0.1 kg, radius 14.5 mm, the striker at 1 m/s from 1 cm
+// away, the others at rest --spacings apart (0 = touching). Methods: event (Newton's law, e = 1, CVODE
+// flight); game (semi-implicit Euler, projection + impulse); Hooke springs k = --k (penalty-linear) and
+// Hertz's, K = (4/3) E* sqrt(R*) for steel (penalty-hertz), under CVODE BDF at rtol 1e-10; the engines'
+// moreau-jean, sequential-impulses, soft-step, xpbd and game-implicit-spring. Fixed steps: --dt.
+// Reported, every contact open again: each ball's velocity, the last ball's share of the initial kinetic
+// energy and the energy error. Sequential impulses give the textbook answer (the last ball leaves at 1 m/s,
+// the rest stop) at any spacing; touching linear springs disperse the pulse, Hertz's come close; a gap
+// beyond the compression makes binary, exact exchanges. Outputs in --out (default results/newton_cradle):
+// velocities.{csv,md,tex}, final_velocities and energy_share figures (.png, .pdf, .gp), meta.json;
+// mpirun deals the runs over ranks. Exit codes: 0, 1 failure, 2 bad input.
 #include "contact_ode/analysis/metrics.hpp"
 #include "contact_ode/analysis/references.hpp"
 #include "contact_ode/analysis/table.hpp"
@@ -57,65 +54,57 @@ int program(int argc, char** argv) {
                                               "penalty-hertz", "moreau-jean", "sequential-impulses",
                                               "soft-step",     "xpbd",        "game-implicit-spring"};
     const auto n = static_cast<std::size_t>(balls);
+    const auto row_length = static_cast<double>(balls);
     // The longest binary contact (effective mass m/2, at the striker's speed): the pulse needs a few
     // of them per ball to cross the row, so 10 per ball leaves every contact open again at the end.
     const double contact_time = std::max(hooke_contact(m / 2, k, v0, 0.0).duration,
                                          power_law_contact(m / 2, hertz_k, 1.5, v0).duration);
-
     std::vector<std::string> columns = {"method", "spacing_m"};
     for (std::size_t b = 0; b < n; ++b) columns.push_back(fmt::format("v{}_mps", b));
-    for (const char* c : {"last_ball_energy_share", "energy_error_rel", "contacts", "rhs_evals"})
-      columns.emplace_back(c);
+    columns.insert(columns.end(), {"last_ball_energy_share", "energy_error_rel", "contacts", "rhs_evals"});
     Table table(columns);
-    // The pulse's time to the last ball and ten of the longest contacts per ball to cross the row.
-    const auto span_for = [&](double spacing) {
-      return (approach + static_cast<double>(n) * spacing) / v0 +
-             10.0 * static_cast<double>(n) * contact_time;
-    };
     // The rows' labels name the law for the penalty runs; the registry's methods run them.
-    const auto method_for = [&](const std::string& method) {
-      Method mt{.name = method == "event"                ? "event-ode"
-                        : method == "game"               ? "game-symplectic"
-                        : method.starts_with("penalty-") ? "penalty"
-                                                         : method,
-                .dt = dt};
-      if (mt.name == "penalty") mt.integrator = {.rtol = 1e-10, .atol = 1e-14, .max_steps = 10000000};
-      return mt;
-    };
+    const std::map<std::string, std::string> runs_as = {{"event", "event-ode"},
+                                                        {"game", "game-symplectic"},
+                                                        {"penalty-linear", "penalty"},
+                                                        {"penalty-hertz", "penalty"}};
+    // Run i: method i / per_method at spacing i % per_method, over the pulse's time to the last ball
+    // and ten of the longest contacts per ball to cross the row.
+    const std::size_t per_method = spacings.size();
     std::vector<PlannedRun> planned;
     for (const std::string& method : methods)
-      for (const double spacing : spacings)
-        planned.push_back(
-            {fmt::format("{} (spacing {:g} m)", method, spacing), method_for(method), span_for(spacing)});
+      for (const double spacing : spacings) {
+        Method mt{.name = runs_as.contains(method) ? runs_as.at(method) : method, .dt = dt};
+        if (mt.name == "penalty") mt.integrator = {.rtol = 1e-10, .atol = 1e-14, .max_steps = 10000000};
+        planned.push_back({fmt::format("{} (spacing {:g} m)", method, spacing), mt,
+                           (approach + row_length * spacing) / v0 + 10.0 * row_length * contact_time});
+      }
     refuse_dt_beyond_work_limit(planned);
-    const std::size_t per_method = spacings.size();
-    Progress progress("newton_cradle", methods.size() * per_method);
-    const auto results = app.share(methods.size() * per_method, [&](std::size_t i) -> nlohmann::json {
+    Progress progress("newton_cradle", planned.size());
+    const auto results = app.share(planned.size(), [&](std::size_t i) -> nlohmann::json {
       const std::string& method = methods[i / per_method];
-      const double spacing = spacings[i % per_method];
-      progress.step(fmt::format("{} spacing {:g}", method, spacing));
+      const PlannedRun& run = planned[i];
+      progress.step(run.what);
       const BallChain chain({.n = n,
                              .m = m,
                              .v0 = v0,
                              .approach = approach,
-                             .spacing = spacing,
+                             .spacing = spacings[i % per_method],
                              .law = method == "penalty-hertz" ? ContactLaw{HuntCrossley{hertz_k, 1.5, 0.0}}
                                                               : ContactLaw{Hooke{k}}});
-      const double t_end = span_for(spacing);
-      const Method mt = method_for(method);
-      const RunResult r = require(solve(chain, mt, {.t_end = t_end, .sample_dt = t_end}),
-                                  fmt::format("{} (spacing {:g} m)", method, spacing));
+      const RunResult r =
+          require(solve(chain, run.method, {.t_end = run.t_end, .sample_dt = run.t_end}), run.what);
       // Final velocities: every contact open again, or balls left touching at one velocity (a game
       // step longer than the gap), or, under a time-stepping method, clumped (a soft step's to 1e-8).
       const Vector& y = r.samples.back().y;
       const auto v = [&y](std::size_t b) { return y[static_cast<Eigen::Index>(2 * b + 1)]; };
-      const bool clumps = method_info(mt.name).family == "time-stepping";
+      const bool clumps = method_info(run.method.name).family == "time-stepping";
       for (const ContactRecord& c : r.contacts)
         if (!c.closed() && !clumps && v(c.contact) != v(c.contact + 1))
-          throw std::runtime_error(fmt::format("{} (spacing {:g} m): a contact is still open at t = {:g} s",
-                                               method, spacing, t_end));
+          throw std::runtime_error(
+              fmt::format("{}: a contact is still open at t = {:g} s", run.what, run.t_end));
       const double last = v(n - 1);
-      std::vector<Table::Cell> row = {method, spacing};
+      std::vector<Table::Cell> row = {method, spacings[i % per_method]};
       for (std::size_t b = 0; b < n; ++b) row.emplace_back(v(b));
       row.insert(row.end(), {0.5 * m * last * last / (0.5 * m * v0 * v0), 0.0 - energy_drifts(r).back(),
                              static_cast<long>(r.contacts.size()), r.stats.rhs_evals});
@@ -143,10 +132,9 @@ int program(int argc, char** argv) {
       share_figure.add(shares[method], fmt::format("using 1:2 with linespoints title '{}'", method));
     files.add_table("velocities", table);
     render({"final_velocities", velocities.data(),
-            fmt::format("set xlabel 'ball'\nset ylabel 'final velocity [m/s]'\nset xrange [-0.5:{}]\nset "
-                        "xtics 1\nset grid\n"
-                        "set key top left\nplot {}",
-                        static_cast<double>(n) - 0.5, velocities.plot())},
+            fmt::format("set xlabel 'ball'\nset ylabel 'final velocity [m/s]'\nset xrange [-0.5:{}]\n"
+                        "set xtics 1\nset grid\nset key top left\nplot {}",
+                        row_length - 0.5, velocities.plot())},
            files);
     render(
         {"energy_share", share_figure.data(),
@@ -154,10 +142,8 @@ int program(int argc, char** argv) {
                      "set ylabel 'last ball energy / initial'\nset key bottom right\nset grid\nplot {}",
                      kZeroSpacing, share_figure.plot())},
         files);
-    fmt::print(
-        "Newton's cradle: {} balls, striker at {:g} m/s (linear k = {:g} N/m, Hertz K = {:.4g} "
-        "N/m^1.5)\n\n{}",
-        n, v0, k, hertz_k, table.to_markdown());
+    fmt::print("Newton's cradle: {} balls at {:g} m/s (k = {:g} N/m, Hertz K = {:.4g} N/m^1.5)\n\n{}", n, v0,
+               k, hertz_k, table.to_markdown());
   });
 }
 

@@ -1,15 +1,12 @@
-// rigid_scenes — the tutorial's 3D scenes resolved by every paradigm.
-// Scenes (models/rigid/rigid_scenes.hpp): snooker, planet, spinning-box, off-centre,
-// rubber-steel, cradle, wedge. Methods (integrators/method_registry.hpp): penalty (Kelvin–Voigt
-// spring as an ODE under CVODE BDF with difference-quotient Jacobian, contact switches
-// root-located), game-symplectic (semi-implicit Euler with the tutorial's projection + impulse),
-// game-symplectic-projection (projection alone: the cue ball keeps pushing), event-ode (free
-// flight under CVODE, impulses at located contacts, sequential rule, lowest contact first),
-// event-ode-reversed (the same, highest first: the rule's order-dependence).
-// Outputs in --out (default results/rigid_scenes): runs.{csv,md,tex} (one row per scene and
-// method), observables.csv (scene, method, quantity, value), penetration.{png,pdf,gp} (largest
-// penetration per scene and method), meta.json; under mpirun the (scene, method) runs are dealt
-// over the ranks. Exit codes: 0 success, 1 solver failure, 2 bad input (option, value, accepted range).
+// rigid_scenes — the tutorial's 3D scenes (models/rigid/rigid_scenes.hpp: snooker, planet, spinning-box,
+// off-centre, rubber-steel, cradle, wedge) resolved by every method of integrators/method_registry.hpp
+// that runs them: penalty (a Kelvin–Voigt spring under CVODE BDF, switches root-located), the game's
+// semi-implicit Euler with projection + impulse (or projection alone, where the cue ball keeps pushing),
+// event-driven impulses at located contacts (lowest contact first, or highest: the rule's order
+// dependence) and the engines' time-stepping methods, at --dt. Outputs in --out (default
+// results/rigid_scenes): runs.{csv,md,tex} (a row per scene and method), observables.csv (scene, method,
+// quantity, value), penetration.{png,pdf,gp}, meta.json; under mpirun the runs are dealt over the ranks.
+// Exit codes: 0 success, 1 solver failure, 2 bad input (option, value, accepted range).
 #include "contact_ode/models/rigid/rigid_scenes.hpp"
 #include "contact_ode/analysis/metrics.hpp"
 #include "contact_ode/analysis/rigid_observables.hpp"
@@ -92,7 +89,8 @@ int program(int argc, char** argv) {
     std::vector<PlannedRun> planned;
     for (const auto& name : scene_list)
       for (const auto& method : method_list) {
-        Method each{.name = method, .dt = dt};  // (braced inside the push, GCC 12 warned it uninitialised)
+        // (Braced inside the push, GCC 12 warned it uninitialised.)
+        Method each{.name = method, .dt = dt, .integrator = {.rtol = rtol, .atol = atol}};
         planned.push_back({fmt::format("{} on {}", method, name), each, rigid_scene(name).t_end});
       }
     refuse_dt_beyond_work_limit(planned);
@@ -103,10 +101,7 @@ int program(int argc, char** argv) {
       const SceneInfo& info = rigid_scene(name);
       const RigidScene scene = info.make(p);
       progress.step(name + " " + method);
-      Method mt{.name = method, .dt = dt};
-      mt.integrator.rtol = rtol;
-      mt.integrator.atol = atol;
-      const RunResult r = solve(scene, mt, {.t_end = info.t_end, .sample_dt = info.t_end});
+      const RunResult r = solve(scene, planned[i].method, {.t_end = info.t_end, .sample_dt = info.t_end});
       if (!report(r, fmt::format("rigid_scenes: {} {}", name, method))) return nullptr;
       const RunMetrics m = compute_metrics(r);
       nlohmann::json quantities = nlohmann::json::array();
