@@ -102,9 +102,11 @@ void RunRecorder::check_diverged(double t, ConstVectorRef y, double gain) const 
 
 std::optional<std::string> fixed_step_work_refusal(double steps, int passes, const RunLimits& limits) {
   if (steps * passes <= static_cast<double>(limits.max_steps)) return std::nullopt;
-  return fmt::format("{:g} steps{}: more than the {} steps a run may take", steps,
-                     passes > 1 ? fmt::format(" of {} sub-steps or sweeps each", passes) : "",
-                     limits.max_steps);
+  // "7.1e7 steps of 10 sub-steps each: more than the 1e8" read as a wrong comparison: the total is said.
+  return fmt::format(
+      "{:g} steps{}: more than the {} steps a run may take", steps,
+      passes > 1 ? fmt::format(" of {} sub-steps or sweeps each, {:g} in all", passes, steps * passes) : "",
+      limits.max_steps);
 }
 
 void RunRecorder::check_steps(long steps, double t) const {
