@@ -74,8 +74,11 @@ TEST_F(TrustCli, CrashesAreNowMessages) {
   // Norm overflow: a quaternion of 1e200s is a fine orientation.
   Outcome r = run(exe("rigid_scenes"), "--quaternion 1e200 1e200 1e200 1e200 --scene off-centre --out rs");
   EXPECT_EQ(r.code, 0) << r.err;
-  // A soft cradle spring: contacts of 30 s at a 1 us step; used to run out of memory, then failed
-  // at the work limit when its turn came. Refused now before the first run, with the step it needs.
+  // A soft cradle spring: contacts of pi sqrt((m/2) / k) = pi sqrt(0.05 / 1e-3) = 22.2 s at a 1 us
+  // step; used to run out of memory, then failed at the work limit when its turn came. Refused now
+  // before the first run, with the step it needs: the widest gaps' runs span 1110.74 s (ten such
+  // contacts per ball for five balls, and 1.5 cm of approach and gaps at 1 m/s), in 10 sweeps a step
+  // for sequential impulses, so dt >= 1110.74 * 10 / 1e8 steps = 1.11e-4 s, rounded up as printed.
   r = run(exe("newton_cradle"), "--k 1e-3 --out nc");
   EXPECT_EQ(r.code, 2) << r.err;
   EXPECT_NE(r.err.find("--dt: value '1e-06'"), std::string::npos) << r.err;
