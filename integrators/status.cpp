@@ -39,9 +39,7 @@ const char* to_string(Status s) {
 namespace detail {
 std::atomic<bool> stop_flag{false};
 static_assert(std::atomic<bool>::is_always_lock_free, "request_stop must be safe in a signal handler");
-void throw_stopped(double t) {
-  throw SolverFailure(Status::Interrupted, t, "a stop was requested (SIGINT, SIGTERM or SIGHUP)");
-}
+void throw_stopped(double t) { throw stopped_failure(t); }
 }  // namespace detail
 
 SolverFailure::SolverFailure(Status status, double t_reached, std::string message)
@@ -49,5 +47,9 @@ SolverFailure::SolverFailure(Status status, double t_reached, std::string messag
       status_(status),
       t_reached_(t_reached),
       message_(std::move(message)) {}
+
+SolverFailure stopped_failure(double t) {
+  return SolverFailure(Status::Interrupted, t, "a stop was requested (SIGINT, SIGTERM or SIGHUP)");
+}
 
 }  // namespace contact

@@ -87,10 +87,12 @@ int fill_jacobian(CallbackData& d, const OdeSystem::Jacobian& jac, double t, N_V
 SolverFailure CallbackData::failure(int flag, const char* flag_name, double t_reached) const {
   // CVODE and ARKODE share these codes: -1 too much work, -2 too much accuracy requested,
   // -3 repeated error-test failures, -4 repeated convergence failures, -6/-7 linear solver.
+  // A stop ends the step by refusing a callback, which the solver reports as that callback's
+  // failure ("CV_RTFUNC_FAIL: ... rootfinding routine failed in an unrecoverable manner"): its
+  // text describes the refusal, not the run, so a stopped run says only that it was stopped.
+  if (stopped) return stopped_failure(t_reached);
   Status status = Status::SolverError;
-  if (stopped)
-    status = Status::Interrupted;
-  else if (non_finite)
+  if (non_finite)
     status = Status::NonFiniteState;
   else if (flag == -1)
     status = Status::MaxSteps;

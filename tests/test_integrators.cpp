@@ -419,6 +419,47 @@ TEST_P(FailurePaths, AFailuresTimeIsThatOfTheStateLeft) {
   }
 }
 
+// A stop requested during a solve ends it as Status::Interrupted, saying that a stop was requested
+// and nothing else. CVODE and ARKODE learn of it as a refused callback and report that refusal in
+// their own words ("CV_RTFUNC_FAIL: ... rootfinding routine failed in an unrecoverable manner"),
+// which a stopped run used to print after "interrupted". Here the right-hand side requests the
+// stop itself once t passes 0.5, as a signal handler would.
+TEST_P(FailurePaths, AStopEndsTheRunSayingOnlyThatAStopWasRequested) {
+  const IntegratorInfo& info = integrator_info(GetParam());
+  if (is_exact(info)) GTEST_SKIP() << "calls the right-hand side only at t = 0, to read its matrix";
+  const SpringMass spring(1.0, 1.0, 1.0, 0.0);
+  OdeSystem sys = free_ode(spring);
+  double t_stop = 0;  // the first time past 0.5 that a right-hand side was asked for
+  for (OdeSystem::Rhs* f : {&sys.rhs, &sys.explicit_rhs, &sys.implicit_rhs})  // IMEX calls the parts
+    if (*f)
+      *f = [f = *f, &t_stop](double t, ConstVectorRef y, VectorRef yd) {
+        if (t > 0.5 && !stop_requested()) {
+          t_stop = t;
+          request_stop();
+        }
+        f(t, y, yd);
+      };
+  sys.root_count = 1;  // a root function, as in every contact run: a callback the stop refuses
+  sys.roots = [](double, ConstVectorRef y, VectorRef g) { g[0] = y[0] + 10; };
+  IntegratorOptions o;
+  o.method = info.name;
+  o.dt = needs_step(info) ? 1e-3 : 0.0;
+  auto integrator = make_integrator(o, std::move(sys), 0.0, spring.initial_state());
+  try {
+    advance_by_samples(*integrator, 2.0, 1e-3);
+    ADD_FAILURE() << info.name << " ran on after a stop was requested";
+  } catch (const SolverFailure& f) {
+    EXPECT_EQ(f.status(), Status::Interrupted) << info.name << ": " << f.what();
+    EXPECT_EQ(f.solver_message(), "a stop was requested (SIGINT, SIGTERM or SIGHUP)") << info.name;
+    // The state left is one the integrator reached: SUNDIALS' the last before the refused call, the
+    // others' the end of the step or output interval (1e-3 s: both) in which the stop came.
+    EXPECT_GT(f.t_reached(), 0.0) << info.name;
+    EXPECT_LE(f.t_reached(), t_stop + 1e-3) << info.name;
+    EXPECT_TRUE(integrator->y().allFinite()) << info.name;
+  }
+  clear_stop_request();
+}
+
 INSTANTIATE_TEST_SUITE_P(EveryIntegrator, FailurePaths, ::testing::ValuesIn(integrator_names()),
                          [](const auto& p) {
                            std::string s = p.param;

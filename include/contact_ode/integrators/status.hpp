@@ -57,4 +57,7 @@ class SolverFailure : public std::runtime_error {
   std::string message_;
 };
 
+// The failure of a run ended by a stop request at time t, whichever integrator ran it.
+SolverFailure stopped_failure(double t);
+
 }  // namespace contact
