@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace contact {
@@ -16,18 +17,36 @@ const ParameterInfo kPowerStiffness{"k", "N/m^n", 1e9, "stiffness K of K delta^n
 const ParameterInfo kMass{"m", "kg", 1.0, "effective mass the damping is tuned for", kPositive};
 const ParameterInfo kRestitution{"e", "", 0.8, "target restitution", kUnitInterval};
 const ParameterInfo kSpeed{"v", "m/s", 1.0, "impact speed the damping is tuned at", kPositive};
+// A Hunt-Crossley contact stops dead only in the limit chi V -> inf (hunt_crossley_chi_v(0) is inf;
+// the Flores and Gonthier rules divide by e), so e = 0 makes no such law.
+const ParameterInfo kHuntCrossleyRestitution{
+    "e", "", 0.8, "target restitution", {.lo = 0, .hi = 1, .hi_open = false}};
 
-LawInfo hunt_crossley(std::string name, std::string description, double n) {
-  return {std::move(name),
+LawInfo hunt_crossley(const std::string& name, std::string description, double n) {
+  return {name,
           std::move(description),
           n,
           true,
           false,
           "restitution exact in chi V (hunt_crossley_restitution); undamped penetration and duration "
           "(power_law_contact)",
-          {kPowerStiffness, kRestitution, kSpeed},
-          [n](const LawSpec& s) {
-            return ContactLaw{HuntCrossley{s.k, n, damping_factor(s.rule, s.e, s.v)}};
+          {kPowerStiffness, kHuntCrossleyRestitution, kSpeed},
+          [n, name](const LawSpec& s) {
+            // An infinite chi made every run fail at the first touch, its right-hand side not finite
+            // (ball_drop --law hertz --e 0: 'non-finite-state ... CV_FIRST_RHSFUNC_ERR').
+            const double chi = damping_factor(s.rule, s.e, s.v);
+            if (!std::isfinite(chi))
+              throw std::invalid_argument(
+                  s.e == 0
+                      ? fmt::format("--e: value '0' asks the {} law for infinite damping: a Hunt-Crossley "
+                                    "contact stops dead only as its damping grows without bound; accepted "
+                                    "range {}",
+                                    name, kHuntCrossleyRestitution.accepted.to_string())
+                      : fmt::format("the {} law tuned to e = {:g} at an impact speed of {:g} m/s has a "
+                                    "damping factor beyond the doubles (chi = {:g} s/m); a faster impact "
+                                    "speed gives a finite one",
+                                    name, s.e, s.v, chi));
+            return ContactLaw{HuntCrossley{s.k, n, chi}};
           }};
 }
 

@@ -34,6 +34,10 @@ TEST_F(BallDropCli, BadInputIsRefusedWithOptionValueAndRangeAndWritesNothing) {
       {"--e 1.01", "--e", "'1.01'", "[0, 1]"},
       {"--e -0.1", "--e", "'-0.1'", "[0, 1]"},
       {"--e NaN", "--e", "'NaN'", "[0, 1]"},
+      // A Hunt-Crossley law tuned to e = 0 has infinite damping: every penalty run failed at the
+      // first touch, its right-hand side not finite (exit 1, 'CV_FIRST_RHSFUNC_ERR').
+      {"--law hertz --e 0", "--e", "'0'", "(0, 1]"},
+      {"--law hunt-crossley-linear --e 0", "--e", "'0'", "(0, 1]"},
       {"--rtol 0", "--rtol", "'0'", "(0, 1)"},
       {"--atol -1e-9", "--atol", "'-1e-9'", "[0, inf)"},
       {"--t-end 0", "--t-end", "'0'", "(0, inf)"},

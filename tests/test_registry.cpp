@@ -112,6 +112,31 @@ TEST(Registries, LawsByNameAreTunedAsTheirEntriesSay) {
   for (const auto& l : law_registry()) EXPECT_EQ(exponent(l.make(spec)), l.exponent) << l.name;
 }
 
+// A Hunt-Crossley contact stops dead only as its damping grows without bound: tuned to e = 0, the
+// law had chi = inf, and every penalty run on it failed at the first touch, its right-hand side not
+// finite. The law is refused, naming e and its range, which the registry entry states; a damping
+// factor that overflows at a tiny impact speed is refused too. e = 0 stays a Kelvin-Voigt law
+// (critical damping).
+TEST(Registries, AHuntCrossleyLawForEZeroIsRefusedNamingE) {
+  for (const char* name : {"hertz", "hunt-crossley-linear"}) {
+    const LawInfo& info = law_info(name);
+    const auto e = std::find_if(info.parameters.begin(), info.parameters.end(),
+                                [](const ParameterInfo& p) { return p.name == "e"; });
+    ASSERT_NE(e, info.parameters.end()) << name;
+    EXPECT_EQ(e->accepted.to_string(), "(0, 1]") << name;
+    try {
+      (void)make_law(name, {.e = 0.0});
+      ADD_FAILURE() << name << " tuned to e = 0 was made";
+    } catch (const std::invalid_argument& ex) {
+      EXPECT_NE(std::string(ex.what()).find("--e: value '0'"), std::string::npos) << ex.what();
+      EXPECT_NE(std::string(ex.what()).find("(0, 1]"), std::string::npos) << ex.what();
+    }
+    EXPECT_THROW((void)make_law(name, {.e = 0.5, .v = 1e-320}), std::invalid_argument) << name;
+    EXPECT_TRUE(std::isfinite(std::get<HuntCrossley>(make_law(name, {.e = 1e-6})).chi)) << name;
+  }
+  EXPECT_NO_THROW((void)make_law("kelvin-voigt", {.e = 0.0}));
+}
+
 // Through the registry route: the exact event-driven ball's apexes are e^(2n) h0 to rounding, and
 // the penalty spring-mass follows x = x0 cos(w t) to the integrator's tolerance (rtol 1e-10 over
 // one period: a global error of a few hundred rtol at most).
