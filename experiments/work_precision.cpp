@@ -17,7 +17,8 @@
 // Jacobian) runs the ball at the same tolerances, timed the same way.
 // Settings: adaptive rtol = 1e-3 .. 1e-9 (atol = rtol / 100); fixed dt halved --halvings times
 // from 1/16 of a contact's duration (w dt = pi/16: 2.0e-3 s for the ball, 4.4e-5 s for the chain).
-// Under mpirun the runs are dealt over the ranks.
+// A failed run (explicit Euler's growing energy on a long chain) is a row with its status, no
+// error and no point; its line goes to stderr. Under mpirun the runs are dealt over the ranks.
 // Outputs in --out (default results/work_precision): work_precision.{csv,md,tex}, per problem the
 // panels (work_panels) {ball,chain}_{explicit,implicit,paradigms,peers}.{png,pdf,gp} of error
 // (work_panel_axis) against CPU time, meta.json. Exit codes: 0, 1 solver failure, 2 bad input.
@@ -85,26 +86,22 @@ int program(int argc, char** argv) {
                       {.t_end = job.problem->t_end, .sample_dt = job.problem->t_end});
           },
           3, static_cast<int>(repeats), kBudget);
-      require(r, what);
-      const bool rigid = job.paradigm == "game" || job.paradigm == "event";
-      return {job.problem->error(r, true),
-              job.problem->error(r, rigid),
-              r.stats.rhs_evals,
-              r.stats.wall_time_s,
-              cpu.median,
-              cpu.min,
-              cpu.max,
-              cpu.repeats};
+      const bool ok = report(r, what), rigid = job.paradigm == "game" || job.paradigm == "event";
+      const double nan = std::nan(""), physical = ok ? job.problem->error(r, true) : nan,
+                   model = ok ? job.problem->error(r, rigid) : nan;
+      return {physical, model,   r.stats.rhs_evals, r.stats.wall_time_s, cpu.median,
+              cpu.min,  cpu.max, cpu.repeats,       to_string(r.status)};
     });
     if (!results) return;  // another MPI rank: its share is done
     Table table({"problem", "paradigm", "integrator", "setting", "value", "error_physical", "error_model",
-                 "rhs_evals", "wall_time_s", "cpu_time_s", "cpu_min_s", "cpu_max_s", "repeats"});
+                 "rhs_evals", "wall_time_s", "cpu_time_s", "cpu_min_s", "cpu_max_s", "repeats", "status"});
     // problem -> panel -> series label -> "cpu,error" lines
     std::map<std::string, std::map<std::string, std::map<std::string, std::string>>> panels;
     const auto add = [&](const std::string& problem, const std::string& paradigm,
                          const std::string& integrator, const std::vector<Table::Cell>& row, double cpu,
                          double physical, double model) {
       table.add_row(row);
+      if (std::isnan(physical)) return;  // a failed run: no point
       for (const auto& panel : work_panels(paradigm, integrator))
         panels[problem][panel][paradigm + " " + integrator] += fmt::format(
             "{},{}\n", cpu, std::max(work_panel_axis(problem, panel).physical ? physical : model, kFloor));
@@ -127,7 +124,7 @@ int program(int argc, char** argv) {
       for (const auto& [p, err, physical] : peer)
         add("ball", "scipy", p.method,
             {std::string("ball"), std::string("scipy"), p.method, std::string("rtol"), p.rtol, physical, err,
-             p.nfev, std::nan(""), p.cpu_s, p.cpu_min_s, p.cpu_max_s, p.repeats},
+             p.nfev, std::nan(""), p.cpu_s, p.cpu_min_s, p.cpu_max_s, p.repeats, std::string("ok")},
             p.cpu_s, physical, err);
     }
     files.add_table("work_precision", table);

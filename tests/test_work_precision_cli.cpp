@@ -179,3 +179,29 @@ TEST_F(WorkPrecisionCli, WithoutSciPyThePeerIsLeftOutWithANote) {
   EXPECT_TRUE(points("ball", "scipy", "BDF").empty());
   EXPECT_FALSE(points("ball", "penalty", "cvode-bdf").empty());
 }
+
+// A failed run is a row with its status and no point, and the rest of the study stands: explicit
+// Euler multiplies an undamped spring's energy by 1 + (w dt)^2 a step, 1.04 at the chain's coarsest
+// step (w dt = pi/16), so over 40 balls' contacts its chain gains enough to cross a contact within
+// a step ('unresolved'). That one run made work_precision --balls 40 (accepted: [2, 50]) exit 1.
+TEST_F(WorkPrecisionCli, AFailedRunIsARowWithItsStatusAndNoPoint) {
+  const Outcome r = run(WORK_PRECISION_EXE,
+                        "--problems chain --balls 40 --integrators euler --halvings 1 --repeats 3 --out wp");
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::vector<std::map<std::string, std::string>> euler;
+  for (auto& c : csv_table(slurp(dir_ / "wp" / "work_precision.csv")))
+    if (c["paradigm"] == "penalty" && c["integrator"] == "euler")
+      euler.push_back(c);
+    else
+      EXPECT_EQ(c["status"], "success") << c["paradigm"] << " " << c["integrator"];
+  ASSERT_EQ(euler.size(), 2u);
+  EXPECT_EQ(euler[0]["status"], "unresolved");
+  EXPECT_TRUE(std::isnan(std::stod(euler[0]["error_physical"])));
+  EXPECT_TRUE(std::isnan(std::stod(euler[0]["error_model"])));
+  EXPECT_NE(r.err.find("chain penalty euler (dt = 4.39051e-05): unresolved at t = "), std::string::npos)
+      << r.err;
+  // The halved step runs, and its one point is the panel's only one.
+  EXPECT_EQ(euler[1]["status"], "success");
+  EXPECT_EQ(panel_errors(dir_ / "wp" / "chain_explicit-data.csv"),
+            std::vector<double>{std::stod(euler[1]["error_model"])});
+}
