@@ -115,7 +115,7 @@ bool report(const RunResult& r, const std::string& what) {
   return r.ok();
 }
 
-void refuse_dt_beyond_work_limit(const std::vector<PlannedRun>& runs) {
+void refuse_dt_beyond_work_limit(const std::vector<PlannedRun>& runs, const std::string& option) {
   const PlannedRun* worst = nullptr;
   double least = 0;  // the dt the worst run needs: its work goes as 1 / dt
   for (const PlannedRun& run : runs) {
@@ -129,8 +129,8 @@ void refuse_dt_beyond_work_limit(const std::vector<PlannedRun>& runs) {
   const SolveOptions span{.t_end = worst->t_end};
   const double unit = std::pow(10.0, std::floor(std::log10(least)) - 2);  // rounded up: accepted as printed
   throw std::invalid_argument(fmt::format(
-      "--dt: value '{}' makes {} over {:g} s take {}; accepted --dt >= {:g}", worst->method.dt, worst->what,
-      worst->t_end, *work_refusal(worst->method, span), std::ceil(least / unit) * unit));
+      "{0}: value '{1}' makes {2} over {3:g} s take {4}; accepted {0} >= {5:g}", option, worst->method.dt,
+      worst->what, worst->t_end, *work_refusal(worst->method, span), std::ceil(least / unit) * unit));
 }
 
 bool reads_option(const std::string& method, const std::string& option) {

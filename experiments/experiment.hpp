@@ -75,8 +75,9 @@ struct PlannedRun {
 // Before a sweep's first run: throws std::invalid_argument naming --dt when a run would take more
 // steps at its dt than a run may (solve() refuses such a run only when its turn comes, after the
 // runs before it: zeno's game run, after half a minute of the others), with the least --dt at
-// which every run fits (the run that needs the largest named).
-void refuse_dt_beyond_work_limit(const std::vector<PlannedRun>& runs);
+// which every run fits (the run that needs the largest named). `option` is the option that set the
+// steps (--dt, or rigid_impacts' list --dts).
+void refuse_dt_beyond_work_limit(const std::vector<PlannedRun>& runs, const std::string& option = "--dt");
 
 // Whether `method` reads the command-line option (a method setting such as --dt or --max-steps by
 // the registry's list; --k and --law when it uses a contact law).

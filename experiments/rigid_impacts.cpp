@@ -17,7 +17,6 @@
 #include "contact_ode/models/rigid/rigid_scenes.hpp"
 #include "experiment.hpp"
 #include "figure.hpp"
-#include "output.hpp"
 #include "process.hpp"
 #include "progress.hpp"
 #include "sweep_setting.hpp"
@@ -25,9 +24,7 @@
 #include <fmt/format.h>
 
 #include <array>
-#include <chrono>
 #include <cmath>
-#include <iostream>
 #include <map>
 
 using namespace contact;
@@ -72,11 +69,14 @@ int program(int argc, char** argv) {
   return app.run(argc, argv, [&](OutputSet& files) {
     const double lever = SceneParams{}.radius;
     const auto scene_list = cli::split_list(scenes);
-    const auto& methods = kRigidMethods;
     std::vector<Case> cases;
     for (const auto& name : scene_list)
-      for (const auto& method : methods)
+      for (const auto& method : kRigidMethods)
         for (double v : method_info(method).fixed_step ? dts : rtols) cases.push_back({name, method, v});
+    std::vector<PlannedRun> planned;  // a step too small for the work limit: refused before any run
+    for (const auto& [s, m, v] : cases)
+      planned.push_back({s + " " + m, with_setting(rigid_method(m), v), rigid_scene(s).t_end});
+    refuse_dt_beyond_work_limit(planned, "--dts");
     Table table({"scene", "method", "setting", "value", "momentum_error_rel", "angular_momentum_error_rel",
                  "energy_error_rel", "contacts", "rhs_evals"});
     Progress progress("rigid_impacts", cases.size());

@@ -40,8 +40,13 @@ TEST_F(RigidImpactsCli, ConservationErrorsHaveThePredictedSize) {
 }
 
 TEST_F(RigidImpactsCli, BadInputIsRefused) {
-  expect_refused(RIGID_IMPACTS_EXE, {
-                                        {"--dts -1e-4", "--dts", "'-1e-4'", "(0, inf)"},
-                                        {"--scene rubber-steel", "--scene", "'rubber-steel'", "snooker"},
-                                    });
+  expect_refused(RIGID_IMPACTS_EXE,
+                 {
+                     {"--dts -1e-4", "--dts", "'-1e-4'", "(0, inf)"},
+                     {"--scene rubber-steel", "--scene", "'rubber-steel'", "snooker"},
+                     // A step the work limit refuses, before any run: it failed
+                     // as 'work-limit' (exit 1) after the 1e-4 s runs, naming no
+                     // option. snooker's 0.05 s / 1e8 steps, rounded up.
+                     {"--dts 1e-4,1e-300", "--dts", "'1e-300'", "accepted --dts >= 5.01e-10"},
+                 });
 }
