@@ -58,11 +58,20 @@ int program(int argc, char** argv) {
     const RunResult rigid = solve(rigid_model, {.name = "event-exact"}, {.t_end = t_end, .sample_dt = t_end});
     const auto nb = static_cast<std::size_t>(bounces);
     if (!rigid.ok()) throw std::runtime_error("the rigid reference failed: " + rigid.message);
+    const double rest = EventOptions{}.rest_speed, V = std::sqrt(2 * g * h0);
+    if (rigid.apexes.empty()) {  // not one apex: --e is what is wrong, whatever --bounces
+      const double least = rest / V, unit = std::pow(10.0, std::floor(std::log10(least)) - 2);
+      throw std::invalid_argument(
+          fmt::format("--e: value '{:g}' leaves the rigid ball no apex: its rebound speed e V = {:.3g} m/s "
+                      "is below the rest "
+                      "speed ({:g} m/s); accepted --e >= {:g} (V = {:.3g} m/s from h0 = {:g} m)",
+                      e, e * V, rest, std::ceil(least / unit) * unit, V, h0));
+    }
     if (rigid.contacts.size() < nb || rigid.apexes.size() < nb)  // it rested first (a small e)
       throw std::invalid_argument(fmt::format(
           "--bounces: value '{}' is more than the rigid ball makes at --e {:g}: {} apexes, then its "
           "rebound speed e^n V falls below the rest speed ({:g} m/s); accepted range [1, {}]",
-          bounces, e, rigid.apexes.size(), EventOptions{}.rest_speed, rigid.apexes.size()));
+          bounces, e, rigid.apexes.size(), rest, rigid.apexes.size()));
     Table table({"k_N_per_m", "impact_time_error_s", "order_time", "apex_height_error_rel", "order_apex",
                  "rhs_evals", "status"});
     table.set_latex_header({"$k$ [N/m]", "$\\max|T_n - T_n^{\\mathrm{rigid}}|$ [s]", "order",

@@ -52,17 +52,21 @@ std::vector<DriftRun> drift_runs(const DriftSettings& s) {
         r > over)
       std::tie(worst, over) = std::pair{&run, r};
   if (worst) {
-    const bool on_ball = worst->system == "ball";  // its work scales with the span, or with 1 / dt
     const std::string why = *work_refusal(worst->settings, worst->span);
-    throw std::invalid_argument(
-        on_ball
-            ? fmt::format(
-                  "--bounces: value '{}' makes {} at dt = {:g} s take {}; accepted [1, {:.0f}] at these "
-                  "--dts",
-                  s.bounces, worst->method, worst->value, why,
-                  std::floor(static_cast<double>(s.bounces) / over))
-            : fmt::format("--rigid-dts: value '{:g}' makes {} on {} take {}; accepted [{:.3g}, inf) there",
-                          worst->value, worst->method, worst->system, why, worst->value * over));
+    const double most_bounces = std::floor(static_cast<double>(s.bounces) / over);
+    if (worst->system != "ball")  // a scene's span is its own: only its step can change
+      throw std::invalid_argument(
+          fmt::format("--rigid-dts: value '{:g}' makes {} on {} take {}; accepted [{:.3g}, inf) there",
+                      worst->value, worst->method, worst->system, why, worst->value * over));
+    if (most_bounces >= 1)  // the ball's work scales with the span, so with --bounces
+      throw std::invalid_argument(fmt::format(
+          "--bounces: value '{}' makes {} at dt = {:g} s take {}; accepted [1, {:.0f}] at these --dts",
+          s.bounces, worst->method, worst->value, why, most_bounces));
+    const double least = worst->value * over, unit = std::pow(10.0, std::floor(std::log10(least)) - 2);
+    throw std::invalid_argument(fmt::format(  // not one bounce fits: the step is what is wrong
+        "--dts: value '{:g}' makes {} take {} for --bounces {}, and even one bounce is too many; accepted "
+        "--dts >= {:g} for --bounces {}",
+        worst->value, worst->method, why, s.bounces, std::ceil(least / unit) * unit, s.bounces));
   }
   return runs;
 }

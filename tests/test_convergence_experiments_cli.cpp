@@ -101,6 +101,9 @@ TEST_F(ConvergenceExperimentsCli, BadInputIsRefused) {
           // At e = 0.05 the rigid ball rests after 5 apexes (e^n V < 1e-7 m/s): more bounces failed
           // with 'did not reach the bounces'.
           {"--e 0.05 --bounces 6", "--bounces", "'6'", "[1, 5]"},
+          // Not one apex: it blamed --bounces with the empty range '[1, 0]'. An apex needs
+          // e V >= 1e-7 m/s, V = sqrt(2 g h0) = 4.43 m/s: e >= 2.258e-8, rounded up.
+          {"--e 1e-300 --bounces 1", "--e", "'1e-300'", "accepted --e >= 2.26e-08"},
       });
   expect_refused(ZENO_EXE, {
                                {"--e 1", "--e", "'1'", "(0, 1)"},

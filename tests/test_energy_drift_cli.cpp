@@ -74,18 +74,23 @@ TEST_F(EnergyDriftCli, DriftHasThePredictedSignsAndRates) {
 }
 
 TEST_F(EnergyDriftCli, BadInputIsRefused) {
-  expect_refused(ENERGY_DRIFT_EXE, {
-                                       {"--dts 1e-3,0", "--dts", "'0'", "(0, inf)"},
-                                       {"--rtols 2", "--rtols", "'2'", "(0, 1)"},
-                                       {"--bounces 0", "--bounces", "'0'", "[1, 10000]"},
-                                       // 1e9 bounces failed as 'work-limit', naming no option.
-                                       {"--bounces 1000000000", "--bounces", "'1000000000'", "[1, 10000]"},
-                                       {"--scene moon", "--scene", "'moon'", "snooker"},
-                                       // Runs that could only end in a work limit, refused before any
-                                       // starts (at 10000 bounces after 42 s of the others): sequential
-                                       // impulses at dt = 1e-4 s take 10 sweeps a step, 2 t0 / 1e-4 = 9030
-                                       // steps a bounce, so 1e8 sweeps hold 1107 bounces.
-                                       {"--bounces 10000", "--bounces", "'10000'", "[1, 1107]"},
-                                       {"--rigid-dts 1e-9", "--rigid-dts", "'1e-09'", "inf)"},
-                                   });
+  expect_refused(ENERGY_DRIFT_EXE,
+                 {
+                     {"--dts 1e-3,0", "--dts", "'0'", "(0, inf)"},
+                     {"--rtols 2", "--rtols", "'2'", "(0, 1)"},
+                     {"--bounces 0", "--bounces", "'0'", "[1, 10000]"},
+                     // 1e9 bounces failed as 'work-limit', naming no option.
+                     {"--bounces 1000000000", "--bounces", "'1000000000'", "[1, 10000]"},
+                     {"--scene moon", "--scene", "'moon'", "snooker"},
+                     // Runs that could only end in a work limit, refused before any
+                     // starts (at 10000 bounces after 42 s of the others): sequential
+                     // impulses at dt = 1e-4 s take 10 sweeps a step, 2 t0 / 1e-4 = 9030
+                     // steps a bounce, so 1e8 sweeps hold 1107 bounces.
+                     {"--bounces 10000", "--bounces", "'10000'", "[1, 1107]"},
+                     {"--rigid-dts 1e-9", "--rigid-dts", "'1e-09'", "inf)"},
+                     // Not one bounce fits: it blamed --bounces with the empty
+                     // range '[1, 0]'. 1e8 sweeps over 2 t0 = 0.903 s at 10
+                     // sweeps a step: dt >= 9.03e-8 s, rounded up.
+                     {"--dts 1e-9 --bounces 1", "--dts", "'1e-09'", "accepted --dts >= 9.04e-08"},
+                 });
 }
