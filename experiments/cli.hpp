@@ -15,6 +15,13 @@ namespace contact::cli {
 inline constexpr int kExitBadInput = 2;
 inline constexpr int kExitFailure = 1;
 
+// A least accepted value as a refusal prints it: x rounded up to three significant digits, so that
+// the printed value is accepted (up, never to nearest: a bound printed below x is refused again).
+inline double rounded_up(double x) {
+  const double unit = std::pow(10.0, std::floor(std::log10(x)) - 2);
+  return std::ceil(x / unit) * unit;
+}
+
 // A check of one value as typed: `description` is shown in --help; `error` returns "" when the
 // value is accepted, else the message (naming the value and what is accepted).
 struct Check {

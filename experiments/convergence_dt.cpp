@@ -57,10 +57,7 @@ int program(int argc, char** argv) {
   app.add("--integrators", integrators, "integrators, comma-separated or 'all'",
           cli::some_of(integrator_names()));
   return app.run(argc, argv, [&](OutputSet& files) {
-    if (dt_max >= t_final)
-      throw std::invalid_argument(fmt::format(
-          "--dt-max: value '{}' is not below --t-final = {}; accepted range (0, t-final)", dt_max, t_final));
-    const auto dts = halved_steps("--halvings", dt_max, halvings, 1, t_final);
+    const auto dts = halved_dt_max(dt_max, halvings, t_final);
     const auto drops = ball_problems_over_heights(k, t_final, static_cast<std::size_t>(heights));
     const auto chosen = converging_integrators(cli::chosen(integrators, integrator_names()), integrators);
     std::vector<Ladder> ladders;

@@ -62,11 +62,10 @@ std::vector<DriftRun> drift_runs(const DriftSettings& s) {
       throw std::invalid_argument(fmt::format(
           "--bounces: value '{}' makes {} at dt = {:g} s take {}; accepted [1, {:.0f}] at these --dts",
           s.bounces, worst->method, worst->value, why, most_bounces));
-    const double least = worst->value * over, unit = std::pow(10.0, std::floor(std::log10(least)) - 2);
     throw std::invalid_argument(fmt::format(  // not one bounce fits: the step is what is wrong
         "--dts: value '{:g}' makes {} take {} for --bounces {}, and even one bounce is too many; accepted "
         "--dts >= {:g} for --bounces {}",
-        worst->value, worst->method, why, s.bounces, std::ceil(least / unit) * unit, s.bounces));
+        worst->value, worst->method, why, s.bounces, cli::rounded_up(worst->value * over), s.bounces));
   }
   return runs;
 }

@@ -127,10 +127,9 @@ void refuse_dt_beyond_work_limit(const std::vector<PlannedRun>& runs, const std:
   }
   if (!worst) return;
   const SolveOptions span{.t_end = worst->t_end};
-  const double unit = std::pow(10.0, std::floor(std::log10(least)) - 2);  // rounded up: accepted as printed
   throw std::invalid_argument(fmt::format(
       "{0}: value '{1}' makes {2} over {3:g} s take {4}; accepted {0} >= {5:g}", option, worst->method.dt,
-      worst->what, worst->t_end, *work_refusal(worst->method, span), std::ceil(least / unit) * unit));
+      worst->what, worst->t_end, *work_refusal(worst->method, span), cli::rounded_up(least)));
 }
 
 bool reads_option(const std::string& method, const std::string& option) {

@@ -58,15 +58,12 @@ int program(int argc, char** argv) {
   app.add("--methods", methods, "fixed-step methods, comma-separated or 'all'",
           cli::some_of(fixed_step_methods()));
   return app.run(argc, argv, [&](OutputSet& files) {
-    if (dt_max >= t_final)
-      throw std::invalid_argument(fmt::format(
-          "--dt-max: value '{}' is not below --t-final = {}; accepted range (0, t-final)", dt_max, t_final));
+    const auto dts = halved_dt_max(dt_max, halvings, t_final);  // at most 1e7 steps a run
     const Problem ball = ball_problem(k, t_final);
     const auto chosen = cli::chosen(methods, fixed_step_methods());
     Table errors({"method", "reference", "dt_s", "error", "observed_order", "rhs_evals"});
     Table orders({"method", "reference", "fitted_order", "finest_error"});
     Series figure;
-    const auto dts = halved_steps("--halvings", dt_max, halvings, 1, t_final);  // at most 1e7 steps a run
     const std::size_t per_method = dts.size();
     const auto step = [&](std::size_t i) { return dts[i % per_method]; };
     Progress progress("method_orders", chosen.size() * per_method);

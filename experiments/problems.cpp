@@ -26,8 +26,12 @@ Problem ball_problem(double k, double t_end, double h0) {
         rigid ? rigid_ball_state(h0, 0.0, g, 1.0, t_end) : hooke_ball_state(m, k, h0, 0.0, g, t_end);
     return std::max(std::abs(y[0] - ref.x) / h0, std::abs(y[1] - ref.v) / V);
   };
-  return {"ball", std::make_shared<BallDrop>(BallDropParams{m, g, h0, 0.0, 1.0, Hooke{k}}), t_end,
-          hooke_contact(m, k, V, g).duration, error};
+  return {"ball",
+          std::make_shared<BallDrop>(BallDropParams{m, g, h0, 0.0, 1.0, Hooke{k}}),
+          t_end,
+          hooke_contact(m, k, V, g).duration,
+          fmt::format("--k: value '{}' makes", k),
+          error};
 }
 
 ErrorSpread error_over(const std::vector<Problem>& problems,
@@ -103,7 +107,8 @@ Problem chain_problem(long balls, double k) {
     }
     return err;
   };
-  return {"chain", chain, t_end, contact, error};
+  return {"chain", chain, t_end, contact, fmt::format("--chain-k, --balls: values '{}', '{}' make", k, balls),
+          error};
 }
 
 namespace {
@@ -126,7 +131,8 @@ std::vector<WorkJob> work_precision_jobs(const std::vector<Problem>& problems,
   std::vector<WorkJob> jobs;
   for (const Problem& pr : problems) {
     // The largest fixed step is 1/16 of a contact (w dt = pi/16), halved `halvings` times.
-    const auto dts = halved_steps("--halvings", pr.contact_duration / 16, halvings, 0, pr.t_end);
+    const auto dts = halved_steps("--halvings", pr.contact_duration / 16, halvings, 0, pr.t_end,
+                                  pr.set_by + " the " + pr.name + "'s largest step (1/16 of a contact)");
     for (const auto& name : integrators) {
       if (is_exact(integrator_info(name))) {  // no setting: one run
         jobs.push_back({&pr, "penalty", name, "exact", 0.0, method_with("penalty", name, 0.0)});

@@ -24,6 +24,8 @@ struct Problem {
   std::shared_ptr<const MechanicalSystem> model;
   double t_end;             // the error is measured at this time [s]
   double contact_duration;  // of one contact [s]
+  // The options that set the contact and their values, as a refusal names them: "--k: value '1' makes".
+  std::string set_by;
   std::function<double(const RunResult& r, bool rigid)> error;
 };
 

@@ -2,6 +2,7 @@
 // The one setting a sweep varies, set the same way in every experiment: a fixed step, or a
 // relative tolerance with atol = rtol / 100 (the study's states are of order one in SI units:
 // metres and metres per second).
+#include "cli.hpp"
 #include "contact_ode/integrators/integrator.hpp"
 #include "contact_ode/integrators/method_registry.hpp"
 
@@ -35,25 +36,45 @@ inline std::vector<std::string> converging_integrators(std::vector<std::string> 
 
 // The fixed steps of a sweep: dt_max / 2^j, j = 0 .. halvings. Refused (std::invalid_argument naming
 // `option`, the value and the accepted range from `least`) where the finest would take more than
-// kSweepMaxSteps steps over `span`: such a run could only fail, after minutes.
+// kSweepMaxSteps steps over `span`: such a run could only fail, after minutes. Where even dt_max
+// would, no number of halvings is at fault: the refusal begins with `largest`, the options that set
+// dt_max and their values ("--k: value '1e+300' makes the ball's largest step").
 inline std::vector<double> halved_steps(const std::string& option, double dt_max, long halvings, long least,
-                                        double span) {
+                                        double span, const std::string& largest) {
   const double most = std::floor(std::log2(static_cast<double>(kSweepMaxSteps) * dt_max / span));
   const int h = static_cast<int>(std::min(halvings, 4096L));
-  if (static_cast<double>(halvings) > most) {
-    const std::string accepted =
-        most >= static_cast<double>(least)
-            ? fmt::format("accepted [{}, {:g}]", least, most)
-            : fmt::format("none is: the largest step, {:.3g} s, already takes {:.3g}", dt_max, span / dt_max);
+  const auto most_steps = static_cast<double>(kSweepMaxSteps);
+  if (most < static_cast<double>(least)) {
+    const double fewest = std::ldexp(span / most_steps, static_cast<int>(least));
+    const std::string halved = least == 0   ? ""
+                               : least == 1 ? " halved once, the sweep's least"
+                                            : fmt::format(" halved {} times, the sweep's least", least);
+    throw std::invalid_argument(
+        fmt::format("{} {:.3g} s, {:.3g} steps over {:g} s{} (a run takes at most {:g}); accepted: a largest "
+                    "step >= {:g} s",
+                    largest, dt_max, std::ldexp(span / dt_max, static_cast<int>(least)), span, halved,
+                    most_steps, cli::rounded_up(fewest)));
+  }
+  if (static_cast<double>(halvings) > most)
     throw std::invalid_argument(
         fmt::format("{}: value '{}' makes the finest step {:.3g} s, {:.3g} steps over {:g} s (a run takes at "
-                    "most {:g}); {}",
-                    option, halvings, std::ldexp(dt_max, -h), std::ldexp(span / dt_max, h), span,
-                    static_cast<double>(kSweepMaxSteps), accepted));
-  }
+                    "most {:g}); accepted [{}, {:g}]",
+                    option, halvings, std::ldexp(dt_max, -h), std::ldexp(span / dt_max, h), span, most_steps,
+                    least, most));
   std::vector<double> steps;
   for (int j = 0; j <= h; ++j) steps.push_back(std::ldexp(dt_max, -j));
   return steps;
+}
+
+// convergence_dt's and method_orders' steps: --dt-max halved --halvings times, over (and below)
+// --t-final.
+inline std::vector<double> halved_dt_max(double dt_max, long halvings, double t_final) {
+  if (dt_max >= t_final)
+    throw std::invalid_argument(fmt::format(
+        "--dt-max: value '{}' is not below --t-final = {}; accepted range (0, t-final)", dt_max, t_final));
+  return halved_steps(
+      "--halvings", dt_max, halvings, 1, t_final,
+      fmt::format("--dt-max, --t-final: values '{}', '{}' make the largest step", dt_max, t_final));
 }
 
 // Tolerances from `loosest` down to `tightest` (within rounding), a decade apart.

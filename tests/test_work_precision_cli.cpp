@@ -161,6 +161,11 @@ TEST_F(WorkPrecisionCli, BadInputIsRefused) {
                                          {"--repeats 2", "--repeats", "'2'", "[3, 1000]"},
                                          // The ball's w dt = pi/16 halved 30 times: 8e11 steps.
                                          {"--halvings 30", "--halvings", "'30'", "[0, 13]"},
+                                         // Its contact sets the largest step (1/16 of it), 6.2e-8 s at
+                                         // 1e13 N/m: 2.4e7 steps over 1.5 s unhalved. It blamed
+                                         // --halvings, whose every value was refused.
+                                         {"--problems ball --k 1e13", "--k", "'10000000000000'",
+                                          "accepted: a largest step >= 1.5e-07 s"},
                                      });
 }
 
