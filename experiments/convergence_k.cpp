@@ -60,11 +60,10 @@ int program(int argc, char** argv) {
     if (!rigid.ok()) throw std::runtime_error("the rigid reference failed: " + rigid.message);
     const double rest = EventOptions{}.rest_speed, V = std::sqrt(2 * g * h0);
     if (rigid.apexes.empty()) {  // not one apex: --e is what is wrong, whatever --bounces
-      throw std::invalid_argument(
-          fmt::format("--e: value '{:g}' leaves the rigid ball no apex: its rebound speed e V = {:.3g} m/s "
-                      "is below the rest "
-                      "speed ({:g} m/s); accepted --e >= {:g} (V = {:.3g} m/s from h0 = {:g} m)",
-                      e, e * V, rest, cli::rounded_up(rest / V), V, h0));
+      throw std::invalid_argument(fmt::format(
+          "--e: value '{:g}' leaves the rigid ball no apex: its rebound speed e V = {:.3g} m/s "
+          "is below the rest speed ({:g} m/s); accepted --e >= {:g} (V = {:.3g} m/s from h0 = {:g} m)",
+          e, e * V, rest, cli::rounded_up(rest / V), V, h0));
     }
     if (rigid.contacts.size() < nb || rigid.apexes.size() < nb)  // it rested first (a small e)
       throw std::invalid_argument(fmt::format(

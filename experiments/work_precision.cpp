@@ -124,7 +124,7 @@ int program(int argc, char** argv) {
       for (const auto& [p, err, physical] : peer)
         add("ball", "scipy", p.method,
             {std::string("ball"), std::string("scipy"), p.method, std::string("rtol"), p.rtol, physical, err,
-             p.nfev, std::nan(""), p.cpu_s, p.cpu_min_s, p.cpu_max_s, p.repeats, std::string("ok")},
+             p.nfev, std::nan(""), p.cpu_s, p.cpu_min_s, p.cpu_max_s, p.repeats, std::string("success")},
             p.cpu_s, physical, err);
     }
     files.add_table("work_precision", table);
