@@ -1,5 +1,6 @@
 #include "exact_linear_integrator.hpp"
 
+#include "dense_limit.hpp"
 #include "stepping_integrator.hpp"
 
 #include <fmt/format.h>
@@ -63,6 +64,13 @@ class ExactLinearIntegrator final : public SteppingIntegrator {
     const Index n = y0.size();
     const bool marked = sys_.quadratures.size() == n;
     for (Index i = 0; i < n; ++i) (marked && sys_.quadratures[i] ? q_ : p_).push_back(i);
+    // Each restart holds dense n x n matrices: the Jacobian, a probe's Jacobian and the kept
+    // segments' A (their quadratures' Hessians are small: m <= kMaxQuadratureStates). Nothing
+    // counted them: a 4e5-ball chain asked for 5 TB at its first step and ended in std::bad_alloc,
+    // and a few thousand balls would be granted by overcommit.
+    refuse_dense_beyond_limit(static_cast<double>(n), 2 + static_cast<int>(kKeptSegments),
+                              "use an adaptive integrator (cvode-bdf), whose band, klu or gmres linear "
+                              "solver scales with n");
   }
 
   void reinit(double t, ConstVectorRef y) override {
@@ -200,14 +208,14 @@ class ExactLinearIntegrator final : public SteppingIntegrator {
   // larger than the state costs nothing on an exact quadratic.
   void quadratic_forms(Segment& s) {
     const Index m = static_cast<Index>(p_.size()), r = static_cast<Index>(q_.size());
-    s.G = Matrix::Zero(r, m);
-    s.H.assign(q_.size(), Matrix::Zero(m, m));
-    if (q_.empty()) return;
-    if (m > kMaxQuadratureStates)
+    if (r > 0 && m > kMaxQuadratureStates)  // (before the Hessians' m x m storage is allocated)
       refuse(
           fmt::format("forms its quadratures (the energy ledger) from m (m + 3) / 2 right-hand sides at "
                       "every restart; m = {} entries is beyond its {}: use an adaptive integrator",
                       m, kMaxQuadratureStates));
+    s.G = Matrix::Zero(r, m);
+    s.H.assign(q_.size(), Matrix::Zero(m, m));
+    if (q_.empty()) return;
     const Vector c = s.f0(q_);
     Vector probe(m);
     for (Index k = 0; k < m; ++k) probe[k] = std::max(1.0, std::abs(ya_[p_[k]]));

@@ -331,6 +331,25 @@ TEST(RunBounds, GslsDenseMatricesBeyondFourGibAreAWorkLimit) {
   }
 }
 
+// exact-linear holds six dense n x n matrices (the Jacobian, a probe's, four kept segments' A),
+// which nothing counted either: a 4e5-ball chain threw std::bad_alloc at its first step (5 TB each)
+// and 4800 balls would have taken 4.4 GB. The 4 GiB bound holds from 4730 balls (2 n + 1 = 9461
+// states with the energy ledger: 6 x 8 x 9461^2 bytes = 4.0014 GiB); both are refused at t = 0,
+// naming what scales.
+TEST(RunBounds, ExactLinearsDenseMatricesBeyondFourGibAreAWorkLimit) {
+  for (const std::size_t balls : {400000, 4800}) {
+    const BallChain chain({.n = balls, .law = Hooke{1e6}});
+    const RunResult r = solve(chain, {.name = "penalty", .integrator = {.method = "exact-linear"}},
+                              {.t_end = 1e-9, .sample_dt = 1e-9});
+    EXPECT_EQ(r.status, Status::WorkLimit) << balls << ": " << r.message;
+    EXPECT_EQ(r.t_reached, 0.0) << balls;
+    EXPECT_NE(r.message.find(fmt::format("a dense {0} x {0} Jacobian and 5 more", 2 * balls + 1)),
+              std::string::npos)
+        << r.message;
+    EXPECT_NE(r.message.find("(at most 4): use an adaptive integrator"), std::string::npos) << r.message;
+  }
+}
+
 // A drop of 1e-9 m with e = 1 at atol = 1e-10: every bounce is below what the flight resolves.
 // It used to come to rest at the first impact having lost 99 % of its energy, with success.
 TEST(RunBounds, EventFlightBelowItsToleranceFailsTyped) {
