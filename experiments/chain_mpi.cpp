@@ -15,6 +15,7 @@
 #include "cli.hpp"
 #include "contact_ode/analysis/references.hpp"
 #include "contact_ode/analysis/table.hpp"
+#include "contact_ode/integrators/run_recorder.hpp"
 #include "contact_ode/models/ball_chain.hpp"
 #include "contact_ode/models/scene_registry.hpp"
 #include "distributed_penalty.hpp"
@@ -24,8 +25,6 @@
 
 #include <fmt/format.h>
 #include <mpi.h>
-
-#include <unistd.h>
 
 #include <iostream>
 #include <optional>
@@ -57,13 +56,12 @@ std::string memory_refusal(long balls, int size) {
   double need = 1536.0 * static_cast<double>(held) + 100.0 * static_cast<double>(balls), here = 0, worst = 0;
   MPI_Allreduce(&need, &here, 1, MPI_DOUBLE, MPI_SUM, node);
   MPI_Comm_free(&node);
-  const double memory =
-      static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGE_SIZE));
+  const double memory = memory_limit();  // the machine's, or a container's or ulimit's if less
   double ratio = here / memory;
   MPI_Allreduce(&ratio, &worst, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
   if (worst <= 1) return {};
   return fmt::format(
-      "--balls: value '{}' needs about {:.3g} GB of memory on a machine that has {:.3g} GB (~1.5 kB per "
+      "--balls: value '{}' needs about {:.3g} GB of memory where a process may use {:.3g} GB (~1.5 kB per "
       "ball a rank holds, shared by the ranks on a machine); use more machines or fewer balls",
       balls, worst * memory / 1e9, memory / 1e9);
 }

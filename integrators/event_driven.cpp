@@ -584,7 +584,8 @@ std::vector<MethodInfo> event_methods() {
               return run_event_driven(dynamic_cast<const MechanicalSystem&>(scene), options(m, reverse),
                                       span);
             },
-        .settings = settings};
+        .settings = settings,
+        .working_doubles = kIntegratorWorkingDoubles};
   };
   auto exact = [](const Dynamics& scene) {
     return dynamic_cast<const MechanicalSystem*>(&scene) != nullptr &&

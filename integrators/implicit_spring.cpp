@@ -273,7 +273,9 @@ std::vector<MethodInfo> implicit_spring_methods() {
            .needs = "dynamics and contact geometry",
            .can_run = [](const Dynamics&) { return true; },
            .run = run,
-           .settings = {"dt"}}};
+           .settings = {"dt"},
+           // its sparse LU: 78 doubles per entry on a chain, 122 on a stack (measured)
+           .working_doubles = 160}};
 }
 
 }  // namespace contact

@@ -95,39 +95,49 @@ void check_method_settings(const Method& m) {
   if (m.persistence < 1) refuse("persistence", m.persistence, "[1, inf)");
 }
 
-// A run holds its output samples (the whole state each) and its method's working vectors: at least
-// 16 per state entry for a method that runs an ODE integrator and 8 for the others (measured on a
-// chain of a million balls: 20 to 35 for CVODE, ARKODE and GSL with their linear solvers, 10 for
-// the game loops). A run whose lower bound passes the limit is refused before it starts: a chain of 1e8
-// balls, or 1e5 balls sampled every 10 us for 0.1 s (16 GB), filled the machine, which ends in the
-// kernel's OOM killer rather than an error.
 // Whether the method runs one of the ODE integrators (its `integrator` setting): penalty, event-ode.
 bool integrates(const MethodInfo& info) {
   return std::ranges::find(info.settings, "integrator") != info.settings.end();
 }
 
-void refuse_what_cannot_fit(const Dynamics& scene, const MethodInfo& info, const Method& method,
-                            const SolveOptions& options) {
-  const double entries = static_cast<double>(scene.state_size());
+// The samples a run keeps: one per sample_dt, or per step where the steps are fewer, and the first.
+double output_samples(const MethodInfo& info, const Method& method, const SolveOptions& options) {
   double samples = options.t_end / options.sample_dt;
   if (info.fixed_step) samples = std::min(samples, steps_to_cover(options.t_end, method.dt));
-  samples = std::min(samples + 1, static_cast<double>(options.limits.max_samples));
-  const double vectors = integrates(info) ? 16 : 8;
-  const double dense = info.dense_state_matrix ? entries : 0.0;  // a dense n x n matrix: n more vectors
-  const double bytes = 8 * entries * (vectors + dense + samples);
+  return std::min(samples + 1, static_cast<double>(options.limits.max_samples));
+}
+
+// A run holds its output samples (the whole state each) and its method's working memory
+// (MethodInfo::working_doubles per state entry). A run that passes the limit is refused before it
+// starts: a chain of 1e8 balls, or 1e5 balls sampled every 10 us for 0.1 s (16 GB), filled the
+// machine, which ends in the kernel's OOM killer rather than an error.
+void refuse_what_cannot_fit(const Dynamics& scene, const MethodInfo& info, const Method& method,
+                            const SolveOptions& options) {
+  const double bytes = memory_estimate(scene, method, options);
   if (bytes <= options.limits.max_memory_bytes) return;
+  const double entries = static_cast<double>(scene.state_size());
   throw std::invalid_argument(fmt::format(
-      "{} on {} needs at least {:.4g} GB ({:.3g} output samples of its {:.3g} state values, and {:.0f} "
-      "working vectors{}); a run may hold {:.3g} GB (half this machine's memory): fewer bodies, a shorter "
-      "t_end or a wider sample_dt",
-      info.name, scene.name(), bytes / 1e9, samples, entries, vectors,
-      dense > 0 ? fmt::format(" and a dense {:.3g} x {:.3g} matrix", entries, entries) : "",
+      "{} on {} needs about {:.4g} GB ({:.3g} output samples of its {:.3g} state values, and {:.0f} "
+      "working doubles per value{}); a run may hold {:.3g} GB (half the memory this process may use): "
+      "fewer bodies, a shorter t_end or a wider sample_dt",
+      info.name, scene.name(), bytes / 1e9, output_samples(info, method, options), entries,
+      info.working_doubles,
+      info.dense_state_matrices > 0 ? fmt::format(" and {:.3g} of a dense {:.3g} x {:.3g} matrix",
+                                                  info.dense_state_matrices, entries, entries)
+                                    : "",
       options.limits.max_memory_bytes / 1e9));
 }
 
 int passes(const MethodInfo& info, const Method& method) { return info.passes ? info.passes(method) : 1; }
 
 }  // namespace
+
+double memory_estimate(const Dynamics& scene, const Method& method, const SolveOptions& options) {
+  const MethodInfo& info = method_info(method.name);
+  const double entries = static_cast<double>(scene.state_size());
+  const double dense = info.dense_state_matrices * entries;  // a dense n x n matrix: n more per entry
+  return 8 * entries * (info.working_doubles + dense + output_samples(info, method, options));
+}
 
 double fixed_step_work(const Method& method, const SolveOptions& options) {
   const MethodInfo& info = method_info(method.name);

@@ -268,7 +268,8 @@ std::vector<MethodInfo> penalty_methods() {
                             return run_penalty(scene, o, span);
                           },
                       .settings = settings(jacobian),
-                      .dq_jacobian = jacobian == JacobianMode::DifferenceQuotient};
+                      .dq_jacobian = jacobian == JacobianMode::DifferenceQuotient,
+                      .working_doubles = kIntegratorWorkingDoubles};
   };
   return {entry("penalty",
                 "penalty spring as an ODE (CVODE BDF by default), analytic Jacobian by default, switches "

@@ -385,28 +385,27 @@ TEST(Solve, ValuesBelowTheSmallestNormalDoubleAreRefusedNamingThem) {
 }
 
 // A run that cannot fit is refused before it starts, naming what it would hold: its output samples
-// (the whole state each) and at least 16 working vectors per state entry for an ODE integrator, 8 for
-// a fixed-step method. A chain of 1e8 balls (the scene accepts up to 1e9), or 1e5 balls sampled every
-// 10 us for 0.1 s (16 GB), filled the machine until the kernel killed the process. Here the limit is
-// set to 1 MB: 1000 balls (2000 values) at 101 samples need 8 * 2000 * (16 + 101) B = 1.87 MB, at 6
-// samples 0.35 MB.
+// (the whole state each) and MethodInfo::working_doubles per state entry (128 for an ODE integrator,
+// 20 for a fixed-step loop). A chain of 1e8 balls (the scene accepts up to 1e9), or 1e5 balls
+// sampled every 10 us for 0.1 s (16 GB), filled the machine until the kernel killed the process.
+// Here the limit is set to 2.5 MB: 1000 balls (2000 values) at 101 samples need 8 * 2000 * (128 +
+// 101) B = 3.66 MB, at 6 samples 2.14 MB (penalty) and 0.42 MB (a fixed step).
 TEST(Solve, ARunThatCannotFitIsRefusedBeforeItStarts) {
   const auto chain = make_scene("ball-chain", {{"n", 1000.0}}, "hooke");
   SolveOptions many{.t_end = 1e-4, .sample_dt = 1e-6};
-  many.limits.max_memory_bytes = 1e6;
+  many.limits.max_memory_bytes = 2.5e6;
   const std::string why = refusal([&] { solve(*chain, {.name = "penalty"}, many); });
-  EXPECT_EQ(
-      why.rfind("penalty on ball-chain needs at least 0.001872 GB (101 output samples of its 2e+03 state "
-                "values, and 16 working vectors); a run may hold 0.001 GB",
-                0),
-      0u)
+  EXPECT_EQ(why.rfind("penalty on ball-chain needs about 0.003664 GB (101 output samples of its 2e+03 state "
+                      "values, and 128 working doubles per value); a run may hold 0.0025 GB",
+                      0),
+            0u)
       << why;
   // A fixed-step method's samples are its steps at most: dt = 2e-5 s takes 5 steps, 6 samples.
   SolveOptions few = many;
   EXPECT_TRUE(solve(*chain, {.name = "game-symplectic-spring", .dt = 2e-5}, few).ok());
   few.sample_dt = 2e-5;
   EXPECT_TRUE(solve(*chain, {.name = "penalty"}, few).ok());
-  EXPECT_GT(RunLimits{}.max_memory_bytes, 1e8);  // half of any machine this runs on
+  EXPECT_GT(RunLimits{}.max_memory_bytes, 1e8);  // half of what any machine this runs on lets it use
 }
 
 // A scene whose bodies start inside each other was built and run: the spinning box places its ball

@@ -173,15 +173,20 @@ class BulletWorld final : public EngineWorld {
 
 }  // namespace
 
+// A Bullet world holds 531 doubles per state entry (chains of 5e4 and 1e5 balls).
+constexpr double kBulletWorkingDoubles = 720;
+
 std::vector<MethodInfo> bullet_methods() {
   return {
       engine_method("bullet",
                     "Bullet 3.24 (double) at its defaults: sequential impulses, Baumgarte, early contacts",
-                    false, [](const EngineScene& s) { return std::make_unique<BulletWorld>(s, false); }),
+                    false, kBulletWorkingDoubles,
+                    [](const EngineScene& s) { return std::make_unique<BulletWorld>(s, false); }),
       engine_method(
           "bullet-tuned",
           "Bullet 3.24 (double) tuned for Newton's law: contacts at touch, split impulses at any overlap",
-          false, [](const EngineScene& s) { return std::make_unique<BulletWorld>(s, true); })};
+          false, kBulletWorkingDoubles,
+          [](const EngineScene& s) { return std::make_unique<BulletWorld>(s, true); })};
 }
 
 }  // namespace contact

@@ -70,7 +70,8 @@ EngineScene engine_scene(const Dynamics& scene, double dt) {
 
 }  // namespace
 
-MethodInfo engine_method(std::string name, std::string description, bool springs, EngineFactory make) {
+MethodInfo engine_method(std::string name, std::string description, bool springs, double working_doubles,
+                         EngineFactory make) {
   auto run = [springs, make = std::move(make)](const Dynamics& scene, const Method& m,
                                                const SolveOptions& span) {
     const EngineScene es = engine_scene(scene, m.dt);  // solve() has checked can_run
@@ -169,7 +170,8 @@ MethodInfo engine_method(std::string name, std::string description, bool springs
               : "spheres on a line (SphereLine), an impulse map and normal impulses",
       .can_run = springs ? can_run_engine_spring : can_run_engine,
       .run = std::move(run),
-      .settings = {"dt"}};
+      .settings = {"dt"},
+      .working_doubles = working_doubles};
 }
 
 std::vector<MethodInfo> engine_methods() {

@@ -62,7 +62,10 @@ using EngineFactory = std::function<std::unique_ptr<EngineWorld>(const EngineSce
 // A method that runs an engine. `springs`: the setting models the scene's penalty law (its
 // dashpot's work is booked, its spring's energy counted); otherwise the engine is asked for
 // Newton's law with the scene's restitution, whose loss is booked once per impact.
-MethodInfo engine_method(std::string name, std::string description, bool springs, EngineFactory make);
+// `working_doubles`: the engine's memory per state entry, as MethodInfo's (an engine's world holds
+// far more per body than our state: 3D bodies, contacts, its solver's rows).
+MethodInfo engine_method(std::string name, std::string description, bool springs, double working_doubles,
+                         EngineFactory make);
 
 // Engines available in this build, in registry order (each optional at configure time).
 std::vector<MethodInfo> mujoco_methods();

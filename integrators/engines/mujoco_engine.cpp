@@ -171,15 +171,20 @@ class MujocoWorld final : public EngineWorld {
 
 }  // namespace
 
+// A MuJoCo model and data hold 250 to 336 doubles per state entry (chains of 5e4 and 1e5 balls).
+constexpr double kMujocoWorkingDoubles = 448;
+
 std::vector<MethodInfo> mujoco_methods() {
   return {
       engine_method("mujoco",
                     "MuJoCo 2.2.2 at its defaults: soft contacts solref (0.02, 1), semi-implicit Euler",
-                    false, [](const EngineScene& s) { return std::make_unique<MujocoWorld>(s, false); }),
+                    false, kMujocoWorkingDoubles,
+                    [](const EngineScene& s) { return std::make_unique<MujocoWorld>(s, false); }),
       engine_method("mujoco-spring",
                     "MuJoCo 2.2.2 tuned to the scene's spring-damper: solref (-k w, -c w), impedance 0.9999 "
                     "(contacts only push: a Kelvin-Voigt law acts clamped)",
-                    true, [](const EngineScene& s) { return std::make_unique<MujocoWorld>(s, true); })};
+                    true, kMujocoWorkingDoubles,
+                    [](const EngineScene& s) { return std::make_unique<MujocoWorld>(s, true); })};
 }
 
 }  // namespace contact

@@ -64,6 +64,7 @@ class SiconosWorld final : public EngineWorld {
 std::vector<MethodInfo> siconos_methods() {
   MethodInfo info = engine_method(
       "siconos", "Siconos 4.4 event-driven: LSODAR flight, Newton's impact law by LCP, Zeno to rest", false,
+      MethodInfo{}.working_doubles,  // the default, besides its dense matrix (below)
       [](const EngineScene& s) -> std::unique_ptr<EngineWorld> {
         try {  // Siconos's refusal of the scene fails the run, as its step failures do
           return std::make_unique<SiconosWorld>(s);
@@ -73,7 +74,7 @@ std::vector<MethodInfo> siconos_methods() {
       });
   // LSODAR's Jacobian is dense over every state: (2 n)^2 numbers for n balls, 3.2 GB at 1e4 and
   // 29 GB at 3e4, which would have gone to the kernel's OOM killer, not to an error.
-  info.dense_state_matrix = true;
+  info.dense_state_matrices = 1;
   return {info};
 }
 

@@ -68,10 +68,20 @@ struct MethodInfo {
   // The sub-steps or solver sweeps each of its fixed steps makes (sequential impulses' iterations,
   // soft step's and XPBD's sub-steps); empty: one. The run's work bound counts steps times these.
   std::function<int(const Method&)> passes;
-  // Holds a dense matrix of the state's size whatever the scene (Siconos' LSODAR integrates every
-  // state with a dense Jacobian): 8 n^2 bytes more in the memory a run is checked for.
-  bool dense_state_matrix = false;
+  // Memory that grows as the square of the state, in dense state-sized matrices: Siconos' LSODAR
+  // integrates every state with a dense Jacobian (1); an ODE world's step grows as 0.0039 of one
+  // (measured on chains of 5e4 to 4e5 balls: 523 to 3237 doubles per entry, 2.9 to 21 GB).
+  double dense_state_matrices = 0;
+  // The memory a run holds per state entry besides its samples, in doubles: about 4/3 of the most
+  // measured (peak resident memory over state entries, chains and stacks of 5e4 to 1e7 balls): 11 to
+  // 16 for the fixed-step loops.
+  double working_doubles = 20;
 };
+
+// working_doubles of the methods that run an ODE integrator: 24 (rk4) to 94 (a stack under CVODE),
+// with KLU's factors and ARKODE's IMEX stages near the top. (16 was taken as a lower bound: a
+// 1e7-ball chain under penalty holds 8 GB where that said 2.6, so a run past the limit started.)
+inline constexpr double kIntegratorWorkingDoubles = 128;
 
 // The settings of a method that runs an ODE integrator (IntegratorOptions): a fixed step ("dt")
 // for an integrator that takes one, tolerances otherwise.
@@ -84,6 +94,11 @@ std::vector<std::string> method_names();
 std::vector<std::string> methods_for(const Dynamics& scene);
 // Throws std::invalid_argument naming the accepted methods.
 const MethodInfo& method_info(const std::string& name);
+
+// The memory [bytes] a run of `method` on `scene` over options' span holds at its peak, from above:
+// its output samples and working_doubles per state entry. solve() refuses a run past
+// options.limits.max_memory_bytes before it starts.
+double memory_estimate(const Dynamics& scene, const Method& method, const SolveOptions& options);
 
 // Runs `method` on `scene` over options' span. Throws std::invalid_argument for an unknown
 // method, a scene the method cannot run (naming what it lacks) or a setting out of range (the

@@ -15,9 +15,13 @@
 
 namespace contact {
 
-// Half of this machine's physical memory [bytes]: what one run may hold (its caller, e.g. Python's
-// copy of the samples, needs room too).
-double half_the_machines_memory();
+// The memory this process may use [bytes]: the machine's physical memory, or less where a cgroup
+// (a container) or an address-space rlimit (ulimit -v) sets less. Half of this machine's memory
+// let a run past a container's limit start, and meet the OOM killer (or, under ulimit -v, a failed
+// allocation inside SUNDIALS, which dereferences the NULL it gets).
+double memory_limit();
+// Half of it: what one run may hold (its caller, e.g. Python's copy of the samples, needs room too).
+double half_the_memory_limit();
 
 // Bounds on one run's work and memory, whatever the method: a run that would pass one ends with
 // Status::WorkLimit and the time reached, instead of running for hours or exhausting memory.
@@ -33,7 +37,7 @@ struct RunLimits {
   long max_samples = 10'000'000;  // output samples (about t_end / sample_dt)
   // The run's samples and its method's working vectors, estimated from below before it starts
   // (solve()): a run that cannot fit is refused instead of filling the machine.
-  double max_memory_bytes = half_the_machines_memory();
+  double max_memory_bytes = half_the_memory_limit();
   // A sampled state entry past this many times the initial state's largest (or 1, the state being
   // in SI units) ends the run as Status::Diverged: a fixed step beyond its scheme's stability bound
   // (the default chain under semi-implicit Euler at 1 ms reached 1e43 m/s) otherwise 'succeeded'
