@@ -242,6 +242,7 @@ class OdeWorld final : public EngineWorld {
 // An ODE world holds 118 doubles per state entry and 0.0039 of a dense state-sized matrix (its step
 // over one island of touching balls): 523 to 3237 doubles per entry on chains of 5e4 to 4e5 balls.
 constexpr double kOdeWorkingDoubles = 160;
+constexpr double kOdeDenseShare = 0.005;  // MethodInfo::dense_state_matrices
 
 std::vector<MethodInfo> ode_engine_methods() {
   std::vector<MethodInfo> all = {
@@ -259,7 +260,7 @@ std::vector<MethodInfo> ode_engine_methods() {
           "only push: a Kelvin-Voigt law acts clamped)",
           true, kOdeWorkingDoubles,
           [](const EngineScene& s) { return std::make_unique<OdeWorld>(s, true, false); })};
-  for (MethodInfo& info : all) info.dense_state_matrices = 0.005;
+  for (MethodInfo& info : all) info.dense_state_matrices = kOdeDenseShare;
   return all;
 }
 

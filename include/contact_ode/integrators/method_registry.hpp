@@ -73,8 +73,8 @@ struct MethodInfo {
   // (measured on chains of 5e4 to 4e5 balls: 523 to 3237 doubles per entry, 2.9 to 21 GB).
   double dense_state_matrices = 0;
   // The memory a run holds per state entry besides its samples, in doubles: about 4/3 of the most
-  // measured (peak resident memory over state entries, chains and stacks of 5e4 to 1e7 balls): 11 to
-  // 16 for the fixed-step loops.
+  // measured (peak resident memory over state entries, chains and stacks of 5e4 to 1e7 balls); 6/5
+  // for the fixed-step loops, measured at 11 to 16.6.
   double working_doubles = 20;
 };
 

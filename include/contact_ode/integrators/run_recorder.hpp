@@ -35,8 +35,8 @@ struct RunLimits {
   long max_steps = 100'000'000;   // integrator steps over the whole run, restarts included
   long max_records = 1'000'000;   // contact records, apexes and notifications kept
   long max_samples = 10'000'000;  // output samples (about t_end / sample_dt)
-  // The run's samples and its method's working vectors, estimated from below before it starts
-  // (solve()): a run that cannot fit is refused instead of filling the machine.
+  // The run's samples and its method's working memory, estimated from above before it starts
+  // (memory_estimate, solve()): a run that cannot fit is refused instead of filling the machine.
   double max_memory_bytes = half_the_memory_limit();
   // A sampled state entry past this many times the initial state's largest (or 1, the state being
   // in SI units) ends the run as Status::Diverged: a fixed step beyond its scheme's stability bound
