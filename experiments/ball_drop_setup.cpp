@@ -87,8 +87,8 @@ std::string ball_references(const BallDropOptions& o) {
   if (o.g > 0) {
     const RigidBounces rigid(o.h0, o.v0, o.g, o.e);
     s += fmt::format(
-        "rigid (Newton, e = {:g}): first impact {:.6g} s, first apex e^2 h0 = {:.6g} m, Zeno time {:.6g} s\n",
-        o.e, rigid.T1, rigid.apex_height(1), rigid.zeno_time());
+        "rigid (Newton, e = {:g}): first impact {:.6g} s, first apex {} = {:.6g} m, Zeno time {:.6g} s\n",
+        o.e, rigid.T1, o.v0 == 0 ? "e^2 h0" : "(e V)^2 / 2g", rigid.apex_height(1), rigid.zeno_time());
   }
   if (o.law == "hooke") s += "closed forms: Hooke spring with gravity (exact); restitution 1\n";
   if (o.law == "kelvin-voigt" || o.law == "kelvin-voigt-clamped")

@@ -102,10 +102,10 @@ PanelAxis work_panel_axis(const std::string& problem, const std::string& panel);
 // (RigidBounces in general) [m]; NaN when the run failed or did not bounce.
 double first_apex_error(const BallDropParams& p, const RunResult& r);
 
-// The simulated time a ball dropped from rest needs for its first contact and first apex: the
-// fall, 1.25 times the contact's duration as Hooke's exact form gives it with the damped frequency,
-// (pi + 2 atan(g / (w V))) / w_d, w_d = w sqrt(1 - zeta^2), and a rise no longer than the fall,
-// plus 0.05 s; never less than `at_least` (nor, for a nonlinear or overdamped law, more). A soft
+// The simulated time a ball needs for its first contact and first apex: the flight to the floor
+// (the rigid T1), 1.25 times the contact's duration as Hooke's exact form gives it with the damped
+// frequency, (pi + 2 atan(g / (w V))) / w_d, w_d = w sqrt(1 - zeta^2), and a rise no longer than
+// V / g, plus 0.05 s; never less than `at_least` (nor, for a nonlinear or overdamped law, more). A soft
 // spring holds the ball long: a fixed 1.6 s ended before the first bounce below k = 33 N/m.
 double first_bounce_window(const BallDropParams& p, double at_least);
 // Whether a ball-drop run under a linear law ended with the spring holding the ball for good: in

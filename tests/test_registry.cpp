@@ -158,6 +158,44 @@ TEST(Solve, ByNameGivesTheClosedForms) {
   for (const auto& smp : s.samples) EXPECT_NEAR(smp.y[0], 0.1 * std::cos(10.0 * smp.t), 1e-8) << smp.t;
 }
 
+// Apexes are the tops of bounces, counted from 1 (apex n follows impact n). A ball thrown up rises
+// to h0 + v0^2 / 2g before its first impact; every method recorded that rise as its first apex, so
+// ball_drop --v0 2 gave 1.204 m as every method's first apex where the rigid one is (e V)^2 / 2g =
+// 0.770 m, and apexes[n - 1] was apex n - 1. Event-exact flies exactly: its apexes are the closed
+// form's to round-off. Any other method's first apex follows its first contact and is the free
+// flight from that contact's exit, v_out^2 / 2g: to 1e-7 m at rtol 1e-10 for the adaptive
+// integrators; for the fixed steps of dt = 1e-4 s to 2 v_out dt = 8e-4 m: v_out is read at a
+// step's end, off by up to g dt (v_out dt in height), explicit Euler's flight overshoots its top by
+// g dt t / 2 = v_out dt / 2, and a parabola's top is found within a step to (g dt)^2 / 8g = 1e-9 m.
+TEST(Solve, ApexesAreTheTopsOfBouncesNotTheRiseOfABallThrownUp) {
+  const double h0 = 1, v0 = 2, g = 9.81, e = 0.8;
+  const auto ball = make_scene("ball-drop", {{"h0", h0}, {"v0", v0}, {"e", e}}, "kelvin-voigt");
+  const RigidBounces rigid(h0, v0, g, e);
+  const RunResult exact = solve(*ball, {.name = "event-exact"}, {.t_end = 2.0, .sample_dt = 0.1});
+  ASSERT_TRUE(exact.ok()) << exact.message;
+  ASSERT_GE(exact.apexes.size(), 2u);
+  for (std::size_t n = 1; n <= 2; ++n) EXPECT_NEAR(exact.apexes[n - 1].gap, rigid.apex_height(n), 1e-12) << n;
+  for (const auto& m : method_registry()) {
+    if (!m.can_run(*ball) || m.name == "event-exact") continue;
+    Method method{.name = m.name, .dt = 1e-4};
+    method.integrator.rtol = 1e-10;
+    method.integrator.atol = 1e-12;
+    const RunResult r = solve(*ball, method, {.t_end = 1.2, .sample_dt = 0.1});
+    ASSERT_TRUE(r.ok()) << m.name << ": " << r.message;
+    ASSERT_FALSE(r.contacts.empty()) << m.name;
+    const ContactRecord& first = r.contacts.front();
+    for (const Apex& a : r.apexes) EXPECT_GT(a.t, first.t_begin) << m.name;
+    // Projection alone pushes from the contact's start to the end; Bullet at its defaults ends the
+    // contact still approaching (v_out < 0: solved before the touch) and does not bounce.
+    if (!first.closed() || !(first.v_out > 0)) continue;
+    ASSERT_FALSE(r.apexes.empty()) << m.name;
+    EXPECT_GE(r.apexes.front().t, first.t_end) << m.name;
+    const double flight = first.v_out * first.v_out / (2 * g);
+    const bool adaptive = m.family == "penalty" || m.family == "event-driven";
+    EXPECT_NEAR(r.apexes.front().gap, flight, adaptive ? 1e-7 : 2 * first.v_out * 1e-4) << m.name;
+  }
+}
+
 // A scene tunes its damped law to the drop's impact speed: for a drop of 2^-560 m (1e-169; g
 // alike, Hertz's K by 2^280 for the same contact in those units) that speed's terms underflow,
 // and the law was tuned at V = 0 (chi = 0.27 s/m for 6e168): its contact bounced elastically.

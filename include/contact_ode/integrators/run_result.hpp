@@ -35,7 +35,8 @@ struct ContactRecord {
   double restitution() const { return v_in < 0 ? -v_out / v_in : std::numeric_limits<double>::quiet_NaN(); }
 };
 
-// A local maximum of a contact's gap during free flight (the top of a bounce).
+// A local maximum of a contact's gap during free flight after the contact has begun at least once
+// (the top of a bounce, so that apex n follows impact n; a rise before the first impact is none).
 struct Apex {
   std::size_t contact = 0;
   double t = 0.0;           // [s]
