@@ -112,6 +112,11 @@ def test_exact_bounces_give_the_closed_forms():
     assert co.references.zeno_time(h0, 0.0, 9.81, e) == pytest.approx(t0 * (1 + e) / (1 - e), rel=1e-14)
     # The impact times are a closed form: n = 2^63 was 2^63 terms, a call that never returned.
     assert co.references.rigid_impact_time(h0, 0.0, 9.81, e, 2 ** 63) == co.references.zeno_time(h0, 0.0, 9.81, e)
+    # Thrown up, the ball rises to h0 + v0^2 / 2g before its first impact: no apex, so apex n is still
+    # element n - 1 (that rise was element 0, the first apex of every method).
+    thrown = co.solve("ball-drop", "event-exact", h0=h0, v0=2.0, e=e, t_end=3.0).apexes["gap"][:2]
+    np.testing.assert_allclose(thrown, [co.references.rigid_apex_height(h0, 2.0, 9.81, e, n) for n in (1, 2)],
+                               rtol=1e-12)
 
 
 def test_spring_contact_closed_forms():
