@@ -344,9 +344,9 @@ PYBIND11_MODULE(contact_ode, mod) {
       mod, "Result",
       "A run: t, y (a row per sample, columns state_labels), energy and dissipated (the "
       "ledger: energy + dissipated stays energy0 to the method's accuracy) as NumPy "
-      "arrays; contacts (contact, t_begin, t_end, max_penetration, v_in, v_out), apexes "
-      "(contact, t, gap, energy, dissipated: the tops of a contact's bounces, none before its "
-      "first impact) and notifications (the batched begin / end "
+      "arrays; contacts (contact, t_begin, t_end, max_penetration, v_in, v_out, in the order they "
+      "began), apexes (contact, t, gap, energy, dissipated: the tops of a contact's bounces, none "
+      "before its first impact) and notifications (the batched begin / end "
       "events of the game loops: contact, begin, step, t) as dicts of arrays; stats (steps, "
       "right-hand sides, Jacobians, Newton and linear iterations, ..., the run's wall time and "
       "the CPU time of an engine's world construction before it); status, t_reached "

@@ -196,6 +196,28 @@ TEST(Solve, ApexesAreTheTopsOfBouncesNotTheRiseOfABallThrownUp) {
   }
 }
 
+// A run's contact log is in the order the contacts began, and its apexes in time order, whatever
+// the method: the fixed-step loops look at a step's contacts by index, each begun at its own time
+// within the step, and logged a four-ball column's (and the 3D cradle's) contacts out of order
+// under the symplectic spring, MuJoCo's spring its apexes; the first record was not the first
+// contact.
+TEST(Solve, ContactsAndApexesAreLoggedInTimeOrder) {
+  for (const char* name : {"ball-stack", "cradle"}) {
+    const auto scene = make_scene(name);
+    for (const auto& m : method_registry()) {
+      if (!m.can_run(*scene)) continue;
+      const RunResult r = solve(*scene, {.name = m.name}, {.t_end = 1.0, .sample_dt = 1.0});
+      const auto begun_before = [](const ContactRecord& a, const ContactRecord& b) {
+        return a.t_begin < b.t_begin;
+      };
+      const auto topped_before = [](const Apex& a, const Apex& b) { return a.t < b.t; };
+      EXPECT_TRUE(std::is_sorted(r.contacts.begin(), r.contacts.end(), begun_before))
+          << name << " " << m.name;
+      EXPECT_TRUE(std::is_sorted(r.apexes.begin(), r.apexes.end(), topped_before)) << name << " " << m.name;
+    }
+  }
+}
+
 // A scene tunes its damped law to the drop's impact speed: for a drop of 2^-560 m (1e-169; g
 // alike, Hertz's K by 2^280 for the same contact in those units) that speed's terms underflow,
 // and the law was tuned at V = 0 (chi = 0.27 s/m for 6e168): its contact bounced elastically.
