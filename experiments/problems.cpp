@@ -179,9 +179,9 @@ double first_apex_error(const BallDropParams& p, const RunResult& r) {
 }
 
 double first_bounce_window(const BallDropParams& p, double at_least) {
+  if (!(p.g > 0)) return at_least;  // no rigid flight to the floor to bound it by
   const LinearLaw law = linear_law(p.law);
   const double zeta = law.c / (2 * std::sqrt(law.k * p.m));
-  if (!(p.g > 0)) return at_least;  // no rigid flight to the floor to bound it by
   const double V = impact_speed(p.h0, p.v0, p.g), fall = RigidBounces(p.h0, p.v0, p.g, p.e).T1;
   const double contact = hooke_contact(p.m, law.k, V, p.g).duration / std::sqrt(1 - zeta * zeta);
   const double window = fall + 1.25 * contact + V / p.g + 0.05;
