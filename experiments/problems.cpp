@@ -286,4 +286,9 @@ std::vector<ScoredScene> engine_scenes(double k) {
            }}};
 }
 
+Method clear_of_restitution_threshold(Method m, double v0) {
+  if (m.name == "soft-step" && std::isnan(m.restitution_threshold)) m.restitution_threshold = 0.5 * v0;
+  return m;
+}
+
 }  // namespace contact

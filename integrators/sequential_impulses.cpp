@@ -1,6 +1,6 @@
 // Sequential impulses: the projected Gauss–Seidel contact solver of Bullet, ODE and PhysX. Each
 // step: gravity and the other forces update the velocities; every overlapping contact gets a
-// target gap rate (-e times its approach speed above the restitution threshold, else 0) plus a
+// target gap rate (-e times its approach speed from the restitution threshold up, else 0) plus a
 // Baumgarte push-out erp * overlap / dt; `iterations` Gauss–Seidel sweeps then solve for the
 // normal impulses, each accumulated impulse clamped at >= 0 (contacts push, never pull), the
 // first sweep started from the last step's impulses (warm starting); the positions then move
@@ -43,7 +43,8 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
       if (!active[i] || !was || !m.warm_start) lambda[i] = 0;
       if (!active[i]) continue;
       const double approach = geo.gap_rate(i, y);
-      restitution[i] = approach < -threshold ? law.restitution(i) : 0.0;
+      // Bullet's restitutionCurve: no bounce below the threshold, |u| < threshold; at it, one.
+      restitution[i] = approach <= -threshold ? law.restitution(i) : 0.0;
       target[i] = -restitution[i] * approach;
       const double correction = m.erp / h * std::max(-geo.gap(i, y), 0.0);
       bias[i] = m.split_impulse ? 0.0 : correction;

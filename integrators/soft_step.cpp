@@ -2,7 +2,7 @@
 // accumulated impulses are applied again (warm start), one soft solve with bias pushes overlaps
 // out at most at push_max, the positions move, and one relax solve without bias removes the
 // velocity the bias added. After the sub-steps a restitution pass gives each contact that
-// approached faster than the threshold and carried an impulse the bounce -e u of its approach.
+// approached at least as fast as the threshold and carried an impulse the bounce -e u of its approach.
 // The contact frequency is capped at a quarter of the sub-step rate, as Box2D does.
 #include "contact_ode/integrators/soft_step.hpp"
 
@@ -90,7 +90,9 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
       report.push[i] = active[i] ? max_lambda[i] * normal.inverse_mass(i, y) : 0.0;
       fresh[i] = fresh[i] && max_lambda[i] > 0;  // a speculative contact that took no impulse did not close
       if (!active[i] || max_lambda[i] == 0) continue;
-      if (approach[i] >= -threshold) continue;  // no bounce: inelastic
+      // Box2D v3's b2ApplyRestitution skips a point whose approach is slower than the threshold
+      // (relativeVelocity > -threshold): one that strikes at exactly it bounces.
+      if (approach[i] > -threshold) continue;  // no bounce: inelastic
       restitution[i] = law.restitution(i);
       total[i] += accumulate_impulse(
           normal, i, -(geo.gap_rate(i, y) + restitution[i] * approach[i]) / normal.inverse_mass(i, y),

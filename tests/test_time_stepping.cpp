@@ -124,10 +124,11 @@ TEST(SequentialImpulses, ABounceThatMeetsAPartingContactLiftsItAndMakesEnergy) {
 }
 
 // Bullet's restitution threshold (btContactSolverInfo's m_restitutionVelocityThreshold, 0.2 m/s,
-// the default): a pair struck at exactly it is plastic (both leave at v0 / 2), 1e-12 m/s faster it
-// leaves with Newton's velocities (1 -+ e) v0 / 2; a threshold set to 1 m/s makes 0.5 m/s plastic.
-// One sweep on one contact is the exact impulse: each to rounding (1e-15 of ratios of order one).
-TEST(SequentialImpulses, BouncesOnlyApproachesFasterThanItsThreshold) {
+// the default): its restitutionCurve gives no bounce where |u| < threshold, so a pair struck at
+// exactly 0.2 m/s leaves with Newton's velocities (1 -+ e) v0 / 2, and 1e-12 m/s slower it is
+// plastic (both leave at v0 / 2); a threshold set to 1 m/s makes 0.5 m/s plastic. One sweep on one
+// contact is the exact impulse: each to rounding (1e-15 of ratios of order one).
+TEST(SequentialImpulses, BouncesApproachesFromItsThresholdUpAsBullet) {
   const auto last_velocities = [](double v0, double threshold) {
     const auto scene = make_scene(
         "ball-chain", {{"n", 2}, {"e", 0.8}, {"v0", v0}, {"approach", 1e-3}, {"spacing", 0}, {"k", 1e5}});
@@ -138,12 +139,12 @@ TEST(SequentialImpulses, BouncesOnlyApproachesFasterThanItsThreshold) {
     return std::pair{r.samples.back().y[1] / v0, r.samples.back().y[3] / v0};
   };
   const double unset = std::nan("");  // the method's default
-  EXPECT_NEAR(last_velocities(0.2, unset).first, 0.5, 1e-15);
-  EXPECT_NEAR(last_velocities(0.2, unset).second, 0.5, 1e-15);
-  EXPECT_NEAR(last_velocities(0.2 + 1e-12, unset).first, 0.1, 1e-15);
-  EXPECT_NEAR(last_velocities(0.2 + 1e-12, unset).second, 0.9, 1e-15);
+  EXPECT_NEAR(last_velocities(0.2, unset).first, 0.1, 1e-15);
+  EXPECT_NEAR(last_velocities(0.2, unset).second, 0.9, 1e-15);
+  EXPECT_NEAR(last_velocities(0.2 - 1e-12, unset).first, 0.5, 1e-15);
+  EXPECT_NEAR(last_velocities(0.2 - 1e-12, unset).second, 0.5, 1e-15);
   EXPECT_NEAR(last_velocities(0.5, 1.0).first, 0.5, 1e-15);
-  EXPECT_NEAR(last_velocities(1.0 + 1e-12, 1.0).first, 0.1, 1e-15);
+  EXPECT_NEAR(last_velocities(1.0, 1.0).first, 0.1, 1e-15);
 }
 
 // Moreau-Jean's positions advance with the theta blend of the step's velocities,
@@ -250,12 +251,12 @@ TEST(SoftStep, BouncesAtTheRestitutionAboveTheThresholdOnly) {
 }
 
 // The engines experiment's head-on pair and cradles strike at 1 m/s, exactly Box2D's default
-// threshold, and the rule bounces only approaches faster than it: there the soft step's contacts
-// are plastic (the pair leaves together at v0 / 2, the cradle's balls near v0 / 5), which its
-// errors in that table are. 1e-12 m/s faster, the pair leaves with Newton's velocities
-// (1 -+ e) v0 / 2 and the gapped cradle gives the sequential answer (the striker's velocity passed
-// to the last ball), to rounding.
-TEST(SoftStep, StrikesAtExactlyItsThresholdDoNotBounce) {
+// threshold. Box2D v3's restitution pass skips only approaches slower than it (relativeVelocity >
+// -threshold), so there the pair leaves with Newton's velocities (1 -+ e) v0 / 2 and the gapped
+// cradle gives the sequential answer (the striker's velocity passed to the last ball), to rounding.
+// 1e-12 m/s slower the contacts are plastic: the pair leaves together at v0 / 2, the cradle's balls
+// near v0 / 5.
+TEST(SoftStep, StrikesAtExactlyItsThresholdBounceAsInBox2D) {
   const auto last_velocities = [](double n, double e, double v0, double spacing) {
     const auto scene = make_scene(
         "ball-chain", {{"n", n}, {"e", e}, {"v0", v0}, {"approach", 1e-3}, {"spacing", spacing}, {"k", 1e5}});
@@ -265,17 +266,17 @@ TEST(SoftStep, StrikesAtExactlyItsThresholdDoNotBounce) {
     for (Eigen::Index b = 1; b < r.samples.back().y.size(); b += 2) v.push_back(r.samples.back().y[b] / v0);
     return v;
   };
-  const auto pair = last_velocities(2, 0.8, 1.0, 0), pair_faster = last_velocities(2, 0.8, 1.0 + 1e-12, 0);
-  EXPECT_NEAR(pair[0], 0.5, 1e-15);
-  EXPECT_NEAR(pair[1], 0.5, 1e-15);
-  EXPECT_NEAR(pair_faster[0], 0.1, 1e-15);
-  EXPECT_NEAR(pair_faster[1], 0.9, 1e-15);
+  const auto pair = last_velocities(2, 0.8, 1.0, 0), pair_slower = last_velocities(2, 0.8, 1.0 - 1e-12, 0);
+  EXPECT_NEAR(pair[0], 0.1, 1e-15);
+  EXPECT_NEAR(pair[1], 0.9, 1e-15);
+  EXPECT_NEAR(pair_slower[0], 0.5, 1e-15);
+  EXPECT_NEAR(pair_slower[1], 0.5, 1e-15);
   const auto cradle = last_velocities(5, 1.0, 1.0, 1e-3),
-             cradle_faster = last_velocities(5, 1.0, 1.0 + 1e-12, 1e-3);
+             cradle_slower = last_velocities(5, 1.0, 1.0 - 1e-12, 1e-3);
+  for (std::size_t b = 0; b < 4; ++b) EXPECT_NEAR(cradle[b], 0.0, 1e-15);
+  EXPECT_NEAR(cradle[4], 1.0, 1e-15);
   // Plastic: v0 / 5 each, to 1e-3 while the soft overlaps still relax (measured within 2e-4).
-  for (const double v : cradle) EXPECT_NEAR(v, 0.2, 1e-3);
-  for (std::size_t b = 0; b < 4; ++b) EXPECT_NEAR(cradle_faster[b], 0.0, 1e-15);
-  EXPECT_NEAR(cradle_faster[4], 1.0, 1e-15);
+  for (const double v : cradle_slower) EXPECT_NEAR(v, 0.2, 1e-3);
 }
 
 // A touching row struck above the threshold: the restitution pass bounces only contacts that

@@ -40,8 +40,8 @@ struct Method {
   // Sequential impulses: push out by pseudo-velocities, off the real ones (Bullet's split
   // impulses); false: Baumgarte's bias in the velocities, which feeds bounces and shakes stacks.
   bool split_impulse = true;
-  // Below this approach speed a contact does not bounce [m/s]; NaN: the method's own default
-  // (sequential impulses 0.2 m/s, soft step 1 m/s as Box2D v3).
+  // Below this approach speed a contact does not bounce, from it up it does [m/s]; NaN: the
+  // method's own default (sequential impulses 0.2 m/s as Bullet, soft step 1 m/s as Box2D v3).
   double restitution_threshold = std::numeric_limits<double>::quiet_NaN();
   double contact_hertz = 30;          // soft step: contact stiffness as a frequency [Hz] (Box2D v3)
   double contact_damping_ratio = 10;  // soft step: its damping ratio (Box2D v3)
