@@ -2,14 +2,14 @@
 // tuned to the scene's physics (what it can do), beside event-driven impulses, the penalty ODE, sequential
 // impulses, the soft step and Moreau–Jean, on the scenes of engine_scenes() (problems.hpp: a drop, a head-on
 // pair, cradles with and without gaps, a resting column), each scored against its exact rigid answer (the
-// soft step's restitution threshold clear of the chains' strikes);
-// first_apex_time_error_s: the bounce's timing (apexes are interpolated in free flight, so a step does not
-// round it). Penalty laws: Kelvin–Voigt at --k tuned to the scene's e; fixed steps --dt; CPU time: median of
-// --repeats solves (time_solves); omega_dt: the stiffest contact's sqrt(k w) dt (unstable explicit above 2).
-// Then the drop at steps --dt x 4 ... / 4: apex error, observed order and CPU time per fixed-step method, the
-// work-precision figure (engines and Moreau–Jean). Outputs in --out (default results/engines): engines,
-// summary (scored error per scene, a row per method), convergence and orders (fitted over the three finest
-// steps) as {csv,md,tex}, work_precision.{png,pdf,gp}, meta.json. Exit codes: 0, 1, 2 bad input.
+// soft step's restitution threshold clear of the chains' strikes); first_apex_time_error_s: the bounce's
+// timing (apexes are interpolated in free flight, so a step does not round it). Penalty laws: Kelvin–Voigt at
+// --k tuned to the scene's e; fixed steps --dt; CPU time: median of --repeats solves (time_solves); omega_dt:
+// the stiffest contact's sqrt(k w) dt (unstable explicit above 2). Then the drop at steps --dt x 4 ... / 4:
+// apex error, observed order and CPU time per fixed-step method, the work-precision figure (engines and
+// Moreau–Jean). Outputs in --out (default results/engines): engines, summary (scored error per scene, a row
+// per method), convergence and orders (fitted over the three finest steps) as {csv,md,tex},
+// work_precision.{png,pdf,gp}, meta.json. Exit codes: 0, 1, 2 bad input.
 #include "contact_ode/analysis/cpu_time.hpp"
 #include "contact_ode/analysis/fit.hpp"
 #include "contact_ode/analysis/metrics.hpp"
