@@ -215,6 +215,47 @@ TEST(Bullet, AtItsDefaultsATouchingRowStruckElasticallyGainsEnergy) {
   EXPECT_EQ(hundred.status, Status::Diverged) << hundred.message;
 }
 
+// Bullet at its defaults solves a contact before it touches. Its sphere-plane test makes a contact
+// point once the gap d is below the contact-breaking threshold, 0.02 of the sphere's bounding
+// radius sqrt(3) r (the corner of its box): tau = 3.46 mm for the drop's 0.1 m ball. Its solver
+// then asks the step to bounce at e of the approach u it began with and to end no deeper than the
+// floor: u' = e |u| - d / dt (btSequentialImpulseConstraintSolver, velocityError at a positive
+// distance). A push at d > e |u| dt spends the bounce on slowing the ball short of the floor, and
+// the pushes after it take e of ever slower approaches, until one falls below the 0.2 m/s threshold.
+// A push comes at the first step with d < min(tau, (1 + e) |u| dt): so the drop always bounces when
+// e V dt > tau (dt > 0.98 ms), never when (1 + e) V dt < tau (dt < 0.43 ms), and between them as its
+// steps fall (measured from 0.3 to 1 ms: none below 0.54 ms, every one from 0.82 ms). The engines
+// experiment's steps of 0.5 and 0.25 ms are why the paper finds that its ball stops bouncing.
+TEST(Bullet, AtItsDefaultsABallDroppedWithSmallStepsIsStoppedShortOfTheFloor) {
+  REQUIRE_ENGINE("bullet");
+  const double e = 0.8, g = 9.81, V = std::sqrt(2 * g), tau = 0.02 * std::sqrt(3.0) * 0.1;
+  for (const double h0 : {1.0, 1.01, 1.02}) {
+    const BallDrop ball({.m = 1.0, .g = g, .h0 = h0, .e = e});
+    // 10 % below the never-bounce bound and 20 % above the always-bounce one: the speed at the first
+    // push is V to 0.2 % (the ball is within tau of the floor).
+    for (const double dt : {0.2e-3, 0.3e-3, 0.38e-3, 1.2e-3, 1.5e-3, 2e-3}) {
+      ASSERT_TRUE((1 + e) * V * dt < 0.9 * tau || e * V * dt > 1.2 * tau) << dt;
+      const RunResult r = solve(ball, {.name = "bullet", .dt = dt}, {.t_end = 1.0, .sample_dt = dt});
+      ASSERT_TRUE(r.ok()) << r.message;
+      ASSERT_FALSE(r.contacts.empty()) << dt;
+      const bool bounces = e * V * dt > tau;
+      EXPECT_EQ(r.contacts.front().v_out > 0, bounces) << "h0 " << h0 << ", dt " << dt;
+      EXPECT_EQ(r.apexes.empty(), !bounces) << "h0 " << h0 << ", dt " << dt;
+      // The first push, where the velocity gains more than gravity takes in a step: Bullet's target,
+      // to the rounding of its double arithmetic on numbers of order d / dt (10 m/s).
+      for (std::size_t j = 1; j < r.samples.size(); ++j) {
+        const double d = r.samples[j - 1].y[0], u = r.samples[j - 1].y[1], u_next = r.samples[j].y[1];
+        if (u_next - u <= -g * dt + 1e-9) continue;
+        if (d > 0) {
+          EXPECT_LT(d, tau) << dt;
+          EXPECT_NEAR(u_next, e * std::abs(u) - d / dt, 1e-12) << "h0 " << h0 << ", dt " << dt;
+        }
+        break;
+      }
+    }
+  }
+}
+
 // A column resting on the floor from the start: each engine's first step pushes its contacts to
 // hold the balls against gravity, which takes no energy (the balls stay where they are). The push
 // was booked as an impact at the speed it implies, J w / (1 + e): 1.6e-6 J for one 0.1 kg ball at
