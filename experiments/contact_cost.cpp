@@ -47,14 +47,8 @@ int program(int argc, char** argv) {
   app.add("--integrators", integrators, "adaptive integrators, comma-separated",
           cli::some_of(integrator_names()));
   return app.run(argc, argv, [&](OutputSet& files) {
-    if (!(k_max >= k_min))
-      throw std::invalid_argument(fmt::format(
-          "--k-max: value '{}' is below --k-min = {}; accepted range [k-min, inf)", k_max, k_min));
-    const auto chosen = cli::chosen(integrators, integrator_names());
-    for (const auto& name : chosen)
-      if (!integrator_info(name).adaptive)
-        throw std::invalid_argument(fmt::format(
-            "--integrators: value '{}' has no error control; accepted: the adaptive integrators", name));
+    require_k_range(k_min, k_max);
+    const auto chosen = adaptive_integrators(integrators);
     const std::vector<double> grid = log_grid(k_min, k_max, per_decade);
     const double h0 = 1.0;
     Progress progress("contact_cost", chosen.size() * grid.size());
@@ -63,10 +57,7 @@ int program(int argc, char** argv) {
       const double k = grid[i % grid.size()];
       const std::string what = fmt::format("{} at k = {:g}", name, k);
       progress.step(what);
-      Method penalty{.name = "penalty"};
-      penalty.integrator = with_setting(penalty.integrator, false, rtol);
-      penalty.integrator.method = name;
-      penalty.integrator.max_steps = 10000000;
+      const Method penalty = penalty_under(name, rtol);
       const BallDropParams p{1.0, 9.81, h0, 0.0, 1.0, Hooke{k}};
       const BallDrop model(p);
       const double t_end = first_bounce_window(p, 1.6);

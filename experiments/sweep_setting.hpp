@@ -104,6 +104,32 @@ inline Method with_setting(Method m, double value) {
   return m;
 }
 
+// The cost sweeps' (contact_cost, resting_cost) checks and runs: a k range that is one, the
+// adaptive integrators among --integrators (one without error control refused by name), and the
+// penalty method under `integrator` at rtol (atol = rtol * kAtolPerRtol) with a sweep's step bound.
+inline void require_k_range(double k_min, double k_max) {
+  if (!(k_max >= k_min))
+    throw std::invalid_argument(
+        fmt::format("--k-max: value '{}' is below --k-min = {}; accepted range [k-min, inf)", k_max, k_min));
+}
+
+inline std::vector<std::string> adaptive_integrators(const std::string& given) {
+  const auto chosen = cli::chosen(given, integrator_names());
+  for (const auto& name : chosen)
+    if (!integrator_info(name).adaptive)
+      throw std::invalid_argument(fmt::format(
+          "--integrators: value '{}' has no error control; accepted: the adaptive integrators", name));
+  return chosen;
+}
+
+inline Method penalty_under(const std::string& integrator, double rtol) {
+  Method penalty{.name = "penalty"};
+  penalty.integrator = with_setting(penalty.integrator, false, rtol);
+  penalty.integrator.method = integrator;
+  penalty.integrator.max_steps = kSweepMaxSteps;
+  return penalty;
+}
+
 // The methods the rigid-body experiments compare (rigid_scenes, energy_drift, rigid_impacts): the
 // penalty ODE, the game loop with projection + impulse and with projection alone, and
 // event-driven impulses in both sequential orders.

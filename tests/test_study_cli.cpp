@@ -51,7 +51,7 @@ TEST_F(StudyCli, RerunningSomeExperimentsKeepsTheOthersOfTheFolder) {
   EXPECT_NE(index.find("## zeno\n\n(From an earlier run.)"), std::string::npos) << index;
   EXPECT_NE(index.find("(zeno/zeno.csv)"), std::string::npos) << index;
   ASSERT_EQ(study().at("experiments").size(), 2u);
-  EXPECT_FALSE(study().contains("complete_wall_time_s"));  // no run of all 19
+  EXPECT_FALSE(study().contains("complete_wall_time_s"));  // no run of all 20
   // An experiment whose outputs are no longer complete is not listed.
   fs::remove(dir_ / "s" / "zeno" / "zeno.csv");
   ASSERT_EQ(run(STUDY_EXE, "--tiny --only contact_advisor --out s").code, 0);
