@@ -43,6 +43,7 @@ void SteppingIntegrator::reinit(double t, ConstVectorRef y) {
   ya_ = yb_ = y_ = y;
   if (sys_.root_count > 0) eval_roots(t, y, g_);
   counts_.restarts += 1;
+  trial_count_ = 0;
   have_start_slope_ = have_end_slope_ = false;
   restarted();
 }
@@ -88,6 +89,7 @@ SteppingIntegrator::Outcome SteppingIntegrator::advance(double t_out) {
 
 void SteppingIntegrator::take_step(double t_limit) {
   step(t_limit);
+  trial_count_ = 0;
   have_start_slope_ = have_end_slope_ = false;
   if (!yb_.allFinite())
     throw SolverFailure(
@@ -236,17 +238,56 @@ bool SteppingIntegrator::locate_root(double t_hi, ConstVectorRef y_hi, Outcome& 
   return true;
 }
 
+void SteppingIntegrator::keep_trial(double t, ConstVectorRef y, ConstVectorRef g) {
+  if (trial_count_ == trials_.size()) {
+    // Bounded: at most 64 per step and 8 MB in all (a 1e5-ball chain's state is 1.6 MB).
+    const auto doubles = static_cast<double>(trials_.size() + 1) * static_cast<double>(y.size() + g.size());
+    if (trials_.size() >= 64 || doubles > 1 << 20) return;
+    trials_.emplace_back();
+  }
+  Trial& trial = trials_[trial_count_++];
+  trial.t = t;
+  trial.y = y;
+  trial.g = g;
+}
+
+SteppingIntegrator::KnownBracket SteppingIntegrator::known_bracket(Eigen::Index k, double t_hi) const {
+  // The earliest kept trial in (t_, t_hi) where g_k has its new sign is the bracket's upper end;
+  // every trial before it has the old sign, and the latest of those is its lower end.
+  const auto new_sign = [&](double gk) { return g_[k] > 0 ? gk <= 0 : gk >= 0; };
+  KnownBracket known{{t_, g_[k], t_hi, g_hi_[k]}, nullptr};
+  for (std::size_t j = 0; j < trial_count_; ++j) {
+    const Trial& trial = trials_[j];
+    if (trial.t > t_ && trial.t < known.b.hi && new_sign(trial.g[k])) {
+      known.b.hi = trial.t;
+      known.b.g_hi = trial.g[k];
+      known.y_hi = &trial.y;
+    }
+  }
+  for (std::size_t j = 0; j < trial_count_; ++j) {
+    const Trial& trial = trials_[j];
+    if (trial.t > known.b.lo && trial.t < known.b.hi) {
+      known.b.lo = trial.t;
+      known.b.g_lo = trial.g[k];
+    }
+  }
+  return known;
+}
+
 double SteppingIntegrator::narrow_earliest_root(double t_hi, ConstVectorRef y_hi, Vector& y_root, Vector& y,
                                                 Vector& g) {
   eval_roots(t_hi, y_hi, g_hi_);
   const std::size_t n = sys_.root_count;
   // CVODE's root tolerance: 100 ulps of t.
   const double tol = 100 * std::numeric_limits<double>::epsilon() * std::max(std::abs(t_), std::abs(t_hi));
-  double t_root = std::numeric_limits<double>::infinity();
-  // The state at the earliest root's bracket end, kept as the bracket narrows: the end is the last
-  // re-step on the new sign's side, so the root's state needs no re-step of its own (one of the
-  // 3-5 per root; bitwise the same state).
-  y_root = y_hi;
+  // The functions that changed sign, each with its root on the step's Hermite (when dense() costs
+  // a step) and g' there: the first step on dense() is then Newton's.
+  struct Crossing {
+    Eigen::Index k;
+    int dir;
+    double guess, slope;
+  };
+  std::vector<Crossing> crossings;
   for (std::size_t i = 0; i < n; ++i) {
     const auto k = static_cast<Eigen::Index>(i);
     const int dir = crossing(g_[k], g_hi_[k]);
@@ -260,20 +301,36 @@ double SteppingIntegrator::narrow_earliest_root(double t_hi, ConstVectorRef y_hi
       };
       const double gh_lo = on_hermite(t_), gh_hi = on_hermite(t_hi);
       if (crossing(gh_lo, gh_hi) == dir) {
-        // The Hermite's root, and g' there: the first step on dense() is then Newton's.
         guess = narrow_sign_change(on_hermite, {t_, gh_lo, t_hi, gh_hi}, tol).hi;
         const double d = 1e-4 * (t_hi - t_);
         const double a = std::max(t_, guess - d), c = std::min(t_hi, guess + d);
         slope = (on_hermite(c) - on_hermite(a)) / (c - a);
       }
     }
-    // The bracket's upper end and its state: t_hi until a re-step finds the new sign, and then
-    // that re-step's (narrow_sign_change moves the upper end only to a point it evaluated there).
-    double t_new_sign = t_hi;
-    Vector y_new_sign = y_hi;
+    crossings.push_back({k, dir, guess, slope});
+  }
+  // Earliest estimate first: a function whose kept trials show no sign change before the root found
+  // so far cannot be the earliest, and is left (its trials serve the step's next root).
+  std::stable_sort(crossings.begin(), crossings.end(), [&](const Crossing& a, const Crossing& b) {
+    return (std::isnan(a.guess) ? t_hi : a.guess) < (std::isnan(b.guess) ? t_hi : b.guess);
+  });
+  double t_root = std::numeric_limits<double>::infinity();
+  // The state at the earliest root's bracket end, kept as the bracket narrows: the end is the last
+  // re-step on the new sign's side, so the root's state needs no re-step of its own (one of the
+  // 3-5 per root; bitwise the same state).
+  y_root = y_hi;
+  for (const auto& [k, dir, guess, slope] : crossings) {
+    const KnownBracket known = known_bracket(k, t_hi);
+    if (known.b.lo >= t_root) continue;
+    // The bracket's upper end and its state: the known one until a re-step finds the new sign,
+    // and then that re-step's (narrow_sign_change moves the upper end only to a point it
+    // evaluated there).
+    double t_new_sign = known.b.hi;
+    Vector y_new_sign = known.y_hi ? ConstVectorRef(*known.y_hi) : y_hi;
     auto on_dense = [&](double t) {
       dense(t, y);
       eval_roots(t, y, g);
+      if (!dense_is_interpolant()) keep_trial(t, y, g);
       if ((g_[k] > 0 ? g[k] : -g[k]) <= 0) {  // the new sign: t becomes the bracket's upper end
         t_new_sign = t;
         y_new_sign = y;
@@ -302,9 +359,9 @@ double SteppingIntegrator::narrow_earliest_root(double t_hi, ConstVectorRef y_hi
       if (crossing(q_lo, q_hi) != dir) return std::numeric_limits<double>::quiet_NaN();
       return narrow_sign_change(on_quintic, {b.lo, q_lo, b.hi, q_hi}, tol).hi;
     };
-    // The bracket's upper end: g already has its new sign there.
-    const double hi =
-        narrow_sign_change(on_dense, {t_, g_[k], t_hi, g_hi_[k]}, tol, guess, 200, slope, refine).hi;
+    const double hi = known.b.hi - known.b.lo <= tol
+                          ? known.b.hi
+                          : narrow_sign_change(on_dense, known.b, tol, guess, 200, slope, refine).hi;
     if (hi < t_root) {
       t_root = hi;
       y_root = y_new_sign;  // hi is t_new_sign
