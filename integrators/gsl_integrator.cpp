@@ -186,6 +186,7 @@ class GslIntegrator final : public SteppingIntegrator {
   }
 
   bool dense_is_interpolant() const override { return multistep_; }
+  bool dense_follows_the_flow() const override { return !multistep_ && fixed_dt_ <= 0; }
   bool steps_may_cross_twice() const override { return type_ == gsl_odeiv2_step_bsimp; }
   double negligible_size() const override { return atol_; }
   void step_shortened(double h) override { h_ = std::min(h_, h); }

@@ -118,6 +118,15 @@ void SteppingIntegrator::shorten_until_hermite_is_faithful() {
 
 namespace {
 
+// The cubic through (a, ya) and (b, yb) with slopes fa and fb there, at t.
+void cubic_hermite(double a, const Vector& ya, const Vector& fa, double b, const Vector& yb, const Vector& fb,
+                   double t, VectorRef y) {
+  const double H = b - a, s = (t - a) / H;
+  const double h00 = (1 + 2 * s) * (1 - s) * (1 - s), h10 = s * (1 - s) * (1 - s);
+  const double h01 = s * s * (3 - 2 * s), h11 = s * s * (s - 1);
+  y = h00 * ya + h10 * H * fa + h01 * yb + h11 * H * fb;
+}
+
 // The quintic through (a, ya, fa), (m, ym, fm), (b, yb, fb) with those values and slopes:
 // Newton's divided differences on the doubled nodes a, a, m, m, b, b. Its error at t is
 // ~ (t - a)^2 (t - m)^2 (t - b)^2 y^(6) / 720, so near m far below the cubic Hermite's.
@@ -159,12 +168,7 @@ const Vector& SteppingIntegrator::end_slope() {
 }
 
 void SteppingIntegrator::hermite(double t, VectorRef y) {
-  start_slope();
-  end_slope();
-  const double H = tb_ - ta_, s = (t - ta_) / H;
-  const double h00 = (1 + 2 * s) * (1 - s) * (1 - s), h10 = s * (1 - s) * (1 - s);
-  const double h01 = s * s * (3 - 2 * s), h11 = s * s * (s - 1);
-  y = h00 * ya_ + h10 * H * f_a_ + h01 * yb_ + h11 * H * f_b_;
+  cubic_hermite(ta_, ya_, start_slope(), tb_, yb_, end_slope(), t, y);
 }
 
 bool SteppingIntegrator::allowed(std::size_t i, int dir) const {
@@ -255,7 +259,7 @@ SteppingIntegrator::KnownBracket SteppingIntegrator::known_bracket(Eigen::Index 
   // The earliest kept trial in (t_, t_hi) where g_k has its new sign is the bracket's upper end;
   // every trial before it has the old sign, and the latest of those is its lower end.
   const auto new_sign = [&](double gk) { return g_[k] > 0 ? gk <= 0 : gk >= 0; };
-  KnownBracket known{{t_, g_[k], t_hi, g_hi_[k]}, nullptr};
+  KnownBracket known{{t_, g_[k], t_hi, g_hi_[k]}, nullptr, nullptr};
   for (std::size_t j = 0; j < trial_count_; ++j) {
     const Trial& trial = trials_[j];
     if (trial.t > t_ && trial.t < known.b.hi && new_sign(trial.g[k])) {
@@ -269,6 +273,7 @@ SteppingIntegrator::KnownBracket SteppingIntegrator::known_bracket(Eigen::Index 
     if (trial.t > known.b.lo && trial.t < known.b.hi) {
       known.b.lo = trial.t;
       known.b.g_lo = trial.g[k];
+      known.y_lo = &trial.y;
     }
   }
   return known;
@@ -322,20 +327,25 @@ double SteppingIntegrator::narrow_earliest_root(double t_hi, ConstVectorRef y_hi
   for (const auto& [k, dir, guess, slope] : crossings) {
     const KnownBracket known = known_bracket(k, t_hi);
     if (known.b.lo >= t_root) continue;
-    // The bracket's upper end and its state: the known one until a re-step finds the new sign,
-    // and then that re-step's (narrow_sign_change moves the upper end only to a point it
-    // evaluated there).
+    // The bracket's ends and their states: the known ones until a re-step finds either sign,
+    // and then that re-step's (narrow_sign_change moves an end only to a point it evaluated).
     double t_new_sign = known.b.hi;
     Vector y_new_sign = known.y_hi ? ConstVectorRef(*known.y_hi) : y_hi;
+    Vector y_old_sign = known.y_lo ? *known.y_lo : y_;
+    const auto track = [&](double t, const Vector& y_t) {
+      if ((g_[k] > 0 ? g[k] : -g[k]) <= 0) {  // the new sign: t becomes the bracket's upper end
+        t_new_sign = t;
+        y_new_sign = y_t;
+      } else {
+        y_old_sign = y_t;
+      }
+      return g[k];
+    };
     auto on_dense = [&](double t) {
       dense(t, y);
       eval_roots(t, y, g);
       if (!dense_is_interpolant()) keep_trial(t, y, g);
-      if ((g_[k] > 0 ? g[k] : -g[k]) <= 0) {  // the new sign: t becomes the bracket's upper end
-        t_new_sign = t;
-        y_new_sign = y;
-      }
-      return g[k];
+      return track(t, y);
     };
     // After the first re-step (at the cubic's root), the root of the quintic through that point
     // and the step's ends is the next trial, for one more rhs: inside a contact's oscillation the
@@ -359,9 +369,30 @@ double SteppingIntegrator::narrow_earliest_root(double t_hi, ConstVectorRef y_hi
       if (crossing(q_lo, q_hi) != dir) return std::numeric_limits<double>::quiet_NaN();
       return narrow_sign_change(on_quintic, {b.lo, q_lo, b.hi, q_hi}, tol).hi;
     };
-    const double hi = known.b.hi - known.b.lo <= tol
-                          ? known.b.hi
-                          : narrow_sign_change(on_dense, known.b, tol, guess, 200, slope, refine).hi;
+    // Where the re-step follows the flow, it narrows the bracket to 1e-5 H, and the cubic Hermite
+    // between the bracket's ends finishes, for their two slopes: the cubic's own error over a width
+    // w is w^4 |y''''| / 384, at most (w/H)^4 (omega H)^4 / 384 of y's swing for an oscillation of
+    // frequency omega, 3e-19 at w = 1e-5 H even for a step of omega H = 10 (1.6 periods), and it
+    // departs from the re-step by 1e-4 of the local error (dense_follows_the_flow). Below that
+    // width a re-step samples mostly its own rounding, and the bisections it then needed took two
+    // thirds of RK8PD's right-hand sides on resting_cost's column.
+    const double re_step_tol = dense_follows_the_flow() ? std::max(tol, 1e-5 * (tb_ - ta_)) : tol;
+    const SignChange b = known.b.hi - known.b.lo <= tol
+                             ? known.b
+                             : narrow_sign_change(on_dense, known.b, re_step_tol, guess, 200, slope, refine);
+    double hi = b.hi;
+    if (b.hi - b.lo > tol && b.hi - b.lo <= re_step_tol) {  // (wider: the narrowing ran out of trials)
+      const Vector y_lo = y_old_sign, y_up = y_new_sign;
+      Vector f_lo(y.size()), f_up(y.size());
+      f(b.lo, y_lo, f_lo);
+      f(b.hi, y_up, f_up);
+      auto on_cubic = [&](double t) {
+        cubic_hermite(b.lo, y_lo, f_lo, b.hi, y_up, f_up, t, y);
+        eval_roots(t, y, g);
+        return track(t, y);
+      };
+      hi = narrow_sign_change(on_cubic, b, tol).hi;
+    }
     if (hi < t_root) {
       t_root = hi;
       y_root = y_new_sign;  // hi is t_new_sign
