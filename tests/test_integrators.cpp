@@ -7,6 +7,7 @@
 #include "contact_ode/models/ball_drop.hpp"
 #include "contact_ode/models/spring_mass.hpp"
 #include "integrator_driver.hpp"
+#include "method_param_name.hpp"
 
 #include <gtest/gtest.h>
 
@@ -164,11 +165,7 @@ INSTANTIATE_TEST_SUITE_P(EveryIntegrator, FixedStepOrder,
                          ::testing::ValuesIn(names_where([](const IntegratorInfo& i) {
                            return i.fixed_step_capable;
                          })),
-                         [](const auto& p) {
-                           std::string s = p.param;
-                           std::replace(s.begin(), s.end(), '-', '_');
-                           return s;
-                         });
+                         MethodParamName());
 
 // --- Variable-order adaptive integrators: tolerance behaviour -------------------------------
 
@@ -265,11 +262,7 @@ TEST_P(AdaptiveTolerance, WorkingToleranceSeesEveryContactOfP1) {
 
 INSTANTIATE_TEST_SUITE_P(EveryAdaptiveIntegrator, AdaptiveTolerance,
                          ::testing::ValuesIn(names_where([](const IntegratorInfo& i) { return i.adaptive; })),
-                         [](const auto& p) {
-                           std::string s = p.param;
-                           std::replace(s.begin(), s.end(), '-', '_');
-                           return s;
-                         });
+                         MethodParamName());
 
 // --- All integrators agree on the ball-drop penalty solution --------------------------------
 
@@ -316,11 +309,7 @@ TEST_P(BallDropAgreement, FirstContactAndApexMatchTheReference) {
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryIntegrator, BallDropAgreement, ::testing::ValuesIn(integrator_names()),
-                         [](const auto& p) {
-                           std::string s = p.param;
-                           std::replace(s.begin(), s.end(), '-', '_');
-                           return s;
-                         });
+                         MethodParamName());
 
 // --- Failure paths ----------------------------------------------------------------------------
 
@@ -461,11 +450,7 @@ TEST_P(FailurePaths, AStopEndsTheRunSayingOnlyThatAStopWasRequested) {
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryIntegrator, FailurePaths, ::testing::ValuesIn(integrator_names()),
-                         [](const auto& p) {
-                           std::string s = p.param;
-                           std::replace(s.begin(), s.end(), '-', '_');
-                           return s;
-                         });
+                         MethodParamName());
 
 // --- Bad options --------------------------------------------------------------------------------
 

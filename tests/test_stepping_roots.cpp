@@ -6,6 +6,7 @@
 #include "contact_ode/integrators/integrator.hpp"
 #include "contact_ode/integrators/method_registry.hpp"
 #include "contact_ode/models/scene_registry.hpp"
+#include "method_param_name.hpp"
 
 #include <gtest/gtest.h>
 
@@ -108,11 +109,6 @@ TEST(RingingColumnRoots, EachCostsAFewReStepsThoughItsFunctionIsAtItsRounding) {
 }
 
 INSTANTIATE_TEST_SUITE_P(ReStepping, SteppingRoots, ::testing::Values("gsl-rk8pd", "gsl-rkf45", "rk4"),
-                         [](const auto& p) {
-                           std::string name = p.param;
-                           for (char& c : name)
-                             if (c == '-') c = '_';
-                           return name;
-                         });
+                         MethodParamName());
 
 }  // namespace
