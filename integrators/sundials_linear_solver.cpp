@@ -79,6 +79,14 @@ int free_with_pattern(SUNLinearSolver S) {
   return SUNLinSolFree_KLU(S);
 }
 
+// KLU scales the rows of every matrix it factorises (by default by each row's largest entry).
+// That steers only which pivots its threshold partial pivoting takes (a refactorisation keeps
+// them); pivoting by rows is backward stable with or without it. Unscaled, the chain's run at
+// N = 1e3 under KLU took 7-10 % less CPU (a pass over every entry at each of its 149 setups).
+// Scale -1 also skips KLU's check for duplicate or out-of-range row indices, which the
+// Jacobian's compressed storage never has.
+void factorise_unscaled(SUNLinearSolver S) { klu_content(S)->common.scale = -1; }
+
 void keep_klu_analysis(SUNLinearSolver S) {
   klu_content(S)->common.user_data = new KluPattern;
   S->ops->free = free_with_pattern;
@@ -118,6 +126,7 @@ LinearSystem make_linear_system(LinearSolverKind kind, N_Vector y, Bandwidth ban
       require(ls.solver, "SUNLinSol_KLU", n);
       use_compiled_matrix_ops(ls.matrix.get(), ls.solver.get());
       keep_klu_analysis(ls.solver.get());
+      factorise_unscaled(ls.solver.get());
       break;
     case LinearSolverKind::Gmres:
       ls.solver.reset(SUNLinSol_SPGMR(y, SUN_PREC_NONE, 0, ctx));
