@@ -42,7 +42,12 @@ RigidScene::RigidScene(std::string name, std::vector<RigidBody> bodies, Vec3 gra
                  [law](double, double) { return law; }) {}
 
 RigidBody RigidScene::body_at(std::size_t j, ConstVectorRef y) const {
-  RigidBody body = bodies_[j];
+  const RigidBody& at_rest = bodies_[j];
+  RigidBody body;  // all but the name, which no query about a contact reads
+  body.shape = at_rest.shape;
+  body.inverse_mass = at_rest.inverse_mass;
+  body.inverse_inertia = at_rest.inverse_inertia;
+  body.elasticity = at_rest.elasticity;
   const auto s = y.segment(static_cast<Eigen::Index>(j) * kStride, kStride);
   body.position = s.segment<3>(0);
   body.orientation = Quat(s[3], s[4], s[5], s[6]).normalized();
@@ -51,10 +56,16 @@ RigidBody RigidScene::body_at(std::size_t j, ConstVectorRef y) const {
   return body;
 }
 
-std::vector<RigidBody> RigidScene::bodies_at(ConstVectorRef y) const {
+std::vector<RigidBody> RigidScene::unnamed_bodies_at(ConstVectorRef y) const {
   std::vector<RigidBody> out;
   out.reserve(bodies_.size());
   for (std::size_t j = 0; j < bodies_.size(); ++j) out.push_back(body_at(j, y));
+  return out;
+}
+
+std::vector<RigidBody> RigidScene::bodies_at(ConstVectorRef y) const {
+  std::vector<RigidBody> out = unnamed_bodies_at(y);
+  for (std::size_t j = 0; j < out.size(); ++j) out[j].name = bodies_[j].name;
   return out;
 }
 
@@ -132,7 +143,7 @@ double RigidScene::dissipated_power(std::size_t i, ConstVectorRef y) const {
 }
 
 void RigidScene::rhs(double, ConstVectorRef y, const ContactModes& modes, VectorRef ydot) const {
-  const auto bodies = bodies_at(y);
+  const auto bodies = unnamed_bodies_at(y);
   std::vector<Vec3> force(bodies.size(), Vec3::Zero()), torque(bodies.size(), Vec3::Zero());
   // Bodies resting on static ones: the direction into the support, and how fast it turns along the
   // body's motion (h' . v).
@@ -217,7 +228,7 @@ double RigidScene::energy(ConstVectorRef y) const {
 }
 
 double RigidScene::energy_without_springs(ConstVectorRef y) const {
-  const auto bodies = bodies_at(y);
+  const auto bodies = unnamed_bodies_at(y);
   double E = 0;
   for (const auto& b : bodies) {
     E += b.kinetic_energy();
