@@ -30,6 +30,8 @@ struct Plane {
 };
 using Shape = std::variant<Sphere, Cuboid, Plane>;
 
+// RigidScene::body_at copies every field but the name by hand (rigid_scene.cpp): a field added
+// here goes there too.
 struct RigidBody {
   std::string name;
   Shape shape;
