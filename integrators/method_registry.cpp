@@ -171,6 +171,9 @@ RunResult solve(const Dynamics& scene, const Method& method, const SolveOptions&
     throw std::invalid_argument(
         fmt::format("--dt: value '{}' is out of range; accepted range (0, inf)", method.dt));
   check_method_settings(method);
+  // Before the energy check below builds the initial state: a run refused for its memory need not
+  // allocate (and write) a state first. make_scene refuses a state that alone cannot be held.
+  refuse_what_cannot_fit(scene, info, method, options);
   // exact-linear integrates y' = A y + b with the scene's Jacobian as A; a scene without one (the
   // rigid scenes) was a run that failed at t = 0 as 'solver-error', naming no setting.
   if (integrates(info) && method.integrator.method == "exact-linear" && !scene.has_jacobian())
@@ -185,7 +188,6 @@ RunResult solve(const Dynamics& scene, const Method& method, const SolveOptions&
         "scene '{}': its initial energy is {} J, beyond the doubles; accepted: parameters whose energy "
         "(as m g h0 + m v0^2 / 2 for a drop) is finite",
         scene.name(), e0));
-  refuse_what_cannot_fit(scene, info, method, options);
   if (const auto why = work_refusal(method, options)) {  // a work limit at t = 0, its initial state kept
     RunRecorder refused(scene, info.name, options);
     try {

@@ -1,6 +1,7 @@
 #include "contact_ode/models/scene_registry.hpp"
 
 #include "contact_ode/models/mechanical_system.hpp"
+#include "contact_ode/models/memory_limit.hpp"
 #include "contact_ode/models/registry.hpp"
 
 #include <fmt/format.h>
@@ -36,8 +37,23 @@ std::unique_ptr<Dynamics> make_scene(const std::string& name, const ParameterVal
   std::string settings;
   for (const auto& [parameter, value] : given)
     settings += fmt::format("{}{} = {:g}", settings.empty() ? "" : ", ", parameter, value);
-  require_bodies_apart(*scene, settings.empty() ? "its defaults" : settings);
+  const std::string at = settings.empty() ? "its defaults" : settings;
+  require_state_fits(*scene, at);
+  require_bodies_apart(*scene, at);
   return scene;
+}
+
+void require_state_fits(const Dynamics& scene, const std::string& settings) {
+  // Before the first state is built (the gaps below are checked on one): a chain of 5e8 balls
+  // allocated its 8 GB here, and ended in std::bad_alloc, or the OOM killer, before solve() could
+  // refuse the run for the memory it needs. A run holds at least this state, so the bound is solve()'s.
+  const double values = static_cast<double>(scene.state_size());
+  const double bytes = sizeof(double) * values;
+  if (bytes > half_the_memory_limit())
+    throw std::invalid_argument(fmt::format(
+        "scene '{}' at {}: its state alone is {:.3g} values ({:.3g} GB); a run may hold {:.3g} GB (half the "
+        "memory this process may use): fewer bodies",
+        scene.name(), settings, values, bytes / 1e9, half_the_memory_limit() / 1e9));
 }
 
 void require_bodies_apart(const Dynamics& scene, const std::string& settings) {

@@ -6,9 +6,11 @@
 #include "contact_ode/models/ball_drop.hpp"
 #include "contact_ode/models/law_registry.hpp"
 #include "contact_ode/models/mechanical_system.hpp"
+#include "contact_ode/models/memory_limit.hpp"
 #include "contact_ode/models/scene_registry.hpp"
 #include "refusal.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -467,6 +469,22 @@ TEST(Solve, ARunThatCannotFitIsRefusedBeforeItStarts) {
   few.sample_dt = 2e-5;
   EXPECT_TRUE(solve(*chain, {.name = "penalty"}, few).ok());
   EXPECT_GT(RunLimits{}.max_memory_bytes, 1e8);  // half of what any machine this runs on lets it use
+}
+
+// make_scene builds the initial state (it checks the bodies' gaps on one): a chain of 5e8 balls
+// allocated its 8 GB there and ended in std::bad_alloc, or the OOM killer, before solve() could
+// refuse the run. A chain whose state alone (2n doubles) is more than a run may hold is refused by
+// the scene now, before any state is built.
+TEST(Scenes, AStateThatAloneCannotBeHeldIsRefusedBeforeItIsBuilt) {
+  const double n = std::ceil(half_the_memory_limit() / 16) + 1;
+  if (!(n < 1e9)) GTEST_SKIP() << "this machine may hold the largest chain the scene accepts";
+  const std::string why = refusal([&] { make_scene("ball-chain", {{"n", n}}); });
+  const std::string expected =
+      fmt::format("scene 'ball-chain' at n = {:g}: its state alone is {:.3g} values", n, 2 * n);
+  EXPECT_EQ(why.rfind(expected, 0), 0u) << why;
+  EXPECT_NE(why.find("(half the memory this process may use): fewer bodies"), std::string::npos) << why;
+  // The bound is the state alone: a chain of 1000 balls (16 kB) is made as before.
+  EXPECT_EQ(refusal([&] { make_scene("ball-chain", {{"n", 1000.0}}); }), "");
 }
 
 // A scene whose bodies start inside each other was built and run: the spinning box places its ball

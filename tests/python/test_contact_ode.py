@@ -308,11 +308,37 @@ def test_a_step_beyond_the_stability_bound_raises_diverged_not_the_exploded_stat
     assert stable.status == co.Status.success and np.abs(np.asarray(stable.y)).max() < 2
 
 
+CANNOT_FIT_CHILD = """
+import resource, sys
+limit = 4 << 30  # before the module reads the limit, at its first use
+resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
+import contact_ode as co
+for n in (5e8, 3e7):
+    try:
+        co.solve("ball-chain", "penalty", "hooke", n=n, linear_solver="band")
+    except Exception as e:
+        print(type(e).__name__, e)
+"""
+
+
 def test_a_run_that_cannot_fit_is_refused_before_it_starts():
     """A chain of 5e8 balls (the scene accepts up to 1e9) needs terabytes: refused with what it would
-    hold (a ValueError, before the run), where it filled the machine until the kernel killed the interpreter."""
-    with pytest.raises(ValueError, match=r"penalty on ball-chain needs about \d+ GB .*a wider sample_dt"):
-        co.solve("ball-chain", "penalty", "hooke", n=5e8, linear_solver="band")
+    hold (a ValueError, before the run), where it filled the machine until the kernel killed the
+    interpreter. Refused before anything is built: make_scene built the initial state (8 GB) to check
+    the balls' gaps, so a process that may hold 4 GB raised MemoryError('std::bad_alloc'), and one
+    without a limit wrote 8 GB first. The child runs under that 4 GB address-space limit; a chain
+    whose state fits (3e7 balls, 0.48 GB) is refused by solve() for the run's samples and work."""
+    child = subprocess.run([sys.executable, "-c", CANNOT_FIT_CHILD], capture_output=True, text=True,
+                           env=os.environ, timeout=120)
+    assert child.returncode == 0, child.stderr
+    lines = child.stdout.splitlines()
+    assert len(lines) == 2, child.stdout
+    # 2.15 GB: half the 4 GB limit (less on a machine or container with less than 4 GB).
+    held = r"a run may hold (2\.15|[01](\.\d+)?) GB \(half the memory this process may use\)"
+    assert re.fullmatch(r"ValueError scene 'ball-chain' at n = 5e\+08: its state alone is 1e\+09 values \(8 GB\); "
+                        + held + ": fewer bodies", lines[0]), lines[0]
+    assert re.fullmatch(r"ValueError penalty on ball-chain needs about \d+\.\d GB \(201 output samples of its "
+                        r"6e\+07 state values, .*\); " + held + ": .*a wider sample_dt", lines[1]), lines[1]
 
 
 def test_the_impact_limit_the_zeno_failure_names_is_a_keyword():

@@ -4,6 +4,7 @@
 // report the same things the same way.
 #include "contact_ode/integrators/run_result.hpp"
 #include "contact_ode/models/mechanical_system.hpp"
+#include "contact_ode/models/memory_limit.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -14,14 +15,6 @@
 #include <string>
 
 namespace contact {
-
-// The memory this process may use [bytes]: the machine's physical memory, or less where a cgroup
-// (a container) or an address-space rlimit (ulimit -v) sets less. Half of this machine's memory
-// let a run past a container's limit start, and meet the OOM killer (or, under ulimit -v, a failed
-// allocation inside SUNDIALS, which dereferences the NULL it gets).
-double memory_limit();
-// Half of it: what one run may hold (its caller, e.g. Python's copy of the samples, needs room too).
-double half_the_memory_limit();
 
 // Bounds on one run's work and memory, whatever the method: a run that would pass one ends with
 // Status::WorkLimit and the time reached, instead of running for hours or exhausting memory.

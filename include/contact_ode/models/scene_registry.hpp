@@ -31,7 +31,7 @@ std::vector<std::string> scene_names();
 const SceneEntry& scene_entry(const std::string& name);
 // The scene with the given parameters (the others at their defaults) and, for a scene that takes
 // one, the named law (empty: its default_law). Throws std::invalid_argument for an unknown
-// scene, parameter or law.
+// scene, parameter or law, a state too large to hold, or bodies that start inside each other.
 std::unique_ptr<Dynamics> make_scene(const std::string& name, const ParameterValues& given = {},
                                      const std::string& law = "");
 
@@ -40,6 +40,9 @@ std::unique_ptr<Dynamics> make_scene(const std::string& name, const ParameterVal
 // question (a penalty spring launches the ball out at hundreds of m/s; impulses refuse), so the
 // scene is refused, as make_scene does. Touching (a gap of zero to rounding) is apart.
 void require_bodies_apart(const Dynamics& scene, const std::string& settings);
+// Throws std::invalid_argument, naming `settings`, when the scene's state alone is more than a run
+// may hold (half_the_memory_limit()), before anything builds it; make_scene does this first.
+void require_state_fits(const Dynamics& scene, const std::string& settings);
 
 // The entries, each defined beside its model.
 SceneEntry ball_drop_scene();
