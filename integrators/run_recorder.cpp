@@ -80,14 +80,17 @@ void RunRecorder::check_diverged(double t, ConstVectorRef y, double gain) const 
     // The state left its initial scale while the ledger stayed within its line: that may be the
     // motion itself (a weight far beyond what the contact holds sinks through it, its sag m g / k
     // past the line, the energy conserved) as much as an unstable method.
+    // A state past 1e154 squares past the doubles: its energy read "-nan J" (inf - inf).
     const auto i = static_cast<std::size_t>(at);
+    const std::string energy =
+        std::isfinite(gain) ? fmt::format("{:.3g} J from its initial {:.3g} J", gain, result_.energy0)
+                            : fmt::format("past the doubles' range (its initial {:.3g} J)", result_.energy0);
     what = fmt::format(
         "{} = {:.3g} is more than {:g} times the initial state's largest entry (or 1), the energy "
-        "(with what the run booked as lost) {:.3g} J from its initial {:.3g} J: either the motion "
-        "itself leaves that scale (a load the contact cannot hold, such as a weight m g whose sag "
-        "m g / k is beyond it) or {}",
+        "(with what the run booked as lost) {}: either the motion itself leaves that scale (a load "
+        "the contact cannot hold, such as a weight m g whose sag m g / k is beyond it) or {}",
         i < result_.state_labels.size() ? result_.state_labels[i] : fmt::format("y[{}]", i), y[at],
-        limits_.max_state_growth, gain, result_.energy0, unstable);
+        limits_.max_state_growth, energy, unstable);
   }
   throw SolverFailure(Status::Diverged, t, what);
 }

@@ -161,6 +161,21 @@ TEST(RunBounds, AStateBeyondItsLineWithTheEnergyConservedNamesTheMotionNotOnlyTh
   EXPECT_LT(last.energy + last.dissipated - r.energy0, 1e6 * r.energy0);  // the ledger holds
 }
 
+// Past 1e154 a state's squares leave the doubles: under g = 1e300 m/s^2 the game spring's ball is at
+// 1e296 m/s one step into its contact, and the message read "the energy (with what the run booked as
+// lost) -nan J from its initial 1e+300 J" (inf - inf). It says the energy left the doubles' range now.
+TEST(RunBounds, AnEnergyPastTheDoublesIsNamedSoNotNan) {
+  const BallDrop ball({.g = 1e300, .law = Hooke{1e5}});
+  const RunResult r = solve(ball, {.name = "game-symplectic-spring", .dt = 1e-3}, {.t_end = 0.05});
+  EXPECT_EQ(r.status, Status::Diverged) << to_string(r.status) << " " << r.message;
+  EXPECT_NE(
+      r.message.find("the energy (with what the run booked as lost) past the doubles' range (its initial "
+                     "1e+300 J): either the motion itself leaves that scale"),
+      std::string::npos)
+      << r.message;
+  EXPECT_EQ(r.message.find("nan"), std::string::npos) << r.message;
+}
+
 // CVODE and ARKODE (re)start with the step sqrt(hlb hub), which underflows to 0 at extreme scales;
 // they then stepped by 0 and returned the next output time with the state of the start, as a
 // success. A 0.17 kg ball at 2 m/s into a 1e217 N/m Kelvin–Voigt contact (tuned to e = 0.9; 4e-109

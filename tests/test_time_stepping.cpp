@@ -670,6 +670,25 @@ TEST(ImplicitSpring, ANewtonFailureNamesTheStepAndAShorterOne) {
   EXPECT_GE(failures, 1) << "no run at 1 ms met Newton far from its root: the test no longer tests";
 }
 
+// An iterate past the doubles is no convergence failure a shorter step mends: the wedge at k =
+// 1e300 N/m (its rotational Jacobian terms multiply forces of 1e297 N) failed 'Newton did not
+// converge in 2 iterations (last correction nan) ...; a shorter step starts Newton nearer the
+// motion', where only steps of 1e-150 s would keep the iterate finite. It is a non-finite state now,
+// said so, at the step's start.
+TEST(ImplicitSpring, AnIterateBeyondTheDoublesIsANonFiniteStateNotANewtonFailure) {
+  const auto wedge = make_scene("wedge", {{"k", 1e300}});
+  const RunResult r = solve(*wedge, {.name = "game-implicit-spring", .dt = 1e-3});
+  EXPECT_EQ(r.status, Status::NonFiniteState) << to_string(r.status) << ": " << r.message;
+  EXPECT_NE(r.message.find("implicit Euler: Newton's iterate is not finite after "), std::string::npos)
+      << r.message;
+  EXPECT_NE(r.message.find(
+                "at dt = 0.001 s: the contact forces or the step's matrix I - h J left the doubles' range"),
+            std::string::npos)
+      << r.message;
+  EXPECT_EQ(r.message.find("nan"), std::string::npos) << r.message;
+  EXPECT_GT(r.t_reached, 0.0);  // the striker reached the first ball before the forces overflowed
+}
+
 // Every new method refuses what it cannot run, by name: XPBD needs a linear law.
 TEST(TimeStepping, XpbdRefusesANonlinearLaw) {
   const auto hertz = make_scene("ball-drop", {}, "hertz");
