@@ -64,12 +64,17 @@ struct Designed {
                                double penetration) {
   const std::string inputs =
       r.radius ? "--m, --v, --radius/--young/--poisson" : "--m, --v, --max-penetration/--duration";
+  // A NaN here is inf / inf inside a closed form: "a contact of nan s" named no quantity.
+  const auto shown = [](double x, const char* unit, const char* what) {
+    return std::isnan(x) ? fmt::format("an undefined {}", what) : fmt::format("{:g} {}", x, unit);
+  };
   throw std::invalid_argument(
-      fmt::format("{}: m = {:g} kg, v = {:g} m/s give k = {:g} {}, a contact of {:g} s and {:g} m and an "
+      fmt::format("{}: m = {:g} kg, v = {:g} m/s give k = {:g} {}, a contact of {} and {} and an "
                   "energy m v^2 / 2 of {:g} J, outside what double precision resolves; accepted: inputs "
                   "giving a finite, positive stiffness, duration, penetration and 1e4 times the energy "
                   "above 1e-300",
-                  inputs, r.m, r.v, k, k_unit, duration, penetration, 0.5 * r.m * r.v * r.v));
+                  inputs, r.m, r.v, k, k_unit, shown(duration, "s", "duration"),
+                  shown(penetration, "m", "penetration"), 0.5 * r.m * r.v * r.v));
 }
 
 // The laws design() builds as Hunt–Crossley laws (every one but the linear spring-dashpots), the

@@ -446,6 +446,7 @@ TEST(Advisor, AStiffnessBeyondTheDoublesIsRefusedNamingTheOptions) {
         EXPECT_EQ(m.rfind("--m, --v, --max-penetration/--duration: m = 1 kg, v = ", 0), 0u)
             << law << " " << by_penetration << " " << v << ": " << m;
         EXPECT_NE(m.find("outside what double precision resolves"), std::string::npos) << m;
+        EXPECT_EQ(m.find("nan"), std::string::npos) << m;  // 'a contact of nan s and nan m'
       }
   for (const double scale : {1e300, 1e-300}) {  // a material's stiffness: E* sqrt(R) of 1e450, 1e-450
     ContactRequest r;
