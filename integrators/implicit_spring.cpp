@@ -210,12 +210,9 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
           break;
         }
       }
-      // Newton starts at the step's start, and a step that carries a body past a contact starts it
-      // far from its root: the wedge's 0.7 to 0.9 mm balls, struck at 2 m/s, failed so at 1 ms
-      // steps and ran at 0.3 ms. The message names that remedy, as the energy check's does.
-      // An iterate that left the doubles (a wedge at k = 1e300 N/m: its rotational Jacobian terms
-      // multiply forces of 1e297 N) read "did not converge (last correction nan); a shorter step
-      // starts Newton nearer the motion", a remedy that would need steps of 1e-150 s there.
+      // An iterate that left the doubles (the wedge at k = 1e300 N/m) read "did not converge (last
+      // correction nan); a shorter step starts Newton nearer the motion", a remedy no practical
+      // step gives there: it is a non-finite state, said so.
       if (!z.allFinite())
         throw SolverFailure(
             Status::NonFiniteState, t,
@@ -223,6 +220,9 @@ RunResult run(const Dynamics& scene, const Method& m, const SolveOptions& span) 
                         "at dt = {:g} s: the contact forces or the step's matrix I - h J left "
                         "the doubles' range at these settings",
                         it, h));
+      // Newton starts at the step's start, and a step that carries a body past a contact starts it
+      // far from its root: the wedge's 0.7 to 0.9 mm balls, struck at 2 m/s, failed so at 1 ms
+      // steps and ran at 0.3 ms. The message names that remedy, as the energy check's does.
       if (it == kMaxNewton + engaging) {
         const std::string why =
             converged

@@ -48,12 +48,12 @@ void require_state_fits(const Dynamics& scene, const std::string& settings) {
   // allocated its 8 GB here, and ended in std::bad_alloc, or the OOM killer, before solve() could
   // refuse the run for the memory it needs. A run holds at least this state, so the bound is solve()'s.
   const double values = static_cast<double>(scene.state_size());
-  const double bytes = sizeof(double) * values;
-  if (bytes > half_the_memory_limit())
+  const double bytes = sizeof(double) * values, held = half_the_memory_limit();
+  if (bytes > held)
     throw std::invalid_argument(fmt::format(
         "scene '{}' at {}: its state alone is {:.3g} values ({:.3g} GB); a run may hold {:.3g} GB (half the "
         "memory this process may use): fewer bodies",
-        scene.name(), settings, values, bytes / 1e9, half_the_memory_limit() / 1e9));
+        scene.name(), settings, values, bytes / 1e9, held / 1e9));
 }
 
 void require_bodies_apart(const Dynamics& scene, const std::string& settings) {

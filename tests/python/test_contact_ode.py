@@ -309,7 +309,7 @@ def test_a_step_beyond_the_stability_bound_raises_diverged_not_the_exploded_stat
 
 
 CANNOT_FIT_CHILD = """
-import resource, sys
+import resource
 limit = 4 << 30  # before the module reads the limit, at its first use
 resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
 import contact_ode as co
